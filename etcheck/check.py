@@ -1,0 +1,202 @@
+"""The library entry point: mission -> scene -> plan -> solve -> margins -> results.
+
+``check(mission)`` returns a :class:`CheckResult` whose ``results`` are plain
+JSON-able data; reports are rendered from those alone (see :mod:`etcheck.report`).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+import time
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from . import __version__
+from .margins import FAIL, INCOMPLETE, PASS, Margin, incomplete_margin, overall_verdict, ratio_margin
+from .mission import Mission, load_mission, mission_from_dict
+from .plan import Plan, plan
+from .rod import analytic
+from .scaling import Scaled, Scene, scale, scene
+
+SCHEMA_VERSION = 1
+EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1}
+N_LOADS = 5
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """What a check produced: JSON-able ``results`` and the CLI exit code."""
+
+    results: dict[str, Any]
+
+    @property
+    def verdict(self) -> str:
+        return self.results["verdict"]
+
+    @property
+    def exit_code(self) -> int:
+        return EXIT_CODES[self.verdict]
+
+
+def check(mission: Mission | str | Path | dict) -> CheckResult:
+    """Run the stability check of a mission (a Mission, a TOML path or a dict)."""
+    if isinstance(mission, (str, Path)):
+        mission = load_mission(mission)
+    elif isinstance(mission, dict):
+        mission = mission_from_dict(mission)
+    started = time.perf_counter()
+    sc = scene(mission)
+    scaled = scale(sc)
+    chosen = plan(scaled.params, mission.fidelity)
+    static = static_buckling(scaled)
+    static["limits"] = _static_limits(static, mission, sc)
+    margins = _margins(mission, sc, scaled, chosen, static)
+    results = {
+        "schema_version": SCHEMA_VERSION,
+        "etcheck_version": __version__,
+        "generated": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "mission": mission.echo(),
+        "scene": _scene_dict(mission, sc),
+        "scaled": asdict(scaled.params),
+        "scales": {
+            "length_m": scaled.scales.length,
+            "reference_frequency_rad_s": scaled.scales.frequency,
+            "force_N": scaled.scales.force,
+            "load_N_per_m": scaled.scales.load,
+        },
+        "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete},
+        "straight_rod": static,
+        "margins": [m.as_dict() for m in margins],
+        "verdict": overall_verdict(margins),
+        "validity": _validity(mission, scaled, chosen),
+        "elapsed_s": time.perf_counter() - started,
+    }
+    return CheckResult(results=results)
+
+
+def static_buckling(scaled: Scaled) -> dict[str, Any]:
+    """Rung 0 answers for the scene: critical loads, frequencies, mode shape.
+
+    All loads are at omega = 0, T = 0 (eq. ``char_welded``); dimensionless B
+    and I B0 in N/m.
+    """
+    p, scales = scaled.params, scaled.scales
+    roots = analytic.characteristic_roots(N_LOADS)
+    loads = []
+    for r in roots:
+        B = r.beta**3 * math.sqrt(p.R) / p.f
+        loads.append(
+            {
+                "k": r.k,
+                "beta": r.beta,
+                "B": B,
+                "IB0_N_per_m": B * scales.load,
+                "multiplicity": r.kernel_dimension,
+                "chi_residual": r.residual,
+                "chi_curvature": r.curvature,
+                "relative_error": 3.0 * r.error,
+            }
+        )
+    s = np.linspace(0.0, 1.0, 101)
+    x, y = analytic.buckling_mode(1, p.R, s)
+    beta_grid = np.linspace(0.0, max(1.25 * roots[2].beta, 1.2 * analytic.beta_of_load(p.B, p.R, p.f)), 600)
+    freq = {
+        "bending_weak": analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak"),
+        "bending_stiff": analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff"),
+        "torsion": analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5),
+    }
+    wc = scales.frequency
+    return {
+        "model": "rung 0 (analytic)",
+        "critical_loads": loads,
+        "operating_beta": analytic.beta_of_load(p.B, p.R, p.f),
+        "operating_B": p.B,
+        "first_mode": {"s": s.tolist(), "x": x.tolist(), "y": y.tolist()},
+        "chi_curve": {"beta": beta_grid.tolist(), "chi_scaled": analytic.chi_scaled(beta_grid).tolist()},
+        "natural_frequencies": {
+            name: [
+                {"mu": float(m), "rad_s": float(m * wc), "Hz": float(m * wc / (2 * math.pi))}
+                for m in values
+                if math.isfinite(m)
+            ]
+            for name, values in freq.items()
+        },
+    }
+
+
+def _margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: dict) -> list[Margin]:
+    required = mission.required_margin
+    first = static["critical_loads"][0]
+    if chosen.rung == 0 and chosen.complete:
+        return [
+            ratio_margin(
+                "magnetic load |I B0|",
+                "N/m",
+                first["IB0_N_per_m"],
+                sc.load,
+                required,
+                chosen.model,
+                first["relative_error"],
+                "first (doubly degenerate) static buckling load of the straight welded tether, eq. char_welded",
+            )
+        ]
+    why = chosen.reason if not chosen.complete else "rung 1 (spin, tension) is not available in this version"
+    return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.model, why)]
+
+
+def _static_limits(static: dict, mission: Mission, sc: Scene) -> dict[str, Any]:
+    """Critical current at the worst field and critical length at the operating load.
+
+    Static buckling (omega = T = 0): B ∝ L^3 and the static loads do not
+    depend on P, so L_c = L (B_1 / B)^(1/3). SI; None where the operating
+    value is zero (no limit).
+    """
+    critical = static["critical_loads"][0]["IB0_N_per_m"]
+    field = mission.worst_field.to_value("T")
+    return {
+        "critical_IB0_N_per_m": critical,
+        "critical_current_A": critical / field if field else None,
+        "critical_length_m": sc.length * (critical / sc.load) ** (1 / 3) if sc.load else None,
+    }
+
+
+def _scene_dict(mission: Mission, sc: Scene) -> dict[str, float]:
+    return {
+        "worst_current_A": float(mission.worst_current.to_value("A")),
+        "worst_field_T": float(mission.worst_field.to_value("T")),
+        "length_m": sc.length,
+        "EI1_N_m2": sc.EI1,
+        "EI2_N_m2": sc.EI2,
+        "GJ_N_m2": sc.GJ,
+        "mass_per_length_kg_per_m": sc.mass_per_length,
+        "P": sc.P,
+        "load_N_per_m": sc.load,
+        "spin_rate_rad_s": sc.spin_rate,
+        "tension_N": sc.tension,
+        "damping_time_s": sc.damping_time,
+        "f": sc.f,
+    }
+
+
+def _validity(mission: Mission, scaled: Scaled, chosen: Plan) -> list[str]:
+    p = scaled.params
+    items = [
+        "Model: inextensible, unshearable, intrinsically straight Kirchhoff rod, welded (clamped) at both ends, "
+        "uniform field along the undeformed axis (Valverde & van der Heijden).",
+        "Linear stability of the straight tether only: margins say where it first buckles or whirls, "
+        "not what happens after (post-buckling needs rung 2/3).",
+        "The load is the worst case |I| x |B0| over the given ranges; field components across the tether "
+        "(which drive the intended drag) are not part of this check.",
+    ]
+    if chosen.rung == 0:
+        items.append(
+            "Rung 0 roots of chi(beta) are located to ~1e-15 relative (a-posteriori Newton step); "
+            "the static loads do not depend on P, damping or mass per length."
+        )
+    if p.P > 1e-2:
+        items.append(f"P = {p.P:.3g} is large for a slender rod; rod theory assumes P << 1.")
+    return items

@@ -1,0 +1,83 @@
+"""Command line: a thin shell over :func:`etcheck.check` and the report writers."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from . import __version__
+from .errors import EtcheckError
+
+EXIT_TEXT = """exit codes:
+  0  the check ran and every margin meets the required margin
+  1  the check ran and a margin fails (or the check is incomplete)
+  2  bad input or usage (mission file, options, report cannot be written)
+  3  a numerical solve failed (nothing is reported from it)
+"""
+
+FORMATS = ("html", "pdf", "json")
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="etcheck",
+        description="Check an electrodynamic tether mission against magnetic buckling and whirl, "
+        "and write HTML, PDF and JSON margin reports.",
+        epilog=EXIT_TEXT + "\nsee also: etcheck accuracy MISSION.toml (speed/accuracy of the solvers)",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("mission", help="mission file (TOML), e.g. missions/set.toml")
+    p.add_argument("--out", default="reports", help="output folder (default: reports/); "
+                   "the report goes to OUT/<mission-name>/")
+    p.add_argument("--format", default="html,pdf,json",
+                   help="comma-separated list of html, pdf, json (default: all three)")
+    p.add_argument("--version", action="version", version=f"etcheck {__version__}")
+    return p
+
+
+def _formats(text: str, parser: argparse.ArgumentParser) -> tuple[str, ...]:
+    items = tuple(x.strip().lower() for x in text.split(",") if x.strip())
+    bad = [x for x in items if x not in FORMATS]
+    if bad or not items:
+        parser.error(f"--format: unknown format {', '.join(bad) or '(empty)'}; use any of {', '.join(FORMATS)}")
+    return items
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv and argv[0] == "accuracy":
+        from .accuracy_cli import main as accuracy_main
+
+        return accuracy_main(argv[1:])
+    parser = _parser()
+    args = parser.parse_args(argv)
+    formats = _formats(args.format, parser)
+    try:
+        from .check import check
+        from .mission import load_mission
+        from .report import write_reports
+
+        mission = load_mission(args.mission)
+        result = check(mission)
+        paths = write_reports(result.results, Path(args.out) / mission.slug, formats)
+    except EtcheckError as exc:
+        print(f"etcheck: error: {exc}", file=sys.stderr)
+        return exc.exit_code
+    except KeyboardInterrupt:
+        print("etcheck: interrupted; no report written", file=sys.stderr)
+        return 130
+    _summary(result.results, paths)
+    return result.exit_code
+
+
+def _summary(results: dict, paths: list[Path]) -> None:
+    """A few lines on stdout: verdict, margins, where the reports are."""
+    print(f"etcheck {__version__}: {results['mission']['name']}: {results['verdict'].upper()}")
+    for m in results["margins"]:
+        value = "unlimited" if m["value"] is None else f"{m['value']:.4g}"
+        print(f"  {m['name']}: margin {value} (required {m['required']:g}) -> {m['verdict']} [{m['model']}]")
+        if m["verdict"] == "incomplete":
+            print(f"    incomplete: {m['why']}")
+    for path in paths:
+        print(f"  wrote {path}")

@@ -1,0 +1,1 @@
+"""Generic, rod-agnostic numerics (Chebyshev collocation, eigenproblems)."""

@@ -1,0 +1,291 @@
+"""The O(delta) linearisation about a whirling base state, discretised (dimensionless).
+
+Continuous problem (paper Sec. 5.2 and 6, eqs. ``per:lmomentum``,
+``per:amomentum``, ``per:twist``, ``per:constitutive``, ``per:tangent`` with
+``per:sol1``-``per:sol4``; derived afresh from ``eq:lmomentum``-
+``eq:constitutive`` rather than copied from Appendix A, which has errata).
+All perturbations are **e-frame** vectors (rotating frame, omega = omega e3):
+x = x0 + delta xi e^{lambda t}, d_i = d_i0 + delta (a x d_i0) e^{lambda t},
+F = F0 + delta phi e^{lambda t}, M = M0 + delta m e^{lambda t}::
+
+    xi'  = a x d3_0                                                   (per:tangent)
+    phi' = -B (a x d3_0) x e3 + lambda^2 xi + 2 lambda omega e3 x xi
+           + omega^2 e3 x (e3 x xi)                                   (per:lmomentum)
+    m'   = -(a x d3_0) x F0 - d3_0 x phi
+           + sum_i c_i [ lambda^2 d_i0 x (a x d_i0)
+                         + 2 lambda d_i0 x (omega e3 x (a x d_i0))
+                         + (omega e3 . (a x d_i0)) (d_i0 x omega e3)
+                         + (omega e3 . d_i0) ((a x d_i0) x omega e3) ]  (per:amomentum)
+    (1 + gamma lambda) D0 K D0^T a' = m + M0 x a            (per:twist + per:constitutive)
+
+with c_1 = P R, c_2 = P, c_3 = 0 and K = diag(1, R, Gamma (1+R)/2) / f (body
+stiffnesses; the perturbed body curvature is a' . d_j0 and the perturbed body
+moment (m + M0 x a) . d_j0). The constitutive row is kept polynomial in
+lambda (no division by 1 + gamma lambda). Boundary conditions
+(``per:et:bc1``-``per:et:bc6``, linearised ``eq:et:BC23``-``eq:et:BC34``):
+
+    s = 0:  xi . e1 = xi . e2 = 0,  phi . e3 = 0,
+            (a x d3_0).e1 = (a x d3_0).e2 = (a x d1_0).e2 = 0   (a = 0 when D0(0) = I)
+    s = 1:  xi = 0,  (a x d3_0).e1 = (a x d3_0).e2 = (a x d1_0).e2 = 0
+
+Discretisation: rectangular Chebyshev collocation (Driscoll & Hale 2016).
+The 12 unknown fields are sampled at the N+1 Lobatto points s_j of [0, 1];
+the 12 ODE rows are imposed at the N first-kind points t_k (values resampled
+there by the barycentric matrix P, derivatives by P D) and the 12 boundary
+rows are appended, so the matrices are square of size 12 (N+1) and
+
+    (A0 + lambda A1 + lambda^2 A2) Y = 0.
+
+**Variable ordering** of Y (component-major, node-minor): the unknown
+component c in ``VARIABLES`` at Lobatto node j sits at index c (N+1) + j,
+where ``VARIABLES = (xi1, xi2, xi3, a1, a2, a3, phi1, phi2, phi3, m1, m2, m3)``
+(e-frame components). **Row ordering**: ODE group e (same order: the rows
+of xi', a', phi', m') at point t_k is row e N + k; rows 12 N ... 12 N + 11
+are the boundary conditions in the order listed above.
+
+The coefficient blocks are built once for a general base state by applying the
+vector expressions above to the basis vectors (vectorised over the points);
+nothing is specialised to the straight rod.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..numerics.chebyshev import (
+    diff_matrix,
+    first_kind_nodes,
+    lobatto_nodes,
+    lobatto_weights,
+    resample_matrix,
+)
+from .base_state import BaseState
+from .parameters import RodParameters
+
+__all__ = [
+    "VARIABLES",
+    "NFIELDS",
+    "Collocation",
+    "collocation",
+    "stiffness_diag",
+    "coefficient_blocks",
+    "linear_operator",
+    "magnetic_load_matrix",
+    "field_slice",
+]
+
+VARIABLES = ("xi1", "xi2", "xi3", "a1", "a2", "a3", "phi1", "phi2", "phi3", "m1", "m2", "m3")
+NFIELDS = 12
+XI, ALPHA, PHI, MOM = slice(0, 3), slice(3, 6), slice(6, 9), slice(9, 12)
+_E3 = np.array([0.0, 0.0, 1.0])
+_EYE = np.eye(3)
+
+
+@dataclass(frozen=True)
+class Collocation:
+    """Grids and matrices of the rectangular collocation at resolution N."""
+
+    N: int
+    s: np.ndarray  # N+1 Lobatto points (unknowns)
+    t: np.ndarray  # N first-kind points (ODE rows)
+    D: np.ndarray  # (N+1, N+1) differentiation on s
+    P: np.ndarray  # (N, N+1) resampling s -> t
+    PD: np.ndarray  # (N, N+1) = P @ D
+
+
+@lru_cache(maxsize=64)
+def collocation(N: int) -> Collocation:
+    """Rectangular collocation matrices for N (cached; treat as read-only)."""
+    if N < 4:
+        raise ValueError(f"N must be >= 4, got {N}")
+    s = lobatto_nodes(N)
+    w = lobatto_weights(N)
+    t = first_kind_nodes(N)
+    D = diff_matrix(s, w)
+    P = resample_matrix(s, t, w)
+    for arr in (s, t, D, P):
+        arr.setflags(write=False)
+    PD = P @ D
+    PD.setflags(write=False)
+    return Collocation(N=N, s=s, t=t, D=D, P=P, PD=PD)
+
+
+def field_slice(name: str, N: int) -> slice:
+    """Index range of the nodal values of the unknown ``name`` in Y."""
+    c = VARIABLES.index(name)
+    return slice(c * (N + 1), (c + 1) * (N + 1))
+
+
+def stiffness_diag(params: RodParameters) -> np.ndarray:
+    """Body stiffnesses K = (1, R, Gamma (1+R)/2) / f of ``eq:constitutive``."""
+    return np.array([1.0, params.R, params.Gamma * (1.0 + params.R) / 2.0]) / params.f
+
+
+def _linear_map(fn, n: int) -> np.ndarray:
+    """Matrix (n, 3, 3) of the pointwise linear map fn: (n,3) -> (n,3)."""
+    out = np.empty((n, 3, 3))
+    for j in range(3):
+        e = np.zeros((n, 3))
+        e[:, j] = 1.0
+        out[:, :, j] = fn(e)
+    return out
+
+
+def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
+    """Pointwise coefficients of the first-order system E(lambda) y' = G(lambda) y.
+
+    Returns ``(E0, E1, G0, G1, G2)``, each of shape (n, 12, 12) at the points s,
+    with E(lambda) = E0 + lambda E1 and G(lambda) = G0 + lambda G1 +
+    lambda^2 G2, rows/columns in ``VARIABLES`` order (dimensionless;
+    ``per:lmomentum``, ``per:amomentum``, ``per:constitutive``, ``per:tangent``).
+    """
+    s = np.atleast_1d(np.asarray(s, dtype=float))
+    n = s.size
+    D0 = base.D0(s)
+    F0 = base.F0(s)
+    M0 = base.M0(s)
+    d = [D0[:, :, i] for i in range(3)]
+    d3 = d[2]
+    w = params.omega * _E3
+    wv = np.broadcast_to(w, (n, 3))
+    B = params.B
+    c = (params.P * params.R, params.P, 0.0)
+    K = stiffness_diag(params)
+
+    E0 = np.zeros((n, NFIELDS, NFIELDS))
+    E1 = np.zeros_like(E0)
+    G0 = np.zeros_like(E0)
+    G1 = np.zeros_like(E0)
+    G2 = np.zeros_like(E0)
+    for grp in (XI, PHI, MOM):
+        E0[:, grp, grp] = _EYE
+
+    cross = np.cross
+
+    def dot(u, v):
+        return np.einsum("ni,ni->n", u, v)[:, None]
+
+    # xi' = a x d3_0                                            (per:tangent)
+    G0[:, XI, ALPHA] = _linear_map(lambda a: cross(a, d3), n)
+
+    # (1 + gamma lambda) D0 K D0^T a' = m + M0 x a              (per:constitutive)
+    DKD = np.einsum("nai,i,nbi->nab", D0, K, D0)
+    E0[:, ALPHA, ALPHA] = DKD
+    E1[:, ALPHA, ALPHA] = params.gamma * DKD
+    G0[:, ALPHA, MOM] = _EYE
+    G0[:, ALPHA, ALPHA] = _linear_map(lambda a: cross(M0, a), n)
+
+    # phi' = -B (a x d3_0) x e3 + lambda^2 xi + 2 lambda w x xi + w x (w x xi)
+    G0[:, PHI, ALPHA] = _linear_map(lambda a: -B * cross(cross(a, d3), np.broadcast_to(_E3, (n, 3))), n)
+    G2[:, PHI, XI] = _EYE
+    G1[:, PHI, XI] = _linear_map(lambda x: 2.0 * cross(wv, x), n)
+    G0[:, PHI, XI] = _linear_map(lambda x: cross(wv, cross(wv, x)), n)
+
+    # m' = -(a x d3_0) x F0 - d3_0 x phi + sum_i c_i [...]       (per:amomentum)
+    def m_static(a):
+        out = -cross(cross(a, d3), F0)
+        for ci, di in zip(c, d):
+            if ci == 0.0:
+                continue
+            adi = cross(a, di)
+            out = out + ci * (dot(wv, adi) * cross(di, wv) + dot(wv, di) * cross(adi, wv))
+        return out
+
+    def m_gyro(a):
+        out = np.zeros((n, 3))
+        for ci, di in zip(c, d):
+            if ci != 0.0:
+                out = out + 2.0 * ci * cross(di, cross(wv, cross(a, di)))
+        return out
+
+    def m_inertia(a):
+        out = np.zeros((n, 3))
+        for ci, di in zip(c, d):
+            if ci != 0.0:
+                out = out + ci * cross(di, cross(a, di))
+        return out
+
+    G0[:, MOM, ALPHA] = _linear_map(m_static, n)
+    G0[:, MOM, PHI] = _linear_map(lambda p: -cross(d3, p), n)
+    G1[:, MOM, ALPHA] = _linear_map(m_gyro, n)
+    G2[:, MOM, ALPHA] = _linear_map(m_inertia, n)
+    return E0, E1, G0, G1, G2
+
+
+def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> np.ndarray:
+    """Rows e N + k, columns v (N+1) + j of  E(t_k) (P D) - G(t_k) P."""
+    N = col.N
+    out = np.zeros((NFIELDS, N, NFIELDS, N + 1))
+    if E is not None:
+        out += np.einsum("kev,kj->ekvj", E, col.PD)
+    if G is not None:
+        out -= np.einsum("kev,kj->ekvj", G, col.P)
+    return out.reshape(NFIELDS * N, NFIELDS * (N + 1))
+
+
+def _boundary_rows(base: BaseState, N: int) -> np.ndarray:
+    """The 12 linearised welded boundary conditions (``per:et:bc1``-``per:et:bc6``)."""
+    rows = np.zeros((12, NFIELDS * (N + 1)))
+    Dends = base.D0(np.array([0.0, 1.0]))
+
+    def put(r, comp, node, value):
+        rows[r, comp * (N + 1) + node] += value
+
+    # s = 0: xi1 = xi2 = 0, phi3 = 0
+    put(0, 0, 0, 1.0)
+    put(1, 1, 0, 1.0)
+    put(2, 8, 0, 1.0)
+    r = 3
+    for end, node in ((0, 0), (1, N)):
+        if end == 1:
+            for i in range(3):  # s = 1: xi = 0
+                put(r, i, N, 1.0)
+                r += 1
+        d1, d3 = Dends[end][:, 0], Dends[end][:, 2]
+        # (a x d3).e1 = a.(d3 x e1), (a x d3).e2 = a.(d3 x e2), (a x d1).e2 = a.(d1 x e2)
+        for g in (np.cross(d3, _EYE[0]), np.cross(d3, _EYE[1]), np.cross(d1, _EYE[1])):
+            for i in range(3):
+                if g[i] != 0.0:
+                    put(r, 3 + i, node, g[i])
+            r += 1
+    assert r == 12
+    return rows
+
+
+def linear_operator(params: RodParameters, base: BaseState, N: int):
+    """Discretised linearisation ``(A0, A1, A2)``, each of shape (12(N+1), 12(N+1)).
+
+    A(lambda) = A0 + lambda A1 + lambda^2 A2 is the rectangular Chebyshev
+    collocation (N+1 Lobatto points, ODE rows at N first-kind points, 12
+    boundary rows appended) of the dimensionless O(delta) problem
+    ``per:lmomentum``, ``per:amomentum``, ``per:constitutive``,
+    ``per:tangent``, ``per:et:bc1``-``per:et:bc6`` about ``base``; see the
+    module docstring for the variable and row ordering. A1 vanishes unless
+    omega != 0 or gamma != 0; the boundary rows are all in A0.
+    """
+    col = collocation(int(N))
+    E0, E1, G0, G1, G2 = coefficient_blocks(params, base, col.t)
+    A0 = np.vstack([_assemble(E0, G0, col), _boundary_rows(base, col.N)])
+    zero = np.zeros((12, NFIELDS * (col.N + 1)))
+    A1 = np.vstack([_assemble(E1, G1, col), zero])
+    A2 = np.vstack([_assemble(None, G2, col), zero])
+    return A0, A1, A2
+
+
+def magnetic_load_matrix(params: RodParameters, base: BaseState, N: int) -> np.ndarray:
+    """dA0/dB at fixed base state: A0(B) = A0(0) + B * this (A0 is affine in B).
+
+    Only the Lorentz term -B (a x d3_0) x e3 of ``per:lmomentum`` carries B
+    once the base state is held fixed (true for the straight rod, whose base
+    state does not depend on B).
+    """
+    col = collocation(int(N))
+    p1 = params.with_(B=1.0, omega=0.0, gamma=0.0, P=0.0)
+    p0 = p1.with_(B=0.0)
+    _, _, G0a, _, _ = coefficient_blocks(p1, base, col.t)
+    _, _, G0b, _, _ = coefficient_blocks(p0, base, col.t)
+    dG = G0a - G0b
+    return np.vstack([_assemble(None, dG, col), np.zeros((12, NFIELDS * (col.N + 1)))])

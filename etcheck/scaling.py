@@ -1,0 +1,155 @@
+"""Mission <-> dimensionless problem: the scalings of eq. ``eq:nondim``.
+
+``scene(mission)`` reduces a mission to one worst-case operating point in SI
+floats; ``scale(scene)`` gives the dimensionless :class:`RodParameters` plus the
+:class:`Scales` needed to go back; ``unscale`` inverts it exactly (to rounding).
+
+    omega_c = sqrt(f EI1 / (rho A L^4))   [rad/s]
+    B       = I B0 L^3 / (f EI1)          T̄ = T L^2 / (f EI1)
+    ω̄       = omega / omega_c             gamma = gamma_v omega_c
+    P       = I1 / (A L^2)                R = EI2 / EI1     Gamma = 2 GJ / (EI1 + EI2)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import astropy.units as u
+
+from .mission import DEFAULT_GAMMA, Mission
+from .rod.parameters import RodParameters
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One operating point in SI floats (the unit edge has been crossed).
+
+    length [m], EI1, EI2, GJ [N m^2], mass_per_length [kg/m], P [-],
+    load = |I B0| [N/m], spin_rate [rad/s], tension [N] (positive pulls),
+    damping_time gamma_v [s], f [-].
+    """
+
+    length: float
+    EI1: float
+    EI2: float
+    GJ: float
+    mass_per_length: float
+    P: float
+    load: float
+    spin_rate: float
+    tension: float
+    damping_time: float
+    f: float
+
+
+@dataclass(frozen=True)
+class Scales:
+    """What turns dimensionless numbers back into SI (eq. ``eq:nondim``)."""
+
+    length: float  # L [m]
+    EI1: float  # [N m^2]
+    mass_per_length: float  # rho A [kg/m]
+    f: float  # [-]
+
+    @property
+    def frequency(self) -> float:
+        """omega_c = sqrt(f EI1 / (rho A L^4)) [rad/s]."""
+        return math.sqrt(self.f * self.EI1 / (self.mass_per_length * self.length**4))
+
+    @property
+    def force(self) -> float:
+        """Force scale f EI1 / L^2 [N] (end tension, internal force)."""
+        return self.f * self.EI1 / self.length**2
+
+    @property
+    def load(self) -> float:
+        """Distributed-load scale f EI1 / L^3 [N/m]: I B0 = B * load."""
+        return self.f * self.EI1 / self.length**3
+
+
+@dataclass(frozen=True)
+class Scaled:
+    """The dimensionless problem and its scales."""
+
+    params: RodParameters
+    scales: Scales
+
+
+def scene(mission: Mission) -> Scene:
+    """The worst-case operating point of a mission, in SI floats.
+
+    Worst case: largest |I| times largest |B0| over the given ranges. A missing
+    damping_time means the default dimensionless gamma (DEFAULT_GAMMA) at the
+    mission's length, i.e. gamma_v = DEFAULT_GAMMA / omega_c.
+    """
+    EI1, EI2 = (q.to_value(u.N * u.m**2) for q in mission.bending_stiffness)
+    L = mission.length.to_value(u.m)
+    rho_a = mission.mass_per_length.to_value(u.kg / u.m)
+    f = mission.scaling_constant
+    if mission.damping_time is None:
+        damping = DEFAULT_GAMMA / Scales(L, EI1, rho_a, f).frequency
+    else:
+        damping = mission.damping_time.to_value(u.s)
+    return Scene(
+        length=L,
+        EI1=EI1,
+        EI2=EI2,
+        GJ=mission.torsional_stiffness.to_value(u.N * u.m**2),
+        mass_per_length=rho_a,
+        P=mission.rotary_inertia_ratio,
+        load=mission.operating_load.to_value(u.N / u.m),
+        spin_rate=mission.spin_rate.to_value(u.rad / u.s),
+        tension=mission.end_tension.to_value(u.N),
+        damping_time=damping,
+        f=f,
+    )
+
+
+def scale(s: Scene) -> Scaled:
+    """Scene (SI) -> dimensionless parameters (eq. ``eq:nondim``) and scales."""
+    scales = Scales(length=s.length, EI1=s.EI1, mass_per_length=s.mass_per_length, f=s.f)
+    wc = scales.frequency
+    params = RodParameters(
+        P=s.P,
+        R=s.EI2 / s.EI1,
+        Gamma=2.0 * s.GJ / (s.EI1 + s.EI2),
+        f=s.f,
+        B=s.load / scales.load,
+        omega=s.spin_rate / wc,
+        T=s.tension / scales.force,
+        gamma=s.damping_time * wc,
+    )
+    return Scaled(params=params, scales=scales)
+
+
+def unscale(scaled: Scaled) -> Scene:
+    """Dimensionless parameters and scales -> the SI scene (inverse of scale)."""
+    p, sc = scaled.params, scaled.scales
+    wc = sc.frequency
+    EI2 = p.R * sc.EI1
+    return Scene(
+        length=sc.length,
+        EI1=sc.EI1,
+        EI2=EI2,
+        GJ=p.Gamma * (sc.EI1 + EI2) / 2.0,
+        mass_per_length=sc.mass_per_length,
+        P=p.P,
+        load=p.B * sc.load,
+        spin_rate=p.omega * wc,
+        tension=p.T * sc.force,
+        damping_time=p.gamma / wc,
+        f=p.f,
+    )
+
+
+def with_length(s: Scene, length: float) -> Scene:
+    """The same tether at another length [m] (what-if): P scales as L^-2.
+
+    Stiffnesses, mass per length, load per length, spin, tension and damping
+    time are physical properties and stay; the dimensionless B ∝ L^3,
+    P ∝ L^-2, T̄ ∝ L^2, ω̄ ∝ L^2, gamma ∝ L^-2 follow from :func:`scale`.
+    """
+    from dataclasses import replace
+
+    return replace(s, length=length, P=s.P * (s.length / length) ** 2)
