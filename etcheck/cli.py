@@ -67,6 +67,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("etcheck: interrupted; no report written", file=sys.stderr)
         return 130
+    except Exception as exc:  # a bug, not the user's fault: say so, no traceback
+        print(f"etcheck: internal error ({type(exc).__name__}: {exc}); no report written. "
+              "Please report this with the mission file.", file=sys.stderr)
+        return 3
     _summary(result.results, paths)
     return result.exit_code
 

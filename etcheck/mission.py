@@ -112,10 +112,10 @@ class Mission:
         """The inputs as JSON-able {field: "value unit"} for reports."""
 
         def q(x):
-            return None if x is None else f"{x.value:.6g} {x.unit:generic}".strip()
+            return None if x is None else f"{x.value:.6g} {_UNIT_TEXT.get(x.unit.to_string(), x.unit.to_string())}"
 
         def pair(p):
-            return [q(p[0]), q(p[1])]
+            return [q(p[0])] if p[0] == p[1] else [q(p[0]), q(p[1])]
 
         return {
             "name": self.name,
@@ -148,6 +148,9 @@ class Mission:
             },
             "notes": list(self.notes),
         }
+
+
+_UNIT_TEXT = {"m2 N": "N m²", "kg / m": "kg/m", "rad / s": "rad/s", "m2": "m²"}
 
 
 def slugify(name: str) -> str:

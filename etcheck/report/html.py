@@ -1,0 +1,41 @@
+"""HTML report: one jinja2 template (autoescaped), figures inline as SVG."""
+
+from __future__ import annotations
+
+import math
+
+from markupsafe import Markup, escape
+
+from .figures import figures
+
+
+def sci(x, digits: int = 4) -> Markup:
+    """Number for a table cell: plain below 1e5, a×10<sup>n</sup> otherwise."""
+    if x is None:
+        return Markup("—")
+    if isinstance(x, str):
+        return escape(x)
+    if x == 0:
+        return Markup("0")
+    if not math.isfinite(x):
+        return Markup("∞" if x > 0 else "−∞")
+    if 1e-3 <= abs(x) < 1e5:
+        return escape(f"{x:.{digits}g}")
+    mant, exp = f"{x:.{digits - 1}e}".split("e")
+    return Markup(f"{escape(mant)}×10<sup>{int(exp)}</sup>")
+
+
+def render_html(results: dict) -> str:
+    """The self-contained HTML report for check results (JSON-able dict)."""
+    from jinja2 import Environment, PackageLoader, select_autoescape
+
+    env = Environment(
+        loader=PackageLoader("etcheck.report", "templates"),
+        autoescape=select_autoescape(["html", "j2"], default_for_string=True, default=True),
+        trim_blocks=True,
+        lstrip_blocks=True,
+    )
+    env.filters["sci"] = sci
+    template = env.get_template("report.html.j2")
+    figs = {name: Markup(svg) for name, svg in figures(results).items()}
+    return template.render(r=results, figs=figs)
