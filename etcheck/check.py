@@ -103,7 +103,12 @@ def static_buckling(scaled: Scaled) -> dict[str, Any]:
         )
     s = np.linspace(0.0, 1.0, 101)
     x, y = analytic.buckling_mode(1, p.R, s)
-    beta_grid = np.linspace(0.0, max(1.25 * roots[2].beta, 1.2 * analytic.beta_of_load(p.B, p.R, p.f)), 600)
+    op_beta = analytic.beta_of_load(p.B, p.R, p.f)
+    beta_grid = np.linspace(0.0, min(max(1.25 * roots[2].beta, 1.15 * op_beta), 1.1 * roots[-1].beta), 600)
+    # zeros of chi below the operating beta (asymptotically pi/3 + 2 pi n beyond the tabulated ones)
+    exceeded = sum(r.beta <= op_beta for r in roots)
+    if op_beta > roots[-1].beta:
+        exceeded = int((op_beta - math.pi / 3) // (2 * math.pi))
     freq = {
         "bending_weak": analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak"),
         "bending_stiff": analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff"),
@@ -113,7 +118,8 @@ def static_buckling(scaled: Scaled) -> dict[str, Any]:
     return {
         "model": "rung 0 (analytic)",
         "critical_loads": loads,
-        "operating_beta": analytic.beta_of_load(p.B, p.R, p.f),
+        "operating_beta": op_beta,
+        "loads_exceeded": exceeded,
         "operating_B": p.B,
         "first_mode": {"s": s.tolist(), "x": x.tolist(), "y": y.tolist()},
         "chi_curve": {"beta": beta_grid.tolist(), "chi_scaled": analytic.chi_scaled(beta_grid).tolist()},

@@ -47,10 +47,10 @@ def chi_plot(results: dict) -> str:
     fig, ax = plt.subplots(figsize=(6.4, 2.8))
     ax.plot(beta, chi, color="#1f4e79", lw=1.4, label=r"$\chi(\beta)\,e^{-\sqrt{3}\beta}$ (eq. char_welded)")
     for i, load in enumerate(sr["critical_loads"]):
-        if load["beta"] <= beta[-1]:
+        if load["beta"] <= beta[-1] and (i < 3 or op > beta[-1]):
             ax.axvline(load["beta"], color="#c0392b", ls=":", lw=1,
                        label="double zeros $\\beta_k$ (buckling loads)" if i == 0 else None)
-            ax.annotate(f"$\\beta_{load['k']}$={load['beta']:.4f}", (load["beta"], 0.0),
+            ax.annotate(f"$\\beta_{load['k']}$", (load["beta"], 0.0),
                         xytext=(3, 28), textcoords="offset points", fontsize=7, color="#c0392b")
     top = max(chi) * 1.05
     if op <= beta[-1]:
