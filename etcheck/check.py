@@ -145,13 +145,13 @@ def _margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: 
                 first["IB0_N_per_m"],
                 sc.load,
                 required,
-                chosen.model,
+                chosen.rung,
                 first["relative_error"],
                 "first (doubly degenerate) static buckling load of the straight welded tether, eq. char_welded",
             )
         ]
     why = chosen.reason if not chosen.complete else "rung 1 (spin, tension) is not available in this version"
-    return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.model, why)]
+    return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.rung, why)]
 
 
 def _static_limits(static: dict, mission: Mission, sc: Scene) -> dict[str, Any]:

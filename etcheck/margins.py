@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import asdict, dataclass
+
+from .plan import RUNG_NAMES
 
 PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
 
@@ -13,50 +14,48 @@ class Margin:
     """One design margin: critical / operating, judged against the required margin.
 
     ``critical`` and ``operating`` are in ``unit`` (SI); ``value`` is their
-    ratio (None when the operating value is zero: an unlimited margin);
-    ``error`` the estimated relative numerical error of ``value``.
+    ratio (None when the operating value is zero: an unlimited margin, or when
+    the check is incomplete); ``error`` is the estimated relative numerical
+    error of ``value``; ``rung`` the model that answered.
     """
 
     name: str
     unit: str
     critical: float | None
     operating: float
+    value: float | None
     required: float
     verdict: str
-    model: str
+    rung: int
     error: float | None
     why: str
-    value: float | None = None
+
+    @property
+    def model(self) -> str:
+        return RUNG_NAMES[self.rung]
 
     def as_dict(self) -> dict:
-        return asdict(self)
+        return asdict(self) | {"model": self.model}
 
 
 def ratio_margin(
-    name: str,
-    unit: str,
-    critical: float,
-    operating: float,
-    required: float,
-    model: str,
-    error: float,
-    why: str,
+    name: str, unit: str, critical: float, operating: float, required: float, rung: int, error: float, why: str
 ) -> Margin:
     """Margin = critical / operating (both >= 0, same unit); pass if >= required.
 
-    A margin that passes only within its numerical error is judged on the
-    pessimistic side (value * (1 - error)).
+    A margin is judged on its pessimistic side, value * (1 - error), so a
+    numerical error can never turn a fail into a pass.
     """
     if operating == 0:
-        return Margin(name, unit, critical, operating, required, PASS, model, error, why, None)
+        return Margin(name, unit, critical, operating, None, required, PASS, rung, error, why)
     value = critical / operating
     verdict = PASS if value * (1.0 - error) >= required else FAIL
-    return Margin(name, unit, critical, operating, required, verdict, model, error, why, value)
+    return Margin(name, unit, critical, operating, value, required, verdict, rung, error, why)
 
 
-def incomplete_margin(name: str, unit: str, operating: float, required: float, model: str, why: str) -> Margin:
+def incomplete_margin(name: str, unit: str, operating: float, required: float, rung: int, why: str) -> Margin:
     """A margin the chosen model cannot answer: never a pass."""
-    return Margin(name, unit, None, operating, required, INCOMPLETE, model, None, why, None)
+    return Margin(name, unit, None, operating, None, required, INCOMPLETE, rung, None, why)
 
 
 def overall_verdict(margins: list[Margin]) -> str:
@@ -66,7 +65,3 @@ def overall_verdict(margins: list[Margin]) -> str:
     if INCOMPLETE in verdicts or not margins:
         return INCOMPLETE
     return PASS
-
-
-def finite_or_none(x: float | None) -> float | None:
-    return None if x is None or not math.isfinite(x) else x

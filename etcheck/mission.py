@@ -117,6 +117,9 @@ class Mission:
         def pair(p):
             return [q(p[0])] if p[0] == p[1] else [q(p[0]), q(p[1])]
 
+        def microtesla(p):
+            return [f"{x.to_value(u.uT):.6g} µT" for x in ([p[0]] if p[0] == p[1] else p)]
+
         return {
             "name": self.name,
             "description": self.description,
@@ -136,7 +139,7 @@ class Mission:
             },
             "operation": {
                 "current": pair(self.current),
-                "axial_field": pair(self.axial_field),
+                "axial_field": microtesla(self.axial_field),
                 "spin_rate": q(self.spin_rate),
                 "spin_rate_rpm": float(self.spin_rate.to(u.cycle / u.min).value),
                 "end_tension": q(self.end_tension),

@@ -31,7 +31,7 @@ def render(results: dict, formats: tuple[str, ...]) -> dict[str, bytes]:
 
         out["pdf"] = render_pdf(html)
     if "json" in formats:
-        out["json"] = (json.dumps(results, indent=2, allow_nan=False, default=_json_default) + "\n").encode()
+        out["json"] = (json.dumps(results, indent=2, allow_nan=False, ensure_ascii=False, default=_json_default) + "\n").encode()
     return out
 
 
