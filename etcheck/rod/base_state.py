@@ -24,8 +24,9 @@ Chebyshev interpolants); :func:`straight` is the trivial solution
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, Protocol, runtime_checkable
+from typing import Protocol, runtime_checkable
 
 import numpy as np
 

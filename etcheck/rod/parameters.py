@@ -48,6 +48,6 @@ class RodParameters:
         if self.gamma < 0:
             raise ValueError(f"rod parameter gamma must be >= 0, got {self.gamma!r}")
 
-    def with_(self, **changes: float) -> "RodParameters":
+    def with_(self, **changes: float) -> RodParameters:
         """A copy with some parameters changed (e.g. ``p.with_(B=1.0)``)."""
         return replace(self, **changes)

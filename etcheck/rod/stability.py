@@ -1,0 +1,433 @@
+"""Stability of the straight whirling rod along parameter lines (dimensionless).
+
+Everything here linearises about the straight state ``trivial_sol`` (erratum
+F0 = +T e3) with :func:`etcheck.rod.linear.linear_operator` and decides
+stability from the least-|lambda| eigenvalues (unstable iff some
+Re lambda > ``THRESHOLD``; Sec. 6 of the paper, ``per:sol1``-``per:sol4``).
+
+Structure used (not assumed; each conclusion is checked numerically):
+
+* **Static (divergence) points.** At lambda = 0 the operator A0 is affine in
+  B and in T and affine in omega^2 (the straight base state does not depend
+  on B or omega). So the parameter values where A0 is singular, i.e. the
+  static bifurcations / divergence points of ``char_welded`` generalised to
+  omega, T != 0, are the real eigenvalues of a *linear* pencil, solved
+  directly (QR elimination of the lambda-free unknowns phi, m, then QZ) at two
+  resolutions. No scanning.
+* **Stability changes.** The scan evaluates max Re lambda on a grid that
+  contains every static point +/- a relative 1e-6. A change of state across a
+  static point is reported at the pencil value (kind "divergence"). Any other
+  change is located by bisection on the predicate max Re lambda > THRESHOLD
+  and reported as "flutter" (a complex pair crossing: undamped, a Krein
+  collision on the imaginary axis; with damping gamma > 0 none is expected by
+  the Kelvin-Tait-Chetaev theorem, see PHYSICS.md, but the solver would find
+  one). The bisection predicate has threshold ``THRESHOLD`` = 1e-9 on
+  Re lambda: undamped collisions give Re lambda ~ sqrt(distance), so the
+  located point is limited by ``tol`` only; a linear (damped) crossing would
+  be located to about THRESHOLD / |d Re lambda / d parameter|.
+* Windows narrower than the scan spacing can be missed; ``n_scan`` controls it.
+
+Only the k least-|lambda| pairs enter the indicator (``K_MODES``): high modes
+are stabilised by bending stiffness (Re lambda of high modes is negative with
+damping and zero without).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import scipy.linalg as sla
+
+from ..numerics.eigen import eliminate_static, match_spectra, qep_shift_invert, single_blas_thread
+from .base_state import straight
+from .linear import NFIELDS, linear_operator
+from .parameters import RodParameters
+from .spectrum import SIGMA, check_resolution, select_pairs
+
+__all__ = [
+    "THRESHOLD",
+    "K_MODES",
+    "CriticalPoint",
+    "Campbell",
+    "StraightFamily",
+    "static_points",
+    "divergence_loads",
+    "critical_load",
+    "critical_spin",
+    "stable_intervals",
+    "stability_map",
+    "campbell",
+]
+
+#: Re lambda above this counts as unstable (dimensionless growth rate).
+THRESHOLD = 1e-9
+#: Number of least-|lambda| pairs examined by the stability indicator.
+K_MODES = 12
+#: Relative offset of the scan points placed either side of a static point.
+_DELTA = 1e-6
+_AXES = ("B", "omega", "T")
+
+
+class StraightFamily:
+    """Operators of the straight rod as exact polynomials in (B, omega, T).
+
+    A0 = A00 + B AB + T AT + omega^2 Aw,  A1 = A10 + omega A1w,  A2 fixed, at
+    resolution N (P, R, Gamma, f, gamma from ``params``); dimensionless.
+    """
+
+    def __init__(self, params: RodParameters, N: int):
+        self.params = params
+        self.N = int(N)
+        p0 = params.with_(B=0.0, omega=0.0, T=0.0)
+        A00, A10, A2 = linear_operator(p0, straight(p0), self.N)
+        pB = p0.with_(B=1.0)
+        pT = p0.with_(T=1.0)
+        pw = p0.with_(omega=1.0)
+        self.A00, self.A10, self.A2 = A00, A10, A2
+        self.AB = linear_operator(pB, straight(pB), self.N)[0] - A00
+        self.AT = linear_operator(pT, straight(pT), self.N)[0] - A00
+        A0w, A1w, _ = linear_operator(pw, straight(pw), self.N)
+        self.Aw = A0w - A00
+        self.A1w = A1w - A10
+        n = self.N + 1
+        self.static_cols = np.arange(6 * n, NFIELDS * n)
+
+    def operator(self, B: float, omega: float, T: float):
+        """(A0, A1, A2) at the given load, spin and tension."""
+        A0 = self.A00 + B * self.AB + T * self.AT + omega**2 * self.Aw
+        A1 = self.A10 + omega * self.A1w
+        return A0, A1, self.A2
+
+    def eigenvalues(self, B: float, omega: float, T: float, nev: int) -> np.ndarray:
+        A0, A1, A2 = self.operator(B, omega, T)
+        return qep_shift_invert(A0, A1, A2, k=nev, sigma=SIGMA)
+
+    def growth(self, B: float, omega: float, T: float, k: int = K_MODES) -> float:
+        """max Re lambda over the k least-|lambda| pairs."""
+        lam = self.eigenvalues(B, omega, T, 2 * k + 4)
+        return float(np.max(lam[select_pairs(lam, k)].real))
+
+    def pencil_roots(self, axis: str, B: float, omega: float, T: float) -> np.ndarray:
+        """Real parameter values on ``axis`` where A0 is singular (others fixed).
+
+        Returns values of B (or T) or of omega^2 (axis "omega").
+        """
+        n0 = {"B": self.AB, "T": self.AT, "omega": self.Aw}[axis]
+        vals = {"B": B, "omega": omega, "T": T}
+        vals[axis] = 0.0
+        A0, _, _ = self.operator(vals["B"], vals["omega"], vals["T"])
+        # The lambda-free unknowns (phi, m) do not meet the parameter, so one
+        # QR elimination reduces both matrices of the pencil A0 + x n0.
+        el = eliminate_static(A0, n0, np.zeros_like(A0), self.static_cols)
+        alpha, beta = sla.eig(el.B0, -el.B1, right=False, homogeneous_eigvals=True)
+        ok = np.abs(beta) > 1e-13 * np.abs(alpha)
+        x = alpha[ok] / beta[ok]
+        real = np.abs(x.imag) <= 1e-8 * np.maximum(np.abs(x), 1e-300)
+        return np.sort(x[real].real)
+
+
+@lru_cache(maxsize=32)
+def _family_cached(params: RodParameters, N: int) -> StraightFamily:
+    return StraightFamily(params, N)
+
+
+def _family(params: RodParameters, N: int) -> StraightFamily:
+    return _family_cached(params.with_(B=0.0, omega=0.0, T=0.0), int(N))
+
+
+def _get(params: RodParameters, axis: str) -> dict:
+    return {"B": params.B, "omega": params.omega, "T": params.T, "axis": axis}
+
+
+@single_blas_thread
+def static_points(params: RodParameters, axis: str = "B", lo: float = 0.0, hi: float = np.inf,
+                  N: int = 48):
+    """Values on ``axis`` ("B", "omega" or "T") where lambda = 0 is an eigenvalue.
+
+    The other parameters are fixed at ``params``. Computed from the linear
+    pencil at resolutions N and check_resolution(N); returns ``(values,
+    errors)`` (values sorted, with multiplicity; errors relative, from the
+    two-resolution comparison; values without a partner are dropped).
+    """
+    if axis not in _AXES:
+        raise ValueError(f"axis must be one of {_AXES}, got {axis!r}")
+    M = check_resolution(N)
+    out = []
+    for n in (N, M):
+        r = _family(params, n).pencil_roots(axis, params.B, params.omega, params.T)
+        if axis == "omega":
+            r = np.sqrt(r[r > 0])
+        out.append(r)
+    m = match_spectra(out[1], out[0], accept=1e-4, floor=1e-3)
+    vals = m.values.real
+    sel = (vals >= lo) & (vals <= hi)
+    order = np.argsort(vals[sel])
+    return vals[sel][order], m.errors[sel][order]
+
+
+@single_blas_thread
+def divergence_loads(params: RodParameters, n: int = 5, N: int | None = None) -> np.ndarray:
+    """The n smallest B > 0 where lambda = 0 is an eigenvalue (with multiplicity; dimensionless).
+
+    Static bifurcations of the straight rod at the given omega, T (gamma is
+    irrelevant at lambda = 0), from the linear eigenproblem in B at lambda = 0
+    (A0 affine in B). At omega = T = 0 these are beta_k^3 sqrt(R) / f with
+    beta_k the (double) zeros of chi (``char_welded``).
+    """
+    if N is None:
+        N = max(32, 6 * n)
+    vals, _ = static_points(params, "B", lo=1e-12, N=N)
+    return vals[:n]
+
+
+@dataclass(frozen=True)
+class CriticalPoint:
+    """First loss of stability along a parameter line (dimensionless).
+
+    kind: "divergence" (real eigenvalue through 0, value from the exact
+    pencil), "flutter" (complex pair crossing, value by bisection), "unstable
+    at start" (value = start of the line, nothing to locate) or "none found"
+    (stable over the scanned range; value = nan).
+    """
+
+    axis: str
+    value: float
+    kind: str
+    bracket: tuple
+    error: float
+    converged: bool
+    message: str
+    N: int
+
+
+def _line_params(params: RodParameters, axis: str, x: float) -> tuple:
+    vals = {"B": params.B, "omega": params.omega, "T": params.T}
+    vals[axis] = x
+    return vals["B"], vals["omega"], vals["T"]
+
+
+class _Line:
+    """max Re lambda along one axis at resolution N (memoised)."""
+
+    def __init__(self, params: RodParameters, axis: str, N: int, k: int):
+        self.params, self.axis, self.k = params, axis, k
+        self.fam = _family(params, N)
+        self.memo: dict[float, float] = {}
+
+    def growth(self, x: float) -> float:
+        if x not in self.memo:
+            self.memo[x] = self.fam.growth(*_line_params(self.params, self.axis, x), k=self.k)
+        return self.memo[x]
+
+    def unstable(self, x: float) -> bool:
+        return self.growth(x) > THRESHOLD
+
+
+def _bisect(line: _Line, a: float, b: float, tol: float) -> tuple:
+    ua = line.unstable(a)
+    while b - a > tol:
+        c = 0.5 * (a + b)
+        if c in (a, b):
+            break
+        if line.unstable(c) == ua:
+            a = c
+        else:
+            b = c
+    return a, b
+
+
+@dataclass(frozen=True)
+class _Change:
+    a: float
+    b: float
+    value: float
+    kind: str
+    error: float
+    to_unstable: bool
+
+
+def _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=True):
+    """All stability changes on [lo, hi] and the state at lo."""
+    line = _Line(params, axis, N, k)
+    spts, serr = static_points(params, axis, lo=lo, hi=hi, N=max(N, 32))
+    distinct = []
+    for v, e in zip(spts, serr):
+        if not distinct or v - distinct[-1][0] > 1e-7 * max(1.0, abs(v)):
+            distinct.append((v, e))
+    grid = set(np.linspace(lo, hi, n_scan).tolist())
+    for v, _ in distinct:
+        h = _DELTA * max(abs(v), 1e-3)
+        for x in (v - h, v + h):
+            if lo < x < hi:
+                grid.add(float(x))
+    grid = sorted(grid)
+    states = [line.unstable(x) for x in grid]
+    changes = []
+    check = None
+    for i in range(len(grid) - 1):
+        if states[i] == states[i + 1]:
+            continue
+        a, b = grid[i], grid[i + 1]
+        hit = [(v, e) for v, e in distinct if a < v < b]
+        if len(hit) == 1 and (b - a) <= 2.5 * _DELTA * max(abs(hit[0][0]), 1e-3):
+            v, e = hit[0]
+            changes.append(_Change(a, b, v, "divergence", e * max(abs(v), 1e-3), states[i + 1]))
+            continue
+        a, b = _bisect(line, a, b, tol)
+        x = 0.5 * (a + b)
+        err = 0.5 * (b - a)
+        if refine_error:
+            if check is None:
+                check = _Line(params, axis, check_resolution(N), k)
+            w = max(10 * (b - a), 1e-8 * max(1.0, abs(x)))
+            for _ in range(6):
+                a2, b2 = max(lo, x - w), min(hi, x + w)
+                if check.unstable(a2) != check.unstable(b2):
+                    a2, b2 = _bisect(check, a2, b2, tol)
+                    err = max(err, abs(0.5 * (a2 + b2) - x))
+                    break
+                w *= 10
+            else:
+                err = np.inf
+        changes.append(_Change(a, b, x, "flutter", err, states[i + 1]))
+    return states[0], changes, line
+
+
+def _default_hi(params: RodParameters, axis: str) -> float:
+    pts, _ = static_points(params, axis, lo=1e-12, N=32)
+    distinct = np.unique(np.round(pts, 8))
+    if axis == "omega":
+        return float(max(2.0, 1.25 * distinct[1])) if distinct.size >= 2 else 2.0
+    if distinct.size >= 3:
+        return float(1.1 * distinct[2])
+    return float(2.0 * distinct[-1]) if distinct.size else 1.0
+
+
+def _critical(params: RodParameters, axis: str, tol: float, hi: float | None, N: int,
+              n_scan: int, k: int) -> CriticalPoint:
+    lo = getattr(params, axis)
+    if hi is None:
+        hi = max(_default_hi(params, axis), lo + 1.0 if axis == "omega" else lo)
+    start_unstable, changes, line = _changes(params, axis, lo, hi, tol, N, n_scan, k)
+    if start_unstable:
+        g = line.growth(lo)
+        return CriticalPoint(axis, float(lo), "unstable at start", (lo, lo), 0.0, True,
+                             f"already unstable at {axis} = {lo:g} (max Re lambda = {g:.3e})", N)
+    if not changes:
+        return CriticalPoint(axis, float("nan"), "none found", (lo, hi), float("nan"), False,
+                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] "
+                             f"({n_scan} scan points)", N)
+    c = changes[0]
+    conv = bool(np.isfinite(c.error) and c.error <= max(tol, 1e-8 * max(1.0, abs(c.value))))
+    msg = (f"first instability at {axis} = {c.value:.12g} ({c.kind}); "
+           f"bracket [{c.a:.12g}, {c.b:.12g}], error estimate {c.error:.2e}")
+    return CriticalPoint(axis, float(c.value), c.kind, (c.a, c.b), float(c.error), conv, msg, N)
+
+
+@single_blas_thread
+def critical_load(params: RodParameters, tol: float = 1e-10, B_max: float | None = None,
+                  N: int = 24, n_scan: int = 48, k: int = K_MODES) -> CriticalPoint:
+    """First loss of stability of the straight rod as B increases from params.B (dimensionless).
+
+    omega, T, gamma fixed. Divergence: exact pencil value (error from two
+    resolutions). Flutter: bisection to ``tol`` plus a check at the companion
+    resolution. ``B_max`` defaults to 1.1 x the third distinct static load.
+    """
+    return _critical(params, "B", tol, B_max, N, n_scan, k)
+
+
+@single_blas_thread
+def critical_spin(params: RodParameters, tol: float = 1e-10, omega_max: float | None = None,
+                  N: int = 24, n_scan: int = 48, k: int = K_MODES) -> CriticalPoint:
+    """First loss of stability of the straight rod as omega increases from params.omega.
+
+    Dimensionless spin (units omega_c). At B = T = 0 this tends to sqrt(R) as
+    P -> 0 (finite P shifts it: rotary inertia).
+    """
+    return _critical(params, "omega", tol, omega_max, N, n_scan, k)
+
+
+@single_blas_thread
+def stable_intervals(params: RodParameters, axis: str = "B", lo: float = 0.0, hi: float | None = None,
+                     tol: float = 1e-10, N: int = 24, n_scan: int = 64, k: int = K_MODES) -> list:
+    """All stability windows [(start, end), ...] of the straight rod on axis in [lo, hi].
+
+    Dimensionless; axis "B", "omega" or "T", the other parameters from
+    ``params``. Boundaries at static points are exact pencil values, others
+    (Krein collisions when undamped) are bisected to ``tol``. A window that
+    reaches ``hi`` ends at ``hi``.
+    """
+    if hi is None:
+        hi = _default_hi(params, axis)
+    start_unstable, changes, _ = _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=False)
+    out = []
+    cur = None if start_unstable else lo
+    for c in changes:
+        if c.to_unstable and cur is not None:
+            out.append((float(cur), float(c.value)))
+            cur = None
+        elif not c.to_unstable and cur is None:
+            cur = c.value
+    if cur is not None:
+        out.append((float(cur), float(hi)))
+    return out
+
+
+@single_blas_thread
+def stability_map(params: RodParameters, B_grid, omega_grid, N: int = 16, k: int = 8) -> np.ndarray:
+    """max Re lambda of the straight rod on a (omega, B) grid, shape (len(omega), len(B)).
+
+    Dimensionless growth rate (> THRESHOLD: unstable). Single resolution,
+    N = 16 by default (the lowest ~8 pairs are accurate to ~1e-8 there at
+    SET-like parameters); the operator is assembled once and recombined
+    per point (it is polynomial in B and omega), so each point costs one
+    shift-invert solve (~5-10 ms). T, gamma, P, R, Gamma from ``params``.
+    """
+    fam = _family(params, N)
+    B_grid = np.asarray(B_grid, dtype=float)
+    omega_grid = np.asarray(omega_grid, dtype=float)
+    out = np.empty((omega_grid.size, B_grid.size))
+    for i, w in enumerate(omega_grid):
+        for j, b in enumerate(B_grid):
+            out[i, j] = fam.growth(b, w, params.T, k=k)
+    return out
+
+
+@dataclass(frozen=True)
+class Campbell:
+    """Eigenvalues of the straight rod versus spin (dimensionless).
+
+    ``eigenvalues[i]``: the k least-|lambda| pairs at omega_grid[i] (one per
+    conjugate pair, both members of real pairs), sorted by Im then Re,
+    NaN-padded to a common length. Frequencies are Im, growth rates Re.
+    """
+
+    omega: np.ndarray
+    eigenvalues: np.ndarray
+
+    @property
+    def frequencies(self) -> np.ndarray:
+        return self.eigenvalues.imag
+
+    @property
+    def growth_rates(self) -> np.ndarray:
+        return self.eigenvalues.real
+
+
+@single_blas_thread
+def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24) -> Campbell:
+    """Campbell diagram data: least-|lambda| eigenvalues of the straight rod vs omega."""
+    fam = _family(params, N)
+    omega_grid = np.asarray(omega_grid, dtype=float)
+    rows = []
+    for w in omega_grid:
+        lam = fam.eigenvalues(params.B, w, params.T, 2 * k + 8)
+        sel = lam[select_pairs(lam, k)]
+        rows.append(sel[np.lexsort((sel.real, sel.imag))])
+    width = max((r.size for r in rows), default=0)
+    out = np.full((omega_grid.size, width), np.nan + 1j * np.nan)
+    for i, r in enumerate(rows):
+        out[i, : r.size] = r
+    return Campbell(omega=omega_grid, eigenvalues=out)
