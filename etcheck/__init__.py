@@ -10,10 +10,30 @@ Public API::
 
 __version__ = "0.1.0"
 
-from .check import CheckResult, check  # noqa: E402
-from .errors import EtcheckError, MissionError, SolverError  # noqa: E402
-from .mission import Mission, load_mission, mission_from_dict  # noqa: E402
-from .scaling import scale, scene, unscale  # noqa: E402
+# Lazy public API (PEP 562): importing the unitless core (etcheck.rod,
+# etcheck.numerics) must not pull in astropy, pint or the report stack.
+_EXPORTS = {
+    "CheckResult": ".pipeline",
+    "check": ".pipeline",
+    "EtcheckError": ".errors",
+    "MissionError": ".errors",
+    "SolverError": ".errors",
+    "Mission": ".mission",
+    "load_mission": ".mission",
+    "mission_from_dict": ".mission",
+    "scale": ".scaling",
+    "scene": ".scaling",
+    "unscale": ".scaling",
+}
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        import importlib
+
+        return getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    raise AttributeError(f"module 'etcheck' has no attribute {name!r}")
+
 
 __all__ = [
     "CheckResult",

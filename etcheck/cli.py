@@ -54,8 +54,8 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     formats = _formats(args.format, parser)
     try:
-        from .check import check
         from .mission import load_mission
+        from .pipeline import check
         from .report import write_reports
 
         mission = load_mission(args.mission)

@@ -248,7 +248,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     if len(items) not in (1, 2):
         raise err("tether.bending_stiffness", f"expected one value or [EI1, EI2], got {len(items)} values")
     stiff = []
-    for i, item in enumerate(items):
+    for item in items:
         try:
             q = to_quantity(item, "bending_stiffness")
         except QuantityProblem as exc:

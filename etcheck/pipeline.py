@@ -21,6 +21,7 @@ from .mission import Mission, load_mission, mission_from_dict
 from .plan import Plan, plan
 from .rod import analytic
 from .scaling import Scaled, Scene, scale, scene
+from .whirl import DEFAULT_OPTIONS, RPM, WhirlOptions, accuracy, linear_stability
 
 SCHEMA_VERSION = 1
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1}
@@ -42,8 +43,12 @@ class CheckResult:
         return EXIT_CODES[self.verdict]
 
 
-def check(mission: Mission | str | Path | dict) -> CheckResult:
-    """Run the stability check of a mission (a Mission, a TOML path or a dict)."""
+def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_OPTIONS) -> CheckResult:
+    """Run the stability check of a mission (a Mission, a TOML path or a dict).
+
+    ``options`` sets the resolution of the rung-1 answers (tolerances, map
+    and Campbell grids, accuracy table).
+    """
     if isinstance(mission, (str, Path)):
         mission = load_mission(mission)
     elif isinstance(mission, dict):
@@ -54,11 +59,15 @@ def check(mission: Mission | str | Path | dict) -> CheckResult:
     chosen = plan(scaled.params, mission.fidelity)
     static = static_buckling(scaled)
     static["limits"] = _static_limits(static, mission, sc)
-    margins = _margins(mission, sc, scaled, chosen, static)
+    linear = accuracy_rows = None
+    if chosen.rung == 1:
+        linear = linear_stability(scaled, options)
+        accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N else None
+    margins = _margins(mission, sc, scaled, chosen, static, linear)
     results = {
         "schema_version": SCHEMA_VERSION,
         "etcheck_version": __version__,
-        "generated": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "generated": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
         "mission": mission.echo(),
         "scene": _scene_dict(mission, sc),
         "scaled": asdict(scaled.params),
@@ -70,6 +79,8 @@ def check(mission: Mission | str | Path | dict) -> CheckResult:
         },
         "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete},
         "straight_rod": static,
+        "linear": linear,
+        "accuracy": accuracy_rows,
         "margins": [m.as_dict() for m in margins],
         "verdict": overall_verdict(margins),
         "validity": _validity(mission, scaled, chosen),
@@ -134,9 +145,11 @@ def static_buckling(scaled: Scaled) -> dict[str, Any]:
     }
 
 
-def _margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: dict) -> list[Margin]:
+def _margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: dict, linear: dict | None) -> list[Margin]:
     required = mission.required_margin
     first = static["critical_loads"][0]
+    if linear is not None:
+        return _linear_margins(sc, scaled, required, linear)
     if chosen.rung == 0 and chosen.complete:
         return [
             ratio_margin(
@@ -150,8 +163,55 @@ def _margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: 
                 "first (doubly degenerate) static buckling load of the straight welded tether, eq. char_welded",
             )
         ]
-    why = chosen.reason if not chosen.complete else "rung 1 (spin, tension) is not available in this version"
-    return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.rung, why)]
+    return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.rung, chosen.reason)]
+
+
+def _linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) -> list[Margin]:
+    """Load margin at the operating spin; spin margin at the operating load (rung 1)."""
+    p = scaled.params
+    load, spin = linear["critical_load"], linear["critical_spin"]
+    margins = [
+        _margin_from_critical(
+            "magnetic load |I B0| at the operating spin",
+            "N/m",
+            load,
+            load["IB0_N_per_m"],
+            sc.load,
+            scaled.scales.load,
+            required,
+            "the straight tether first loses stability as I B0 grows at the operating spin, tension and damping",
+            "the straight tether is already unstable with no magnetic load at the operating spin and tension",
+        )
+    ]
+    if p.omega > 0:
+        margins.append(
+            _margin_from_critical(
+                "spin rate at the operating load",
+                "rpm",
+                spin,
+                spin["rpm"],
+                sc.spin_rate * RPM,
+                scaled.scales.frequency * RPM,
+                required,
+                "the straight tether first loses stability as the spin rate grows at the operating load",
+                "the straight tether is already unstable without spin at the operating load (statically buckled)",
+            )
+        )
+    return margins
+
+
+def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
+    kind = point["kind"]
+    if kind == "unstable at start":
+        return ratio_margin(name, unit, 0.0, operating, required, 1, 0.0, why_unstable)
+    if kind == "none found":
+        hi = point["bracket"][1] * scale_to_si
+        return ratio_margin(
+            name, unit, hi, operating, required, 1, 0.0,
+            f"stable over the whole scanned range (up to {hi:.4g} {unit}); the margin shown is a lower bound",
+        )
+    error = (point["error"] or 0.0) / point["value"] if point["value"] else 0.0
+    return ratio_margin(name, unit, critical, operating, required, 1, error, f"{why} ({kind})")
 
 
 def _static_limits(static: dict, mission: Mission, sc: Scene) -> dict[str, Any]:

@@ -83,24 +83,25 @@ def scene(mission: Mission) -> Scene:
     damping_time means the default dimensionless gamma (DEFAULT_GAMMA) at the
     mission's length, i.e. gamma_v = DEFAULT_GAMMA / omega_c.
     """
-    EI1, EI2 = (q.to_value(u.N * u.m**2) for q in mission.bending_stiffness)
-    L = mission.length.to_value(u.m)
-    rho_a = mission.mass_per_length.to_value(u.kg / u.m)
+    # plain Python floats (not numpy scalars): everything downstream stays JSON-able
+    EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in mission.bending_stiffness)
+    L = float(mission.length.to_value(u.m))
+    rho_a = float(mission.mass_per_length.to_value(u.kg / u.m))
     f = mission.scaling_constant
     if mission.damping_time is None:
         damping = DEFAULT_GAMMA / Scales(L, EI1, rho_a, f).frequency
     else:
-        damping = mission.damping_time.to_value(u.s)
+        damping = float(mission.damping_time.to_value(u.s))
     return Scene(
         length=L,
         EI1=EI1,
         EI2=EI2,
-        GJ=mission.torsional_stiffness.to_value(u.N * u.m**2),
+        GJ=float(mission.torsional_stiffness.to_value(u.N * u.m**2)),
         mass_per_length=rho_a,
         P=mission.rotary_inertia_ratio,
-        load=mission.operating_load.to_value(u.N / u.m),
-        spin_rate=mission.spin_rate.to_value(u.rad / u.s),
-        tension=mission.end_tension.to_value(u.N),
+        load=float(mission.operating_load.to_value(u.N / u.m)),
+        spin_rate=float(mission.spin_rate.to_value(u.rad / u.s)),
+        tension=float(mission.end_tension.to_value(u.N)),
         damping_time=damping,
         f=f,
     )

@@ -86,7 +86,6 @@ def _is_pint(value) -> bool:
 
 def _from_pint(value, unit: u.UnitBase, what: str, example: str) -> u.Quantity:
     """pint -> astropy through the SI value of the expected unit."""
-    import pint
 
     si = _PINT_SI[unit.to_string()]
     if unit == u.rad / u.s and not any(a in str(value.units) for a in _PINT_ANGLES):
@@ -98,6 +97,8 @@ def _from_pint(value, unit: u.UnitBase, what: str, example: str) -> u.Quantity:
         raise QuantityProblem(
             f"{value} has dimension {value.dimensionality}, expected {what} such as {example}"
         ) from None
+    if getattr(magnitude, "ndim", 0) != 0:
+        raise QuantityProblem(f"expected a single value, got an array {value!r}")
     if si == "1/s":
         return (float(magnitude) * u.cycle / u.s).to(unit)
     return float(magnitude) * unit

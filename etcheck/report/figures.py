@@ -93,9 +93,130 @@ def mode_plot(results: dict) -> str:
     return _svg(fig)
 
 
+def _first_crossing(x, g, threshold):
+    """First x where g rises above threshold (linear interpolation); 0 if
+    unstable at x[0], inf if never."""
+    if g[0] > threshold:
+        return 0.0
+    for i in range(1, len(x)):
+        if g[i] > threshold:
+            t = (threshold - g[i - 1]) / (g[i] - g[i - 1])
+            return x[i - 1] + t * (x[i] - x[i - 1])
+    return math.inf
+
+
+def campbell_plot(results: dict) -> str:
+    """Campbell diagram (frequency vs spin) and growth rates vs spin, SI units."""
+    import numpy as np
+
+    plt = _plt()
+    lin = results["linear"]
+    cd = lin["campbell"]
+    rpm = np.array(cd["spin_rpm"])
+    freq = np.array(cd["frequency_Hz"], dtype=float)
+    grow = np.array(cd["growth_rate_per_s"], dtype=float)
+    thr = lin["threshold"] * results["scales"]["reference_frequency_rad_s"]
+    op = lin["operating"]["spin_rpm"]
+    crit = lin["critical_spin"]
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.6, 5.4), sharex=True, gridspec_kw={"height_ratios": [1.5, 1]})
+    X = np.repeat(rpm[:, None], freq.shape[1], axis=1)
+    unstable = grow > thr
+    ax1.scatter(X[~unstable], freq[~unstable], s=6, color="#1f4e79", label="stable mode")
+    ax1.scatter(X[unstable], freq[unstable], s=9, color="#c0392b", marker="x", label="growing mode (Re λ > 0)")
+    ax2.scatter(X[~unstable], grow[~unstable], s=6, color="#1f4e79")
+    ax2.scatter(X[unstable], grow[unstable], s=9, color="#c0392b", marker="x")
+    _shade_unstable_spin(ax1, lin, rpm, "unstable spin range")
+    _shade_unstable_spin(ax2, lin, rpm)
+    for ax in (ax1, ax2):
+        ax.axvline(op, color="#27ae60", lw=2, label=f"operating spin {op:.3g} rpm" if ax is ax1 else None)
+        if crit["rpm"] is not None and crit["kind"] in ("divergence", "flutter"):
+            ax.axvline(crit["rpm"], color="#c0392b", ls="--", lw=1.2,
+                       label=f"critical spin {crit['rpm']:.4g} rpm ({crit['kind']})" if ax is ax1 else None)
+    ax2.axhline(0, color="k", lw=0.8)
+    ax1.set_ylabel("frequency |Im λ| [Hz]")
+    ax2.set_ylabel("growth rate Re λ [1/s]")
+    ax2.set_xlabel("spin rate [rpm]")
+    ax1.set_title(f"Campbell diagram of the straight tether at the operating load "
+                  f"(I·B0 = {lin['operating']['IB0_N_per_m']:.3g} N/m, rotating frame)", fontsize=9)
+    ax1.legend(fontsize=7, loc="upper left", framealpha=0.9)
+    ax1.set_xlim(rpm[0], rpm[-1])
+    fig.tight_layout()
+    return _svg(fig)
+
+
+def _shade_unstable_spin(ax, lin, rpm, label=None):
+    """Shade the spin ranges where the straight tether is unstable at the operating load."""
+    gaps, start = [], rpm[0]
+    for w in lin["spin_windows"]:
+        a, b = w["rpm"]
+        if a > start:
+            gaps.append((start, a))
+        start = b
+    if start < rpm[-1]:
+        gaps.append((start, rpm[-1]))
+    for i, (a, b) in enumerate(gaps):
+        ax.axvspan(a, b, color="#c0392b", alpha=0.08, lw=0, label=label if i == 0 else None)
+
+
+def stability_map_plot(results: dict) -> str:
+    """Stability of the straight tether in the (I·B0, spin rate) plane."""
+    import numpy as np
+    from matplotlib.colors import ListedColormap
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    plt = _plt()
+    lin = results["linear"]
+    sm = lin["stability_map"]
+    load = np.array(sm["IB0_N_per_m"])
+    rpm = np.array(sm["spin_rpm"])
+    g = np.array(sm["max_growth"])
+    thr = lin["threshold"]
+    required = results["mission"]["check"]["required_margin"]
+    fig, ax = plt.subplots(figsize=(6.6, 4.4))
+    stable = (g <= thr).astype(float)
+    ax.contourf(load, rpm, stable, levels=[-0.5, 0.5, 1.5], cmap=ListedColormap(["#f6d5d1", "#d5efdc"]))
+    ax.contour(load, rpm, g - thr, levels=[0.0], colors="#1b1b1b", linewidths=1.4)
+    # required-margin curves: I·B0 = critical(spin) / m and spin = critical(I·B0) / m
+    b_row = np.array([_first_crossing(load, row, thr) for row in g])
+    w_col = np.array([_first_crossing(rpm, col, thr) for col in g.T])
+    ok = np.isfinite(b_row)
+    ax.plot(b_row[ok] / required, rpm[ok], color="#1f4e79", ls="--", lw=1.2)
+    ok = np.isfinite(w_col)
+    ax.plot(load[ok], w_col[ok] / required, color="#7d3c98", ls=":", lw=1.4)
+    op = lin["operating"]
+    ax.plot(op["IB0_N_per_m"], op["spin_rpm"], marker="*", color="#27ae60", ms=14, mec="k", zorder=5)
+    cl, cs = lin["critical_load"], lin["critical_spin"]
+    if cl["IB0_N_per_m"] is not None and cl["kind"] in ("divergence", "flutter"):
+        ax.plot(cl["IB0_N_per_m"], op["spin_rpm"], marker="o", color="#c0392b", ms=6, zorder=5)
+    if cs["rpm"] is not None and cs["kind"] in ("divergence", "flutter"):
+        ax.plot(op["IB0_N_per_m"], cs["rpm"], marker="s", color="#c0392b", ms=6, zorder=5)
+    handles = [
+        Patch(color="#d5efdc", label="stable straight tether"),
+        Patch(color="#f6d5d1", label="unstable (buckled or whirling)"),
+        Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary"),
+        Line2D([], [], color="#1f4e79", ls="--", label=f"load margin = {required:g}"),
+        Line2D([], [], color="#7d3c98", ls=":", lw=1.4, label=f"spin margin = {required:g}"),
+        Line2D([], [], marker="*", color="#27ae60", mec="k", ms=12, ls="", label="operating point"),
+        Line2D([], [], marker="o", color="#c0392b", ls="", label="critical load at operating spin"),
+        Line2D([], [], marker="s", color="#c0392b", ls="", label="critical spin at operating load"),
+    ]
+    ax.legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.92)
+    ax.set_xlabel("magnetic load I·B0 [N/m]")
+    ax.set_ylabel("spin rate [rpm]")
+    ax.set_xlim(load[0], load[-1])
+    ax.set_ylim(rpm[0], rpm[-1])
+    ax.set_title(f"Safe operating region of the straight tether (T = {results['scene']['tension_N']:.3g} N, "
+                 f"γ = {results['scaled']['gamma']:.3g})", fontsize=9)
+    return _svg(fig)
+
+
 def figures(results: dict) -> dict[str, str]:
     """All figures the report shows, keyed by name."""
     out = {"chi": chi_plot(results), "mode": mode_plot(results)}
+    if results.get("linear"):
+        out["campbell"] = campbell_plot(results)
+        out["map"] = stability_map_plot(results)
     return out
 
 
