@@ -83,6 +83,11 @@ def set_result():
     return check(str(MISSIONS / "set.toml"))
 
 
+@pytest.fixture(scope="module")
+def set_static_result():
+    return check(str(MISSIONS / "set-static.toml"))
+
+
 def test_set_passes(set_result):
     assert set_result.verdict == "pass"
     assert set_result.exit_code == 0
@@ -130,12 +135,31 @@ def test_set_numbers(set_result):
     assert r["scaled"]["P"] == pytest.approx(1e-3)
     assert r["scaled"]["Gamma"] == pytest.approx(1 / 1.3, rel=1e-14)
     assert r["scaled"]["f"] == pytest.approx(F, rel=1e-13)
-    (margin,) = [m for m in r["margins"] if m["verdict"] in ("pass", "fail")]
+    # the spinning SET is answered by rung 1: load margin at the operating spin,
+    # spin margin at the operating load, against an exact shooting computation
+    from independent import first_static_load, first_static_spin
+
+    load, spin = r["margins"]
+    p = r["scaled"]
+    B_c = first_static_load(p["P"], p["R"], p["f"], p["omega"], p["T"], B_max=1.0)
+    w_c = first_static_spin(p["P"], p["R"], p["f"], p["B"], p["T"], w_max=1.5)
+    assert load["value"] == pytest.approx(B_c / p["B"], rel=1e-9)
+    assert spin["value"] == pytest.approx(w_c / p["omega"], rel=1e-9)
+    for margin in (load, spin):
+        assert margin["required"] == 2
+        assert margin["verdict"] == "pass"
+        assert margin["rung"] == 1
+        assert margin["error"] is not None and 0 <= margin["error"] < 1e-6
+
+
+def test_set_static_numbers(set_static_result):
+    r = set_static_result.results
+    (margin,) = r["margins"]
     assert margin["value"] == pytest.approx(IB0_ref(1, 38.0, 21.0, 100.0) / 70e-6, rel=1e-9)
-    assert margin["required"] == 2
-    assert margin["verdict"] == "pass"
+    assert margin["critical"] == pytest.approx(1.1135e-2, rel=1e-3)
+    assert margin["verdict"] == "pass" and set_static_result.exit_code == 0
     assert margin["error"] is not None and 0 <= margin["error"] < 1e-6
-    assert "0" in str(margin["model"]) or "analytic" in str(margin["model"])
+    assert margin["rung"] == 0 and "analytic" in margin["model"]
 
 
 def test_set_limits(set_result):

@@ -30,7 +30,7 @@ def _mission(name="SET", description="plain"):
 
 @pytest.fixture(scope="module")
 def set_results():
-    return check(ROOT / "missions" / "set.toml").results
+    return check(ROOT / "missions" / "set-static.toml").results
 
 
 def test_html_escapes_mission_text():

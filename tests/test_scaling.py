@@ -167,7 +167,9 @@ def test_set_dimensionless_numbers():
     # I = 1 A, B0 = 70 uT, L = 100 m, EI1 = 38 N m2
     assert s.load == pytest.approx(70e-6, rel=1e-14)
     assert p.B == pytest.approx(1.0 * 70e-6 * 100.0**3 / (F * 38.0), rel=1e-12)
-    assert p.omega == 0.0 and p.T == 0.0
+    # spin: the paper's omega = 0.25 written as 0.1041 rpm in the mission (4 digits)
+    assert p.omega == pytest.approx(0.25, abs=1e-4)
+    assert p.T == 0.0
     # no damping_time in set.toml: the paper's gamma = 0.04375 is assumed
     assert p.gamma == pytest.approx(0.04375, rel=1e-12)
 

@@ -1,0 +1,60 @@
+"""Independent reference computations for tests (not used by etcheck itself).
+
+The straight rod at lambda = 0 has constant coefficients, so its static
+problem is solved exactly by a matrix exponential (shooting) instead of
+Chebyshev collocation: PHYSICS.md's straight-rod equations at lambda = 0,
+
+    (R/f) u'''' - (T + P R w^2) u'' - w^2 u - B v' = 0
+    (1/f) v'''' - (T + P   w^2) v'' - w^2 v + B u' = 0,  u = u' = v = v' = 0 at 0, 1.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import expm
+from scipy.optimize import brentq
+
+
+def static_determinant(B, P, R, f, omega=0.0, T=0.0):
+    """det of the 4x4 clamped shooting matrix (sign changes at simple static points)."""
+    A = np.zeros((8, 8))
+    for i in (0, 1, 2, 4, 5, 6):
+        A[i, i + 1] = 1.0
+    # u'''' row (index 3), v'''' row (index 7)
+    A[3, 2] = f / R * (T + P * R * omega**2)
+    A[3, 0] = f / R * omega**2
+    A[3, 5] = f / R * B
+    A[7, 6] = f * (T + P * omega**2)
+    A[7, 4] = f * omega**2
+    A[7, 1] = -f * B
+    Phi = expm(A)
+    free = [2, 3, 6, 7]
+    rows = [0, 1, 4, 5]
+    M = Phi[np.ix_(rows, free)]
+    return np.linalg.det(M / np.max(np.abs(M)))
+
+
+def first_static_load(P, R, f, omega=0.0, T=0.0, B_max=5.0, n=2000):
+    """Smallest B > 0 where the straight rod has a static (divergence) point.
+
+    Needs a sign change: only for split (simple) points, i.e. R != 1 with
+    omega != 0 or T != 0.
+    """
+    grid = np.linspace(1e-9, B_max, n)
+    d = np.array([static_determinant(b, P, R, f, omega, T) for b in grid])
+    i = np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]
+    if i.size == 0:
+        return None
+    j = i[0]
+    return brentq(lambda b: static_determinant(b, P, R, f, omega, T), grid[j], grid[j + 1], xtol=1e-15, rtol=1e-14)
+
+
+def first_static_spin(P, R, f, B=0.0, T=0.0, w_max=3.0, n=3000):
+    """Smallest omega > 0 with a static point at load B (sign change needed)."""
+    grid = np.linspace(1e-9, w_max, n)
+    d = np.array([static_determinant(B, P, R, f, w, T) for w in grid])
+    i = np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]
+    if i.size == 0:
+        return None
+    j = i[0]
+    return brentq(lambda w: static_determinant(B, P, R, f, w, T), grid[j], grid[j + 1], xtol=1e-15, rtol=1e-14)
