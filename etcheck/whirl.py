@@ -86,21 +86,30 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     if not op.converged:
         raise SolverError(f"rung 1: the operating-point spectrum did not converge: {op.message}")
 
-    load = _critical(critical_load(p.with_(B=0.0), tol=options.tol), "critical load at the operating spin")
-    spin = _critical(critical_spin(p.with_(omega=0.0), tol=options.tol), "critical spin at the operating load")
+    # the critical points are located at the resolution the operating spectrum
+    # needed (boundary layers under strong tension need more than the default)
+    N = max(24, op.N_check)
+    load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
+    if p.omega > 0:
+        spin = _critical(
+            critical_spin(p.with_(omega=0.0), tol=options.tol, N=N), "critical spin at the operating load"
+        )
+    else:
+        spin = {"value": None, "kind": "not computed (no spin)", "bracket": [], "error": None,
+                "message": "the mission does not spin", "N": N}
 
     # ranges of the pictures: past the boundary and the operating point
     B_ref = load["value"] if load["kind"] in ("divergence", "flutter") else None
     w_ref = spin["value"] if spin["kind"] in ("divergence", "flutter") and spin["value"] else None
     B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
     w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
-    windows = stable_intervals(p.with_(omega=0.0), "omega", 0.0, w_hi, tol=options.tol)
+    windows = stable_intervals(p.with_(omega=0.0), "omega", 0.0, w_hi, tol=options.tol, N=N)
 
     omegas = np.linspace(0.0, w_hi, options.campbell_points)
-    cd = campbell(p, omegas, k=options.k)
+    cd = campbell(p, omegas, k=options.k, N=N)
     B_grid = np.linspace(0.0, B_hi, options.map_points)
     w_grid = np.linspace(0.0, w_hi, options.map_points)
-    growth = stability_map(p, B_grid, w_grid)
+    growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N)
 
     lam = op.eigenvalues
     least = int(np.argmax(lam.real))

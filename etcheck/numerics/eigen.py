@@ -182,6 +182,8 @@ def qep_shift_invert(A0, A1, A2, k: int, sigma: float = 0.0, vectors: bool = Fal
 
     op = LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=float)
     k = min(k, 2 * n - 2)
+    if maxiter is None:
+        maxiter = 500  # restarts; what did not converge by then is dropped, never invented
     if ncv is None:
         ncv = min(2 * n, max(2 * k + 1, 20))
     try:
