@@ -54,6 +54,8 @@ SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
         "required_margin": ("number", False),
         "fidelity": ("text", False),
         "scaling_constant": ("number", False),
+        "resolution": ("number", False),
+        "tolerance": ("number", False),
     },
 }
 
@@ -84,6 +86,8 @@ class Mission:
     cross_section_area: u.Quantity | None = None
     required_margin: float = 2.0
     fidelity: str = "auto"
+    resolution: int | None = None
+    tolerance: float = 1e-8
     scaling_constant: float = F_CLAMPED
     source: str = ""
     file: str = "mission"
@@ -148,6 +152,8 @@ class Mission:
                 "required_margin": self.required_margin,
                 "fidelity": self.fidelity,
                 "scaling_constant": self.scaling_constant,
+                "resolution": self.resolution,
+                "tolerance": self.tolerance,
             },
             "notes": list(self.notes),
         }
@@ -331,6 +337,15 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         raise err("check.fidelity", f"unknown fidelity {fidelity!r}", f"use one of {', '.join(FIDELITIES)}")
     f = number("check", "scaling_constant", c, 0.0, math.inf, lo_open=True, hi_open=True) if "scaling_constant" in c else F_CLAMPED
 
+    resolution = None
+    if "resolution" in c:
+        value = c["resolution"]
+        if isinstance(value, bool) or not isinstance(value, int) or not 8 <= value <= 128:
+            raise err("check.resolution", f"expected a whole number of Chebyshev points in [8, 128], got {value!r}",
+                      "leave it out to let etcheck choose the resolution for the tolerance")
+        resolution = value
+    tolerance = number("check", "tolerance", c, 1e-13, 1e-3) if "tolerance" in c else 1e-8
+
     if current[0] != current[1] or bfield[0] != bfield[1]:
         notes.append("current and/or field given as a range: the check uses the worst case |I| x |B0|")
     if damping is None:
@@ -358,6 +373,8 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         end_tension=tension,
         required_margin=required,
         fidelity=fidelity,
+        resolution=resolution,
+        tolerance=tolerance,
         scaling_constant=f,
         file=source,
         sha256=sha256,

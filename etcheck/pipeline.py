@@ -9,7 +9,7 @@ from __future__ import annotations
 import datetime as _dt
 import math
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -60,6 +60,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     static = static_buckling(scaled)
     static["limits"] = _static_limits(static, mission, sc)
     linear = accuracy_rows = None
+    if mission.resolution is not None or mission.tolerance != options.eig_tol:
+        options = replace(options, N=mission.resolution, eig_tol=mission.tolerance)
     if chosen.rung == 1:
         linear = linear_stability(scaled, options)
         accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N else None
@@ -263,6 +265,24 @@ def _validity(mission: Mission, scaled: Scaled, chosen: Plan) -> list[str]:
             "Rung 0 roots of chi(beta) are located to ~1e-15 relative (a-posteriori Newton step); "
             "the static loads do not depend on P, damping or mass per length."
         )
+    if chosen.rung == 1:
+        items += [
+            "Rung 1 linearises the full O(delta) equations (Sec. 5.2) about the straight tether and solves the "
+            "damped gyroscopic eigenproblem by Chebyshev collocation; every eigenvalue and critical value is "
+            "computed at two resolutions and their agreement is its error estimate (table below).",
+            "Stability is judged on the lowest 12 eigenvalue pairs (Re lambda > 1e-9 counts as growing); higher "
+            "modes are stiffened by bending. With damping, the straight tether can only lose stability where "
+            "its static operator is singular (divergence, Kelvin-Tait-Chetaev); without damping, gyroscopic "
+            "windows above the critical spin may appear and are lost with any damping.",
+            "The stability map is sampled on a grid (boundaries between grid points are interpolated); the "
+            "margins and critical values in the tables are located to 1e-10.",
+        ]
+        if p.gamma > 0:
+            items.append(
+                f"Eigenvalues left of -1/gamma = {-1 / p.gamma:.4g} on the real axis (the Kelvin-Voigt "
+                "accumulation of heavily damped high modes) are not listed: they decay faster than the material "
+                "relaxation rate."
+            )
     if p.P > 1e-2:
         items.append(f"P = {p.P:.3g} is large for a slender rod; rod theory assumes P << 1.")
     return items

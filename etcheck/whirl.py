@@ -22,7 +22,15 @@ from .errors import SolverError
 from .rod.analytic import critical_loads
 from .rod.convergence import accuracy_table
 from .rod.spectrum import spectrum
-from .rod.stability import THRESHOLD, campbell, critical_load, critical_spin, stability_map, stable_intervals
+from .rod.stability import (
+    THRESHOLD,
+    campbell,
+    critical_load,
+    critical_spin,
+    stability_map,
+    stable_intervals,
+    static_curves,
+)
 from .scaling import Scaled
 
 RPM = 60.0 / (2.0 * math.pi)  # rad/s -> rev/min
@@ -33,7 +41,8 @@ class WhirlOptions:
     """Resolution of the rung-1 answers (all dimensionless settings).
 
     ``tol``: tolerance of critical loads and spins; ``eig_tol``: two-resolution
-    agreement required of the operating spectrum; ``k``: eigenvalue pairs;
+    agreement required of the operating spectrum; ``N``: fixed Chebyshev
+    resolution (None: chosen to meet eig_tol); ``k``: eigenvalue pairs;
     ``map_points``: grid of the stability map per axis; ``campbell_points``:
     spin values of the Campbell diagram; ``accuracy_N``: resolutions of the
     accuracy table (empty: skip it).
@@ -41,6 +50,7 @@ class WhirlOptions:
 
     tol: float = 1e-10
     eig_tol: float = 1e-8
+    N: int | None = None
     k: int = 10
     map_points: int = 24
     campbell_points: int = 41
@@ -82,13 +92,14 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     """
     p, sc = scaled.params, scaled.scales
     wc = sc.frequency
-    op = spectrum(p, k=options.k, tol=options.eig_tol)
+    op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
     if not op.converged:
-        raise SolverError(f"rung 1: the operating-point spectrum did not converge: {op.message}")
+        fix = " (raise [check] resolution or leave it out)" if options.N else ""
+        raise SolverError(f"rung 1: the operating-point spectrum did not converge: {op.message}{fix}")
 
     # the critical points are located at the resolution the operating spectrum
     # needed (boundary layers under strong tension need more than the default)
-    N = max(24, op.N_check)
+    N = options.N or max(24, op.N_check)
     load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
     if p.omega > 0:
         spin = _critical(
@@ -110,6 +121,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     B_grid = np.linspace(0.0, B_hi, options.map_points)
     w_grid = np.linspace(0.0, w_hi, options.map_points)
     growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N)
+    curve_B, curve_w = static_curves(p, B_hi, w_hi, N=N)
 
     lam = op.eigenvalues
     least = int(np.argmax(lam.real))
@@ -156,6 +168,10 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
             "IB0_N_per_m": (B_grid * sc.load).tolist(),
             "spin_rpm": (w_grid * wc * RPM).tolist(),
             "max_growth": growth.tolist(),  # dimensionless, shape (omega, B)
+            "static_points": {
+                "IB0_N_per_m": (curve_B * sc.load).tolist(),
+                "spin_rpm": (curve_w * wc * RPM).tolist(),
+            },
         },
         "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * sc.load, "spin_rpm": p.omega * wc * RPM},
     }

@@ -10,28 +10,39 @@ Chebyshev collocation: PHYSICS.md's straight-rod equations at lambda = 0,
 
 from __future__ import annotations
 
+import mpmath as mp
 import numpy as np
-from scipy.linalg import expm
 from scipy.optimize import brentq
+
+#: working precision of the shooting: the fundamental matrix grows like
+#: exp(sqrt(f T)) and its 4x4 minor cancels, so doubles are not enough
+mp.mp.dps = 50
 
 
 def static_determinant(B, P, R, f, omega=0.0, T=0.0):
-    """det of the 4x4 clamped shooting matrix (sign changes at simple static points)."""
-    A = np.zeros((8, 8))
+    """det of the 4x4 clamped shooting matrix (sign changes at simple static points).
+
+    Under strong tension the matrix exponential is taken in 50-digit
+    arithmetic (mpmath); elsewhere doubles suffice.
+    """
+    if f * abs(T) / R < 50:
+        return _determinant_double(B, P, R, f, omega, T)
+    A = mp.zeros(8, 8)
     for i in (0, 1, 2, 4, 5, 6):
         A[i, i + 1] = 1.0
     # u'''' row (index 3), v'''' row (index 7)
+    B, P, R, f, omega, T = (mp.mpf(x) for x in (B, P, R, f, omega, T))
     A[3, 2] = f / R * (T + P * R * omega**2)
     A[3, 0] = f / R * omega**2
     A[3, 5] = f / R * B
     A[7, 6] = f * (T + P * omega**2)
     A[7, 4] = f * omega**2
     A[7, 1] = -f * B
-    Phi = expm(A)
+    Phi = mp.expm(A)
     free = [2, 3, 6, 7]
     rows = [0, 1, 4, 5]
-    M = Phi[np.ix_(rows, free)]
-    return np.linalg.det(M / np.max(np.abs(M)))
+    M = mp.matrix([[Phi[r, c] for c in free] for r in rows])
+    return float(mp.det(M))
 
 
 def first_static_load(P, R, f, omega=0.0, T=0.0, B_max=5.0, n=2000):
@@ -58,3 +69,20 @@ def first_static_spin(P, R, f, B=0.0, T=0.0, w_max=3.0, n=3000):
         return None
     j = i[0]
     return brentq(lambda w: static_determinant(B, P, R, f, w, T), grid[j], grid[j + 1], xtol=1e-15, rtol=1e-14)
+
+
+def _determinant_double(B, P, R, f, omega, T):
+    from scipy.linalg import expm
+
+    A = np.zeros((8, 8))
+    for i in (0, 1, 2, 4, 5, 6):
+        A[i, i + 1] = 1.0
+    A[3, 2] = f / R * (T + P * R * omega**2)
+    A[3, 0] = f / R * omega**2
+    A[3, 5] = f / R * B
+    A[7, 6] = f * (T + P * omega**2)
+    A[7, 4] = f * omega**2
+    A[7, 1] = -f * B
+    Phi = expm(A)
+    M = Phi[np.ix_([0, 1, 4, 5], [2, 3, 6, 7])]
+    return np.linalg.det(M / np.max(np.abs(M)))

@@ -174,9 +174,13 @@ def stability_map_plot(results: dict) -> str:
     thr = lin["threshold"]
     required = results["mission"]["check"]["required_margin"]
     fig, ax = plt.subplots(figsize=(6.6, 4.4))
-    stable = (g <= thr).astype(float)
-    ax.contourf(load, rpm, stable, levels=[-0.5, 0.5, 1.5], cmap=ListedColormap(["#f6d5d1", "#d5efdc"]))
+    # shade by the interpolated growth rate so the boundary is not a staircase
+    top = max(float(np.max(g)), thr) + 1.0
+    ax.contourf(load, rpm, g, levels=[float(np.min(g)) - 1.0, thr, top],
+                cmap=ListedColormap(["#d5efdc", "#f6d5d1"]))
     ax.contour(load, rpm, g - thr, levels=[0.0], colors="#1b1b1b", linewidths=1.4)
+    sp = sm["static_points"]
+    ax.plot(sp["IB0_N_per_m"], sp["spin_rpm"], ".", color="#444444", ms=1.6)
     # required-margin curves: I·B0 = critical(spin) / m and spin = critical(I·B0) / m
     b_row = np.array([_first_crossing(load, row, thr) for row in g])
     w_col = np.array([_first_crossing(rpm, col, thr) for col in g.T])
@@ -194,7 +198,8 @@ def stability_map_plot(results: dict) -> str:
     handles = [
         Patch(color="#d5efdc", label="stable straight tether"),
         Patch(color="#f6d5d1", label="unstable (buckled or whirling)"),
-        Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary"),
+        Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (grid)"),
+        Line2D([], [], marker=".", color="#444444", ls="", label="divergence curves (exact)"),
         Line2D([], [], color="#1f4e79", ls="--", label=f"load margin = {required:g}"),
         Line2D([], [], color="#7d3c98", ls=":", lw=1.4, label=f"spin margin = {required:g}"),
         Line2D([], [], marker="*", color="#27ae60", mec="k", ms=12, ls="", label="operating point"),

@@ -59,6 +59,7 @@ __all__ = [
     "stable_intervals",
     "stability_map",
     "campbell",
+    "static_curves",
 ]
 
 #: Re lambda above this counts as unstable (dimensionless growth rate).
@@ -439,3 +440,29 @@ def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24) -> Cam
     for i, r in enumerate(rows):
         out[i, : r.size] = r
     return Campbell(omega=omega_grid, eigenvalues=out)
+
+
+@single_blas_thread
+def static_curves(params: RodParameters, B_max: float, omega_max: float, n: int = 60,
+                  N: int = 24) -> tuple[np.ndarray, np.ndarray]:
+    """Points (B, omega) of the static-point set det A0(B, omega) = 0 in the box.
+
+    Dimensionless; T, P, R, Gamma, f from ``params`` (gamma plays no part at
+    lambda = 0). Exact at resolution N: for n spins the B-pencil roots, and
+    for n loads the omega^2-pencil roots, so curves are sampled evenly in both
+    directions. With damping these curves are the whole stability boundary of
+    the straight rod (Kelvin-Tait-Chetaev).
+    """
+    fam = _family(params, N)
+    Bs, ws = [], []
+    for w in np.linspace(0.0, omega_max, n):
+        r = fam.pencil_roots("B", 0.0, w, params.T)
+        r = r[(r >= 0) & (r <= B_max)]
+        Bs.extend(r)
+        ws.extend([w] * r.size)
+    for b in np.linspace(0.0, B_max, n):
+        r = fam.pencil_roots("omega", b, 0.0, params.T)
+        r = np.sqrt(r[(r >= 0) & (r <= omega_max**2)])
+        Bs.extend([b] * r.size)
+        ws.extend(r)
+    return np.asarray(Bs, dtype=float), np.asarray(ws, dtype=float)

@@ -1,0 +1,44 @@
+"""Heavy Kelvin-Voigt damping and strong tension: the regimes where a naive
+spectral solve fails (accumulation of eigenvalues at -1/gamma; boundary layers).
+References from tests/independent.py (exact shooting), not the solver under test."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from independent import first_static_load
+
+from etcheck.rod.parameters import F_CLAMPED, RodParameters
+from etcheck.rod.spectrum import damping_cluster, spectrum
+from etcheck.rod.stability import critical_load
+
+
+@pytest.mark.parametrize("gamma", [0.2, 0.5, 2.0])
+def test_heavy_damping_spectrum_converges_outside_the_cluster(gamma):
+    p = RodParameters(P=0.001, R=0.5, Gamma=0.77, omega=0.2, gamma=gamma)
+    s = spectrum(p, k=6)
+    assert s.converged, s.message
+    assert s.eigenvalues.size >= 1
+    assert not np.any(damping_cluster(s.eigenvalues, gamma))
+    assert np.all(s.eigenvalues.real < 0)  # damped, below the critical spin
+    # the lowest mode is the same at a fixed, different resolution
+    fixed = spectrum(p, k=6, N=40)
+    assert fixed.eigenvalues[0] == pytest.approx(s.eigenvalues[0], rel=1e-8)
+
+
+def test_damping_does_not_move_the_divergence_load():
+    # Kelvin-Tait-Chetaev: with damping, stability is lost where the static operator is singular
+    ref = first_static_load(0.001, 0.5, F_CLAMPED, omega=0.2, B_max=1.0)
+    for gamma in (0.0, 0.04375, 1.0):
+        c = critical_load(RodParameters(P=0.001, R=0.5, Gamma=0.77, omega=0.2, gamma=gamma))
+        assert c.kind == "divergence" and c.converged
+        assert c.value == pytest.approx(ref, rel=1e-9)
+
+
+def test_strong_tension_raises_the_critical_load():
+    T = 0.5  # f T = 250: boundary layers of width ~ 0.06
+    c = critical_load(RodParameters(P=0.001, R=0.3, Gamma=0.77, omega=0.1, T=T, gamma=0.04375), N=32)
+    ref = first_static_load(0.001, 0.3, F_CLAMPED, omega=0.1, T=T, B_max=4.0, n=60)
+    assert c.converged and c.kind == "divergence"
+    assert c.value == pytest.approx(ref, rel=1e-8)
+    assert c.value > first_static_load(0.001, 0.3, F_CLAMPED, omega=0.1, B_max=2.0)
