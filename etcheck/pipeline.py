@@ -172,6 +172,12 @@ def _linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) ->
     """Load margin at the operating spin; spin margin at the operating load (rung 1)."""
     p = scaled.params
     load, spin = linear["critical_load"], linear["critical_spin"]
+    window = ""
+    if linear["operating_spectrum"]["stable"]:
+        window = (
+            "; the operating point itself is stable, inside a stability window that does not reach back to zero "
+            "(gyroscopic stabilisation, which damping removes): a window is not counted as margin"
+        )
     margins = [
         _margin_from_critical(
             "magnetic load |I B0| at the operating spin",
@@ -182,7 +188,7 @@ def _linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) ->
             scaled.scales.load,
             required,
             "the straight tether first loses stability as I B0 grows at the operating spin, tension and damping",
-            "the straight tether is already unstable with no magnetic load at the operating spin and tension",
+            "the straight tether is already unstable with no magnetic load at the operating spin and tension" + window,
         )
     ]
     if p.omega > 0:
@@ -196,7 +202,8 @@ def _linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) ->
                 scaled.scales.frequency * RPM,
                 required,
                 "the straight tether first loses stability as the spin rate grows at the operating load",
-                "the straight tether is already unstable without spin at the operating load (statically buckled)",
+                "the straight tether is already unstable without spin at the operating load (statically buckled)"
+                + window,
             )
         )
     return margins

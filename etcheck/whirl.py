@@ -52,9 +52,9 @@ class WhirlOptions:
     eig_tol: float = 1e-8
     N: int | None = None
     k: int = 10
-    map_points: int = 24
+    map_points: int = 20
     campbell_points: int = 41
-    accuracy_N: tuple[int, ...] = (8, 12, 16, 24, 32, 48)
+    accuracy_N: tuple[int, ...] = (8, 12, 16, 24, 32)
 
     def __post_init__(self) -> None:
         if not (0 < self.tol < 1e-2 and 0 < self.eig_tol < 1e-2):
