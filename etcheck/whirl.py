@@ -101,13 +101,12 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     # needed (boundary layers under strong tension need more than the default)
     N = options.N or max(24, op.N_check)
     load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
-    if p.omega > 0:
-        spin = _critical(
-            critical_spin(p.with_(omega=0.0), tol=options.tol, N=N), "critical spin at the operating load"
-        )
-    else:
-        spin = {"value": None, "kind": "not computed (no spin)", "bracket": [], "error": None,
-                "message": "the mission does not spin", "N": N}
+    spin_point = critical_spin(p.with_(omega=0.0), tol=options.tol, N=N)
+    if p.omega > 0 or spin_point.converged or spin_point.kind not in ("divergence", "flutter"):
+        spin = _critical(spin_point, "critical spin at the operating load")
+    else:  # informative only for a mission without spin: say so instead of stopping the check
+        spin = {"value": None, "kind": "not located", "bracket": [float(b) for b in spin_point.bracket],
+                "error": None, "message": spin_point.message, "N": N}
 
     # ranges of the pictures: past the boundary and the operating point
     B_ref = load["value"] if load["kind"] in ("divergence", "flutter") else None

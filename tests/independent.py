@@ -27,17 +27,7 @@ def static_determinant(B, P, R, f, omega=0.0, T=0.0):
     """
     if f * abs(T) / R < 50:
         return _determinant_double(B, P, R, f, omega, T)
-    A = mp.zeros(8, 8)
-    for i in (0, 1, 2, 4, 5, 6):
-        A[i, i + 1] = 1.0
-    # u'''' row (index 3), v'''' row (index 7)
-    B, P, R, f, omega, T = (mp.mpf(x) for x in (B, P, R, f, omega, T))
-    A[3, 2] = f / R * (T + P * R * omega**2)
-    A[3, 0] = f / R * omega**2
-    A[3, 5] = f / R * B
-    A[7, 6] = f * (T + P * omega**2)
-    A[7, 4] = f * omega**2
-    A[7, 1] = -f * B
+    A = _system(mp.zeros(8, 8), *(mp.mpf(x) for x in (B, P, R, f, omega, T)))
     Phi = mp.expm(A)
     free = [2, 3, 6, 7]
     rows = [0, 1, 4, 5]
@@ -51,38 +41,69 @@ def first_static_load(P, R, f, omega=0.0, T=0.0, B_max=5.0, n=2000):
     Needs a sign change: only for split (simple) points, i.e. R != 1 with
     omega != 0 or T != 0.
     """
-    grid = np.linspace(1e-9, B_max, n)
-    d = np.array([static_determinant(b, P, R, f, omega, T) for b in grid])
-    i = np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]
-    if i.size == 0:
-        return None
-    j = i[0]
-    return brentq(lambda b: static_determinant(b, P, R, f, omega, T), grid[j], grid[j + 1], xtol=1e-15, rtol=1e-14)
+    return _first_root(lambda b: static_determinant(b, P, R, f, omega, T), B_max, n)
 
 
 def first_static_spin(P, R, f, B=0.0, T=0.0, w_max=3.0, n=3000):
     """Smallest omega > 0 with a static point at load B (sign change needed)."""
-    grid = np.linspace(1e-9, w_max, n)
-    d = np.array([static_determinant(B, P, R, f, w, T) for w in grid])
+    return _first_root(lambda w: static_determinant(B, P, R, f, w, T), w_max, n)
+
+
+def _first_root(g, x_max, n):
+    grid = np.linspace(1e-9, x_max, n)
+    d = np.array([g(x) for x in grid])
     i = np.nonzero(np.sign(d[:-1]) * np.sign(d[1:]) < 0)[0]
     if i.size == 0:
         return None
-    j = i[0]
-    return brentq(lambda w: static_determinant(B, P, R, f, w, T), grid[j], grid[j + 1], xtol=1e-15, rtol=1e-14)
+    return brentq(g, grid[i[0]], grid[i[0] + 1], xtol=1e-15, rtol=1e-14)
+
+
+def chi_mp(b):
+    """chi(beta), eq. char_welded, transcribed from the paper (mpmath)."""
+    s3 = mp.sqrt(3)
+    return (
+        2 * mp.cos(b)
+        + mp.cos(2 * b)
+        - 2 * (mp.cos(b / 2) + mp.cos(3 * b / 2)) * mp.cosh(s3 * b / 2)
+        + (2 - mp.cos(b)) * mp.cosh(s3 * b)
+        - s3 * mp.sin(b) * mp.sinh(s3 * b)
+        - 2 * s3 * (mp.sin(b / 2) - mp.sin(3 * b / 2)) * mp.sinh(s3 * b / 2)
+    )
+
+
+def chi_scaled_mp(b):
+    return chi_mp(b) * mp.exp(-mp.sqrt(3) * b)
+
+
+_ROOT_CACHE: dict[int, float] = {}
+
+
+def beta_ref(k: int) -> float:
+    """k-th double zero of chi: a zero of d/dbeta [chi e^{-sqrt3 beta}] (mpmath)."""
+    if k not in _ROOT_CACHE:
+        guess = mp.pi / 3 + 2 * mp.pi * k
+        root = mp.findroot(lambda b: mp.diff(chi_scaled_mp, b), guess, tol=mp.mpf(10) ** -30)
+        assert abs(chi_scaled_mp(root)) < mp.mpf(10) ** -25  # a zero of chi itself, too
+        _ROOT_CACHE[k] = float(root)
+    return _ROOT_CACHE[k]
 
 
 def _determinant_double(B, P, R, f, omega, T):
     from scipy.linalg import expm
 
-    A = np.zeros((8, 8))
-    for i in (0, 1, 2, 4, 5, 6):
-        A[i, i + 1] = 1.0
-    A[3, 2] = f / R * (T + P * R * omega**2)
-    A[3, 0] = f / R * omega**2
-    A[3, 5] = f / R * B
-    A[7, 6] = f * (T + P * omega**2)
-    A[7, 4] = f * omega**2
-    A[7, 1] = -f * B
-    Phi = expm(A)
+    Phi = expm(_system(np.zeros((8, 8)), B, P, R, f, omega, T))
     M = Phi[np.ix_([0, 1, 4, 5], [2, 3, 6, 7])]
     return np.linalg.det(M / np.max(np.abs(M)))
+
+
+def _system(A, B, P, R, f, omega, T):
+    """Fill the 8x8 first-order matrix of (u, u', u'', u''', v, v', v'', v''') = y."""
+    for i in (0, 1, 2, 4, 5, 6):
+        A[i, i + 1] = 1
+    A[3, 2] = f / R * (T + P * R * omega**2)  # row of the fourth derivative of u
+    A[3, 0] = f / R * omega**2
+    A[3, 5] = f / R * B
+    A[7, 6] = f * (T + P * omega**2)  # row of the fourth derivative of v
+    A[7, 4] = f * omega**2
+    A[7, 1] = -f * B
+    return A

@@ -31,35 +31,7 @@ SQRT3 = math.sqrt(3.0)
 
 # --- independent references -------------------------------------------------------
 
-
-def chi_mp(b):
-    """chi(beta), eq. char_welded, transcribed from the paper (mpmath)."""
-    s3 = mp.sqrt(3)
-    return (
-        2 * mp.cos(b)
-        + mp.cos(2 * b)
-        - 2 * (mp.cos(b / 2) + mp.cos(3 * b / 2)) * mp.cosh(s3 * b / 2)
-        + (2 - mp.cos(b)) * mp.cosh(s3 * b)
-        - s3 * mp.sin(b) * mp.sinh(s3 * b)
-        - 2 * s3 * (mp.sin(b / 2) - mp.sin(3 * b / 2)) * mp.sinh(s3 * b / 2)
-    )
-
-
-def chi_scaled_mp(b):
-    return chi_mp(b) * mp.exp(-mp.sqrt(3) * b)
-
-
-_ROOT_CACHE: dict[int, float] = {}
-
-
-def beta_ref(k: int) -> float:
-    """k-th double zero of chi: a zero of d/dbeta [chi e^{-sqrt3 beta}] (mpmath)."""
-    if k not in _ROOT_CACHE:
-        guess = mp.pi / 3 + 2 * mp.pi * k
-        root = mp.findroot(lambda b: mp.diff(chi_scaled_mp, b), guess, tol=mp.mpf(10) ** -30)
-        assert abs(chi_scaled_mp(root)) < mp.mpf(10) ** -25  # a zero of chi itself, too
-        _ROOT_CACHE[k] = float(root)
-    return _ROOT_CACHE[k]
+from independent import beta_ref, chi_mp, chi_scaled_mp  # noqa: E402
 
 
 def clamped_clamped_root(n: int) -> float:

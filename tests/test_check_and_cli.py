@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from independent import beta_ref
 
 import etcheck
 from etcheck import check
@@ -40,24 +41,7 @@ write_mission = CASES.write_mission
 # --- independent reference values --------------------------------------------------
 
 
-def _betas(n: int) -> list[float]:
-    mp.mp.dps = 40
-    s3 = mp.sqrt(3)
-
-    def chi_scaled(b):
-        return (
-            2 * mp.cos(b)
-            + mp.cos(2 * b)
-            - 2 * (mp.cos(b / 2) + mp.cos(3 * b / 2)) * mp.cosh(s3 * b / 2)
-            + (2 - mp.cos(b)) * mp.cosh(s3 * b)
-            - s3 * mp.sin(b) * mp.sinh(s3 * b)
-            - 2 * s3 * (mp.sin(b / 2) - mp.sin(3 * b / 2)) * mp.sinh(s3 * b / 2)
-        ) * mp.exp(-s3 * b)
-
-    return [float(mp.findroot(lambda b: mp.diff(chi_scaled, b), mp.pi / 3 + 2 * mp.pi * k)) for k in range(1, n + 1)]
-
-
-BETAS = _betas(5)
+BETAS = [beta_ref(k) for k in range(1, 6)]
 F = float(mp.findroot(lambda a: mp.cos(a) * mp.cosh(a) - 1, 4.73)) ** 4
 
 
