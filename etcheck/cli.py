@@ -59,6 +59,8 @@ def main(argv: list[str] | None = None) -> int:
         from .report import write_reports
 
         mission = load_mission(args.mission)
+        if sys.stderr.isatty():
+            print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         result = check(mission)
         paths = write_reports(result.results, Path(args.out) / mission.slug, formats)
     except EtcheckError as exc:

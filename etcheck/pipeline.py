@@ -180,7 +180,7 @@ def _linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) ->
         )
     margins = [
         _margin_from_critical(
-            "magnetic load |I B0| at the operating spin",
+            "magnetic load |I B0| at the operating spin and tension",
             "N/m",
             load,
             load["IB0_N_per_m"],

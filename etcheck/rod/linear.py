@@ -73,7 +73,6 @@ __all__ = [
     "stiffness_diag",
     "coefficient_blocks",
     "linear_operator",
-    "magnetic_load_matrix",
     "field_slice",
 ]
 
@@ -274,18 +273,3 @@ def linear_operator(params: RodParameters, base: BaseState, N: int):
     A2 = np.vstack([_assemble(None, G2, col), zero])
     return A0, A1, A2
 
-
-def magnetic_load_matrix(params: RodParameters, base: BaseState, N: int) -> np.ndarray:
-    """dA0/dB at fixed base state: A0(B) = A0(0) + B * this (A0 is affine in B).
-
-    Only the Lorentz term -B (a x d3_0) x e3 of ``per:lmomentum`` carries B
-    once the base state is held fixed (true for the straight rod, whose base
-    state does not depend on B).
-    """
-    col = collocation(int(N))
-    p1 = params.with_(B=1.0, omega=0.0, gamma=0.0, P=0.0)
-    p0 = p1.with_(B=0.0)
-    _, _, G0a, _, _ = coefficient_blocks(p1, base, col.t)
-    _, _, G0b, _, _ = coefficient_blocks(p0, base, col.t)
-    dG = G0a - G0b
-    return np.vstack([_assemble(None, dG, col), np.zeros((12, NFIELDS * (col.N + 1)))])

@@ -64,7 +64,6 @@ __all__ = [
     "nearest_eigenvalues",
     "damping_cluster",
     "spectrum",
-    "max_growth_rate",
     "select_pairs",
     "check_resolution",
 ]
@@ -319,15 +318,3 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
         mode_s=mode_s,
         modes=modes,
     )
-
-
-@single_blas_thread
-def max_growth_rate(params: RodParameters, base: BaseState | None = None, k: int = 10,
-                    N: int | None = 24) -> float:
-    """max Re lambda over the k least-|lambda| pairs at a single resolution N (dimensionless).
-
-    Positive means unstable. Single-resolution (no check) for speed; use
-    :func:`spectrum` for error estimates.
-    """
-    lam = lowest_eigenvalues(params, base, N or 24, 2 * k + 4)
-    return float(np.max(lam.real))
