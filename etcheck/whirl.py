@@ -29,6 +29,7 @@ from .rod.stability import (
     critical_spin,
     stability_map,
     stable_intervals,
+    stable_rows,
     static_curves,
 )
 from .scaling import Scaled
@@ -43,7 +44,8 @@ class WhirlOptions:
     ``tol``: tolerance of critical loads and spins; ``eig_tol``: two-resolution
     agreement required of the operating spectrum; ``N``: fixed Chebyshev
     resolution (None: chosen to meet eig_tol); ``k``: eigenvalue pairs;
-    ``map_points``: grid of the stability map per axis; ``campbell_points``:
+    ``map_points``: grid of the stability map per axis; ``row_points``: spins
+    at which the damped map is cut exactly at its static points; ``campbell_points``:
     spin values of the Campbell diagram; ``accuracy_N``: resolutions of the
     accuracy table (empty: skip it).
     """
@@ -53,14 +55,15 @@ class WhirlOptions:
     N: int | None = None
     k: int = 10
     map_points: int = 20
+    row_points: int = 61
     campbell_points: int = 41
     accuracy_N: tuple[int, ...] = (8, 12, 16, 24, 32)
 
     def __post_init__(self) -> None:
         if not (0 < self.tol < 1e-2 and 0 < self.eig_tol < 1e-2):
             raise ValueError("tolerances must lie in (0, 1e-2)")
-        if self.k < 1 or self.map_points < 4 or self.campbell_points < 4:
-            raise ValueError("k >= 1, map_points >= 4 and campbell_points >= 4 are required")
+        if self.k < 1 or min(self.map_points, self.row_points, self.campbell_points) < 4:
+            raise ValueError("k >= 1 and at least 4 map, row and Campbell points are required")
 
 
 DEFAULT_OPTIONS = WhirlOptions()
@@ -119,8 +122,17 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     cd = campbell(p, omegas, k=options.k, N=N)
     B_grid = np.linspace(0.0, B_hi, options.map_points)
     w_grid = np.linspace(0.0, w_hi, options.map_points)
-    growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N)
     curve_B, curve_w = static_curves(p, B_hi, w_hi, N=N)
+    growth = rows = None
+    if p.gamma == 0:  # undamped: flutter can occur anywhere, sample a grid
+        growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
+    else:  # damped: stability changes only at static points, cut each row there exactly
+        w_rows = np.linspace(0.0, w_hi, options.row_points)
+        rows = [
+            {"omega": float(w), "spin_rpm": float(w * wc * RPM),
+             "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
+            for w, iv in zip(w_rows, stable_rows(p, w_rows, B_hi, N=N))
+        ]
 
     lam = op.eigenvalues
     least = int(np.argmax(lam.real))
@@ -166,7 +178,8 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
             "omega": w_grid.tolist(),
             "IB0_N_per_m": (B_grid * sc.load).tolist(),
             "spin_rpm": (w_grid * wc * RPM).tolist(),
-            "max_growth": growth.tolist(),  # dimensionless, shape (omega, B)
+            "max_growth": growth,  # undamped only: dimensionless, shape (omega, B)
+            "stable_rows": rows,
             "static_points": {
                 "IB0_N_per_m": (curve_B * sc.load).tolist(),
                 "spin_rpm": (curve_w * wc * RPM).tolist(),

@@ -42,3 +42,18 @@ def test_strong_tension_raises_the_critical_load():
     assert c.converged and c.kind == "divergence"
     assert c.value == pytest.approx(ref, rel=1e-8)
     assert c.value > first_static_load(0.001, 0.3, F_CLAMPED, omega=0.1, B_max=2.0)
+
+
+def test_damped_map_rows_end_at_the_critical_load():
+    from etcheck.rod.stability import stable_rows
+
+    p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375)
+    spins = [0.0, 0.25, 0.5, 0.8]
+    rows = stable_rows(p, spins, B_max=1.0)
+    for w, row in zip(spins, rows):
+        c = critical_load(p.with_(omega=w))
+        if c.kind == "unstable at start":  # above the critical spin: no stable load at all
+            assert row == [] or row[0][0] > 0
+        else:
+            assert row[0][0] == 0.0
+            assert row[0][1] == pytest.approx(c.value, rel=1e-9)

@@ -161,7 +161,6 @@ def _shade_unstable_spin(ax, lin, rpm, label=None):
 def stability_map_plot(results: dict) -> str:
     """Stability of the straight tether in the (I·B0, spin rate) plane."""
     import numpy as np
-    from matplotlib.colors import ListedColormap
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -170,24 +169,22 @@ def stability_map_plot(results: dict) -> str:
     sm = lin["stability_map"]
     load = np.array(sm["IB0_N_per_m"])
     rpm = np.array(sm["spin_rpm"])
-    g = np.array(sm["max_growth"])
-    thr = lin["threshold"]
     required = results["mission"]["check"]["required_margin"]
     fig, ax = plt.subplots(figsize=(6.6, 4.4))
-    # shade by the interpolated growth rate so the boundary is not a staircase
-    top = max(float(np.max(g)), thr) + 1.0
-    ax.contourf(load, rpm, g, levels=[float(np.min(g)) - 1.0, thr, top],
-                cmap=ListedColormap(["#d5efdc", "#f6d5d1"]))
-    ax.contour(load, rpm, g - thr, levels=[0.0], colors="#1b1b1b", linewidths=1.4)
+    ax.set_facecolor("#f6d5d1")
+    if sm["stable_rows"]:
+        b_row, rows_rpm, cols, w_col = _shade_rows(ax, sm["stable_rows"], load)
+        boundary = Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (exact, cut at static points)")
+    else:
+        b_row, rows_rpm, cols, w_col = _shade_grid(ax, load, rpm, np.array(sm["max_growth"]), lin["threshold"])
+        boundary = Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (grid)")
     sp = sm["static_points"]
     ax.plot(sp["IB0_N_per_m"], sp["spin_rpm"], ".", color="#444444", ms=1.6)
     # required-margin curves: I·B0 = critical(spin) / m and spin = critical(I·B0) / m
-    b_row = np.array([_first_crossing(load, row, thr) for row in g])
-    w_col = np.array([_first_crossing(rpm, col, thr) for col in g.T])
     ok = np.isfinite(b_row)
-    ax.plot(b_row[ok] / required, rpm[ok], color="#1f4e79", ls="--", lw=1.2)
+    ax.plot(b_row[ok] / required, rows_rpm[ok], color="#1f4e79", ls="--", lw=1.2)
     ok = np.isfinite(w_col)
-    ax.plot(load[ok], w_col[ok] / required, color="#7d3c98", ls=":", lw=1.4)
+    ax.plot(cols[ok], w_col[ok] / required, color="#7d3c98", ls=":", lw=1.4)
     op = lin["operating"]
     ax.plot(op["IB0_N_per_m"], op["spin_rpm"], marker="*", color="#27ae60", ms=14, mec="k", zorder=5)
     cl, cs = lin["critical_load"], lin["critical_spin"]
@@ -198,8 +195,8 @@ def stability_map_plot(results: dict) -> str:
     handles = [
         Patch(color="#d5efdc", label="stable straight tether"),
         Patch(color="#f6d5d1", label="unstable (buckled or whirling)"),
-        Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (grid)"),
-        Line2D([], [], marker=".", color="#444444", ls="", label="divergence curves (exact)"),
+        boundary,
+        Line2D([], [], marker=".", color="#444444", ls="", label="static (divergence) curves"),
         Line2D([], [], color="#1f4e79", ls="--", label=f"load margin = {required:g}"),
         Line2D([], [], color="#7d3c98", ls=":", lw=1.4, label=f"spin margin = {required:g}"),
         Line2D([], [], marker="*", color="#27ae60", mec="k", ms=12, ls="", label="operating point"),
@@ -214,6 +211,48 @@ def stability_map_plot(results: dict) -> str:
     ax.set_title(f"Safe operating region of the straight tether (T = {results['scene']['tension_N']:.3g} N, "
                  f"γ = {results['scaled']['gamma']:.3g})", fontsize=9)
     return _svg(fig)
+
+
+def _shade_rows(ax, rows, load):
+    """Damped map: exact stable intervals per spin row, drawn as bands."""
+    import numpy as np
+
+    rpm = np.array([r["spin_rpm"] for r in rows])
+    h = (rpm[1] - rpm[0]) if rpm.size > 1 else 1.0
+    edge_x, edge_y = [], []
+    b_row = np.full(rpm.size, np.inf)
+    for i, r in enumerate(rows):
+        y0, y1 = max(rpm[i] - h / 2, rpm[0]), min(rpm[i] + h / 2, rpm[-1])
+        for a, b in r["IB0_N_per_m"]:
+            ax.fill_between([a, b], y0, y1, color="#d5efdc", lw=0)
+        first = r["IB0_N_per_m"][0] if r["IB0_N_per_m"] else None
+        b_row[i] = first[1] if first and first[0] == 0.0 else 0.0
+        if first and first[0] == 0.0 and first[1] < load[-1]:
+            edge_x.append(first[1])
+            edge_y.append(rpm[i])
+    ax.plot(edge_x, edge_y, color="#1b1b1b", lw=1.4)
+    # first spin row at which each load is no longer stable
+    cols = np.linspace(load[0], load[-1], 200)
+    w_col = np.full(cols.size, np.inf)
+    for j, x in enumerate(cols):
+        for i, r in enumerate(rows):
+            if not any(a <= x <= b for a, b in r["IB0_N_per_m"]):
+                w_col[j] = rpm[i]
+                break
+    return b_row, rpm, cols, w_col
+
+
+def _shade_grid(ax, load, rpm, g, thr):
+    """Undamped map: sampled growth rate, boundary interpolated between samples."""
+    import numpy as np
+    from matplotlib.colors import ListedColormap
+
+    top = max(float(np.max(g)), thr) + 1.0
+    ax.contourf(load, rpm, g, levels=[float(np.min(g)) - 1.0, thr, top], cmap=ListedColormap(["#d5efdc", "#f6d5d1"]))
+    ax.contour(load, rpm, g - thr, levels=[0.0], colors="#1b1b1b", linewidths=1.4)
+    b_row = np.array([_first_crossing(load, row, thr) for row in g])
+    w_col = np.array([_first_crossing(rpm, col, thr) for col in g.T])
+    return b_row, rpm, load, w_col
 
 
 def figures(results: dict) -> dict[str, str]:

@@ -60,6 +60,7 @@ __all__ = [
     "stability_map",
     "campbell",
     "static_curves",
+    "stable_rows",
 ]
 
 #: Re lambda above this counts as unstable (dimensionless growth rate).
@@ -402,6 +403,36 @@ def stability_map(params: RodParameters, B_grid, omega_grid, N: int = 16, k: int
         for j, b in enumerate(B_grid):
             out[i, j] = fam.growth(b, w, params.T, k=k)
     return out
+
+
+@single_blas_thread
+def stable_rows(params: RodParameters, omega_grid, B_max: float, N: int = 24, k: int = K_MODES) -> list:
+    """Stable intervals of B in [0, B_max] at each spin of ``omega_grid`` (damped rod).
+
+    Dimensionless. With damping gamma > 0 stability changes only where the
+    static operator is singular (Kelvin-Tait-Chetaev), so each row is cut at
+    the exact pencil roots in B and each piece is classified by one growth
+    evaluation at its middle: the boundaries are exact, not grid-limited.
+    Returns one list of (start, end) per spin.
+    """
+    if params.gamma <= 0:
+        raise ValueError("stable_rows needs damping gamma > 0 (undamped rods can flutter between static points)")
+    fam = _family(params, N)
+    rows = []
+    for w in np.asarray(omega_grid, dtype=float):
+        roots = fam.pencil_roots("B", 0.0, w, params.T)
+        roots = np.unique(np.round(roots[(roots > 0) & (roots < B_max)], 12))
+        edges = [0.0, *roots.tolist(), float(B_max)]
+        stable: list = []
+        for a, b in zip(edges[:-1], edges[1:]):
+            if fam.growth(0.5 * (a + b), w, params.T, k=k) > THRESHOLD:
+                continue
+            if stable and stable[-1][1] == a:
+                stable[-1] = (stable[-1][0], b)
+            else:
+                stable.append((a, b))
+        rows.append(stable)
+    return rows
 
 
 @dataclass(frozen=True)
