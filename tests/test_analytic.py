@@ -330,3 +330,19 @@ def test_torsion_frequencies_set_value():
 
 def test_torsion_frequencies_without_rotary_inertia_are_infinite():
     assert np.all(np.isinf(analytic.torsion_frequencies(0.0, 0.77, F, 3)))
+
+
+@pytest.mark.parametrize("P, R", [(0.05, 1.0), (0.3, 0.4), (1.0, 0.2)])
+def test_bending_frequencies_large_rotary_inertia_match_rung1(P, R):
+    # regression: the scan range once grew with P and skipped roots; rotary inertia only lowers them
+    from etcheck.rod.parameters import RodParameters
+    from etcheck.rod.spectrum import spectrum
+
+    weak = analytic.bending_frequencies(P, R, F, 3, "weak")
+    stiff = analytic.bending_frequencies(P, R, F, 3, "stiff")
+    assert np.all(weak <= np.sqrt(R) * np.array([1.0, 2.7565, 5.4040]) + 1e-9)
+    s = spectrum(RodParameters(P=P, R=R, Gamma=0.77), k=14)
+    assert s.converged
+    mu = np.sort(s.eigenvalues.imag)
+    for target in np.concatenate([weak, stiff]):
+        assert np.min(np.abs(mu - target)) <= 1e-8 * target, target

@@ -57,3 +57,14 @@ def test_damped_map_rows_end_at_the_critical_load():
         else:
             assert row[0][0] == 0.0
             assert row[0][1] == pytest.approx(c.value, rel=1e-9)
+
+
+def test_no_rotary_inertia_with_damping():
+    # P = 0: torsion has no inertia, every torsion mode sits exactly at -1/gamma
+    p = RodParameters(P=0.0, R=21 / 38, Gamma=1 / 1.3, omega=0.12, gamma=0.04375)
+    s = spectrum(p)
+    assert s.converged, s.message
+    assert not np.any(damping_cluster(s.eigenvalues, p.gamma))
+    c = critical_load(p)
+    assert c.kind == "divergence"
+    assert c.value == pytest.approx(first_static_load(0.0, 21 / 38, F_CLAMPED, omega=0.12, B_max=1.0), rel=1e-9)

@@ -209,11 +209,10 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
     stiffness = {"weak": R, "stiff": 1.0}[axis]
     g = lambda mu: _clamped_beam_function(mu, P, stiffness)  # noqa: E731
     found: list[float] = []
-    # Euler-Bernoulli spacing: mu_n ~ sqrt(stiffness) ((n + 1/2) pi)^2; scan finely
-    # in the f = 1 frequency and refine each sign change with Brent's method.
+    # Euler-Bernoulli spacing: mu_n ~ sqrt(stiffness) ((n + 1/2) pi)^2, and rotary
+    # inertia only lowers the frequencies; scan finely in the f = 1 frequency
+    # and refine each sign change with Brent's method.
     mu_max = math.sqrt(stiffness) * ((n + 1.5) * math.pi) ** 2
-    if P > 0:
-        mu_max *= 1.0 + 2.0 * P * ((n + 1.5) * math.pi) ** 2
     grid = np.linspace(1e-6, mu_max, 400 * (n + 2))
     values = np.array([g(m) for m in grid])
     for i in np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0]:

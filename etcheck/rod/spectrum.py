@@ -46,6 +46,7 @@ raised along ``LADDER`` until all wanted eigenvalues agree to ``tol``.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
@@ -62,6 +63,7 @@ __all__ = [
     "Spectrum",
     "lowest_eigenvalues",
     "nearest_eigenvalues",
+    "prefers_dense",
     "damping_cluster",
     "spectrum",
     "select_pairs",
@@ -71,8 +73,8 @@ __all__ = [
 #: Real shift of the shift-invert (small, irrational-looking, not an eigenvalue
 #: at divergence points).
 SIGMA = 0.01234567
-#: Damping gamma from which eigenvalues are computed densely (the Kelvin-Voigt
-#: cluster at -1/gamma then lies among the lowest modes; see nearest_eigenvalues).
+#: Damping gamma from which eigenvalues are always computed densely (the
+#: Kelvin-Voigt cluster at -1/gamma then lies among the lowest modes).
 DENSE_GAMMA = 0.05
 #: Resolutions tried in turn when N is None.
 LADDER = (16, 24, 32, 48, 64, 96, 128)
@@ -144,22 +146,54 @@ def lowest_eigenvalues(params: RodParameters, base: BaseState | None, N: int, ne
     if base is None:
         base = straight(params)
     A0, A1, A2 = operator if operator is not None else linear_operator(params, base, N)
-    return nearest_eigenvalues(A0, A1, A2, nev, params.gamma, vectors)
+    return nearest_eigenvalues(A0, A1, A2, nev, params.gamma, vectors, dense=prefers_dense(params, nev))
 
 
-def nearest_eigenvalues(A0, A1, A2, nev: int, gamma: float, vectors: bool = False, past_cluster: bool = True):
+def prefers_dense(params: RodParameters, nev: int) -> bool:
+    """Whether the Kelvin-Voigt cluster at -1/gamma may lie among the nev
+    eigenvalues nearest the shift (then ARPACK converges slowly or not at all
+    on its (near-)degenerate members and dense QZ is used instead).
+
+    Estimated from the unperturbed bending and torsion frequencies (Sec. 6.2,
+    rung 0) plus the spin: dense when 1/gamma < 1.5 x the (nev/2)-th of them.
+    """
+    if params.gamma <= 0:
+        return False
+    if params.gamma >= DENSE_GAMMA:
+        return True
+    return 1.0 / params.gamma < 1.5 * _frequency_scale(params.P, params.R, params.Gamma, params.f, nev // 2) + 2 * abs(
+        params.omega
+    )
+
+
+@lru_cache(maxsize=64)
+def _frequency_scale(P: float, R: float, Gamma: float, f: float, n: int) -> float:
+    from .analytic import bending_frequencies, torsion_frequencies
+
+    mu = np.concatenate(
+        [
+            bending_frequencies(P, R, f, n, "weak"),
+            bending_frequencies(P, R, f, n, "stiff"),
+            torsion_frequencies(P, Gamma, f, n),
+        ]
+    )
+    return float(np.sort(mu)[n - 1])
+
+
+def nearest_eigenvalues(A0, A1, A2, nev: int, gamma: float, vectors: bool = False, past_cluster: bool = True,
+                        dense: bool = False):
     """The nev eigenvalues of the QEP nearest SIGMA (dimensionless).
 
     With ``past_cluster`` the Kelvin-Voigt cluster near -1/gamma
     (:func:`damping_cluster`) is removed and the nev nearest eigenvalues
-    outside it are returned. Light damping (gamma < DENSE_GAMMA): shift-invert
-    ARPACK, asking for more until nev lie outside the cluster. Heavier
-    damping puts the cluster among the wanted eigenvalues, where ARPACK
-    converges slowly: then all eigenvalues are computed densely (QZ after
-    eliminating the lambda-free unknowns phi, m), which costs ~0.05 s at
-    N = 24 and ~0.3 s at N = 48.
+    outside it are returned. By default shift-invert ARPACK, asking for more
+    until nev lie outside the cluster. When the cluster lies among the wanted
+    eigenvalues (``dense``, see :func:`prefers_dense`) ARPACK converges slowly
+    on its degenerate members: then all eigenvalues are computed densely (QZ
+    after eliminating the lambda-free unknowns phi, m), ~0.05 s at N = 24 and
+    ~0.3 s at N = 48.
     """
-    if gamma >= DENSE_GAMMA:
+    if dense:
         lam, V = _dense(A0, A1, A2, vectors)
         keep = ~damping_cluster(lam, gamma) if past_cluster else np.ones(lam.size, dtype=bool)
         idx = np.nonzero(keep)[0]

@@ -44,7 +44,7 @@ from ..numerics.eigen import eliminate_static, match_spectra, single_blas_thread
 from .base_state import straight
 from .linear import NFIELDS, linear_operator
 from .parameters import RodParameters
-from .spectrum import check_resolution, nearest_eigenvalues, select_pairs
+from .spectrum import check_resolution, nearest_eigenvalues, prefers_dense, select_pairs
 
 __all__ = [
     "THRESHOLD",
@@ -112,7 +112,8 @@ class StraightFamily:
         lambda = 0, next to the shift (Kelvin-Tait-Chetaev).
         """
         A0, A1, A2 = self.operator(B, omega, T)
-        return nearest_eigenvalues(A0, A1, A2, nev, self.params.gamma, past_cluster=past_cluster)
+        return nearest_eigenvalues(A0, A1, A2, nev, self.params.gamma, past_cluster=past_cluster,
+                                   dense=prefers_dense(self.params, nev))
 
     def growth(self, B: float, omega: float, T: float, k: int = K_MODES) -> float:
         """max Re lambda over the k least-|lambda| pairs."""
