@@ -60,8 +60,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     static = static_buckling(scaled)
     static["limits"] = _static_limits(static, mission, sc)
     linear = accuracy_rows = None
-    if mission.resolution is not None or mission.tolerance != options.eig_tol:
-        options = replace(options, N=mission.resolution, eig_tol=mission.tolerance)
+    options = replace(options, N=mission.resolution, eig_tol=mission.tolerance)  # the mission's [check] rules
     if chosen.rung == 1:
         linear = linear_stability(scaled, options)
         accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N else None

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy.optimize import brentq
@@ -114,6 +115,7 @@ class CharacteristicRoot:
     error: float
 
 
+@lru_cache(maxsize=16)
 def characteristic_roots(n: int = 5) -> tuple[CharacteristicRoot, ...]:
     """The first n double zeros of chi(beta), located to ~1e-15 relative.
 
