@@ -99,8 +99,8 @@ def static_buckling(scaled: Scaled) -> dict[str, Any]:
     p, scales = scaled.params, scaled.scales
     roots = analytic.characteristic_roots(N_LOADS)
     loads = []
-    for r in roots:
-        B = r.beta**3 * math.sqrt(p.R) / p.f
+    for r, B in zip(roots, analytic.critical_loads(p.R, p.f, N_LOADS)):
+        B = float(B)
         loads.append(
             {
                 "k": r.k,
@@ -280,8 +280,9 @@ def _validity(mission: Mission, scaled: Scaled, chosen: Plan) -> list[str]:
             "modes are stiffened by bending. With damping, the straight tether can only lose stability where "
             "its static operator is singular (divergence, Kelvin-Tait-Chetaev); without damping, gyroscopic "
             "windows above the critical spin may appear and are lost with any damping.",
-            "The stability map is sampled on a grid (boundaries between grid points are interpolated); the "
-            "margins and critical values in the tables are located to 1e-10.",
+            "The stability map is exact with damping (each spin row cut at its static points) and sampled on a "
+            "grid without (boundaries interpolated between grid points); the margins and critical values in the "
+            "tables are located to 1e-10.",
         ]
         if p.gamma > 0:
             items.append(

@@ -26,9 +26,8 @@ from .rod.stability import (
     THRESHOLD,
     campbell,
     critical_load,
-    critical_spin,
+    scan_line,
     stability_map,
-    stable_intervals,
     stable_rows,
     static_curves,
 )
@@ -104,7 +103,8 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     # needed (boundary layers under strong tension need more than the default)
     N = options.N or max(24, op.N_check)
     load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
-    spin_point = critical_spin(p.with_(omega=0.0), tol=options.tol, N=N)
+    # one scan along the spin from rest gives the critical spin and all stable spin windows
+    spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
     if p.omega > 0 or spin_point.converged or spin_point.kind not in ("divergence", "flutter"):
         spin = _critical(spin_point, "critical spin at the operating load")
     else:  # informative only for a mission without spin: say so instead of stopping the check
@@ -116,7 +116,6 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     w_ref = spin["value"] if spin["kind"] in ("divergence", "flutter") and spin["value"] else None
     B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
     w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
-    windows = stable_intervals(p.with_(omega=0.0), "omega", 0.0, w_hi, tol=options.tol, N=N)
 
     omegas = np.linspace(0.0, w_hi, options.campbell_points)
     cd = campbell(p, omegas, k=options.k, N=N)
@@ -167,6 +166,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
         "spin_windows": [
             {"omega": [a, b], "rpm": [a * wc * RPM, b * wc * RPM]} for a, b in windows
         ],
+        "spin_windows_scanned_to_rpm": scanned_to * wc * RPM,
         "campbell": {
             "omega": omegas.tolist(),
             "spin_rpm": (omegas * wc * RPM).tolist(),

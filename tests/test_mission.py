@@ -9,6 +9,7 @@ from pathlib import Path
 
 import astropy.units as u
 import pytest
+from helpers import set_like
 
 from etcheck import Mission, MissionError, load_mission, mission_from_dict
 
@@ -417,27 +418,9 @@ def test_empty_file(tmp_path):
 # --- Python API: dicts with astropy and pint quantities ------------------------------
 
 
-def _dict(**tether_and_operation):
-    data = {
-        "mission": {"name": "api"},
-        "tether": {
-            "length": "100 m",
-            "bending_stiffness": ["38 N m2", "21 N m2"],
-            "poisson_ratio": 0.3,
-            "mass_per_length": "0.1 kg/m",
-            "rotary_inertia_ratio": 0.001,
-        },
-        "operation": {"current": "1 A", "axial_field": "70 uT"},
-    }
-    for key, value in tether_and_operation.items():
-        table = "operation" if key in ("current", "axial_field", "spin_rate", "end_tension") else "tether"
-        data[table][key] = value
-    return data
-
-
 def test_astropy_quantities_accepted():
     m = mission_from_dict(
-        _dict(length=0.1 * u.km, axial_field=70 * u.uT, bending_stiffness=[38 * u.N * u.m**2, "21 N m2"])
+        set_like(length=0.1 * u.km, axial_field=70 * u.uT, bending_stiffness=[38 * u.N * u.m**2, "21 N m2"])
     )
     assert m.length.to_value(u.m) == pytest.approx(100.0)
     assert m.worst_field.to_value(u.T) == pytest.approx(70e-6)
@@ -447,7 +430,7 @@ def test_pint_quantities_accepted():
     pint = pytest.importorskip("pint")
     ureg = pint.UnitRegistry()
     m = mission_from_dict(
-        _dict(
+        set_like(
             length=ureg("100 m"),
             mass_per_length=ureg("100 g/m"),
             bending_stiffness=[ureg("38 N*m**2"), ureg("21 N*m**2")],
@@ -461,7 +444,7 @@ def test_pint_quantities_accepted():
     assert m.worst_current.to_value(u.A) == pytest.approx(1.0)
     assert m.worst_field.to_value(u.T) == pytest.approx(70e-6)
     assert m.spin_rate.to_value(u.rad / u.s) == pytest.approx(0.20944, rel=1e-5)
-    m2 = mission_from_dict(_dict(spin_rate=ureg("1 Hz")))
+    m2 = mission_from_dict(set_like(spin_rate=ureg("1 Hz")))
     assert m2.spin_rate.to_value(u.rad / u.s) == pytest.approx(2 * math.pi, rel=1e-14)
 
 
@@ -479,19 +462,19 @@ def test_pint_wrong_dimension_refused(key, value, field):
     pint = pytest.importorskip("pint")
     ureg = pint.UnitRegistry()
     with pytest.raises(MissionError) as exc:
-        mission_from_dict(_dict(**{key: ureg(value)}), source="api-test")
+        mission_from_dict(set_like(**{key: ureg(value)}), source="api-test")
     _assert_names(exc.value, "api-test", field, None)
 
 
 def test_api_bare_number_refused():
     with pytest.raises(MissionError) as exc:
-        mission_from_dict(_dict(length=100.0))
+        mission_from_dict(set_like(length=100.0))
     assert "tether.length" in str(exc.value)
 
 
 def test_api_nan_quantity_refused():
     with pytest.raises(MissionError) as exc:
-        mission_from_dict(_dict(length=float("nan") * u.m))
+        mission_from_dict(set_like(length=float("nan") * u.m))
     assert "tether.length" in str(exc.value)
 
 

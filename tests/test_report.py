@@ -6,26 +6,13 @@ import json
 from pathlib import Path
 
 import pytest
+from helpers import set_like
 
 from etcheck import check
 from etcheck.errors import ReportError
 from etcheck.report import render, write_reports
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def _mission(name="SET", description="plain"):
-    return {
-        "mission": {"name": name, "description": description},
-        "tether": {
-            "length": "100 m",
-            "bending_stiffness": ["38 N m2", "21 N m2"],
-            "poisson_ratio": 0.3,
-            "mass_per_length": "0.1 kg/m",
-            "rotary_inertia_ratio": 0.001,
-        },
-        "operation": {"current": "1 A", "axial_field": "70 uT"},
-    }
 
 
 @pytest.fixture(scope="module")
@@ -35,7 +22,7 @@ def set_results():
 
 def test_html_escapes_mission_text():
     evil = '<script>alert("x")</script>'
-    results = check(_mission(name=evil, description=evil + " & <b>bold</b>")).results
+    results = check(set_like(name=evil, description=evil + " & <b>bold</b>")).results
     html = render(results, ("html",))["html"].decode()
     assert "<script>" not in html
     assert "&lt;script&gt;" in html

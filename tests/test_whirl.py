@@ -10,6 +10,7 @@ import json
 from pathlib import Path
 
 import pytest
+from helpers import set_like
 from independent import first_static_load, first_static_spin
 
 from etcheck import check, mission_from_dict
@@ -22,22 +23,17 @@ LIGHT = WhirlOptions(map_points=6, campbell_points=6, accuracy_N=(8, 12))
 
 
 def mission(spin="0 rpm", tension="0 N", damping=None, fidelity="auto", R_stiff="21 N m2", current="1 A"):
-    tether = {
-        "length": "100 m",
-        "bending_stiffness": ["38 N m2", R_stiff],
-        "poisson_ratio": 0.3,
-        "mass_per_length": "0.1 kg/m",
-        "rotary_inertia_ratio": 0.001,
-    }
-    if damping is not None:
-        tether["damping_time"] = damping
+    extra = {} if damping is None else {"damping_time": damping}
     return mission_from_dict(
-        {
-            "mission": {"name": "whirl test"},
-            "tether": tether,
-            "operation": {"current": current, "axial_field": "70 uT", "spin_rate": spin, "end_tension": tension},
-            "check": {"fidelity": fidelity},
-        }
+        set_like(
+            name="whirl test",
+            check={"fidelity": fidelity},
+            bending_stiffness=["38 N m2", R_stiff],
+            spin_rate=spin,
+            end_tension=tension,
+            current=current,
+            **extra,
+        )
     )
 
 

@@ -263,18 +263,3 @@ def figures(results: dict) -> dict[str, str]:
         out["map"] = stability_map_plot(results)
     return out
 
-
-def fmt(x, digits: int = 4) -> str:
-    """Engineering-friendly number formatting for tables (None -> em dash)."""
-    if x is None:
-        return "—"
-    if isinstance(x, str):
-        return x
-    if x == 0:
-        return "0"
-    if not math.isfinite(x):
-        return "∞" if x > 0 else "−∞"
-    if 1e-3 <= abs(x) < 1e5:
-        return f"{x:.{digits}g}"
-    mant, exp = f"{x:.{digits - 1}e}".split("e")
-    return f"{mant}×10^{int(exp)}"

@@ -57,6 +57,7 @@ __all__ = [
     "critical_load",
     "critical_spin",
     "stable_intervals",
+    "scan_line",
     "stability_map",
     "campbell",
     "static_curves",
@@ -316,25 +317,51 @@ def _default_hi(params: RodParameters, axis: str) -> float:
     return float(2.0 * distinct[-1]) if distinct.size else 1.0
 
 
-def _critical(params: RodParameters, axis: str, tol: float, hi: float | None, N: int,
-              n_scan: int, k: int) -> CriticalPoint:
+def _scan(params: RodParameters, axis: str, tol: float, hi: float | None, N: int,
+          n_scan: int, k: int, refine_error: bool = True) -> tuple[CriticalPoint, list, float]:
+    """One scan of a parameter line: its first loss of stability, its stable
+    windows and the end of the scanned range."""
     lo = getattr(params, axis)
     if hi is None:
         hi = max(_default_hi(params, axis), lo + 1.0 if axis == "omega" else lo)
-    start_unstable, changes, line = _changes(params, axis, lo, hi, tol, N, n_scan, k)
+    start_unstable, changes, line = _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error)
+    windows = []
+    cur = None if start_unstable else lo
+    for c in changes:
+        if c.to_unstable and cur is not None:
+            windows.append((float(cur), float(c.value)))
+            cur = None
+        elif not c.to_unstable and cur is None:
+            cur = c.value
+    if cur is not None:
+        windows.append((float(cur), float(hi)))
     if start_unstable:
         g = line.growth(lo)
         return CriticalPoint(axis, float(lo), "unstable at start", (lo, lo), 0.0, True,
-                             f"already unstable at {axis} = {lo:g} (max Re lambda = {g:.3e})", N)
+                             f"already unstable at {axis} = {lo:g} (max Re lambda = {g:.3e})", N), windows, hi
     if not changes:
         return CriticalPoint(axis, float("nan"), "none found", (lo, hi), float("nan"), False,
                              f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] "
-                             f"({n_scan} scan points)", N)
+                             f"({n_scan} scan points)", N), windows, hi
     c = changes[0]
     conv = bool(np.isfinite(c.error) and c.error <= max(tol, 1e-8 * max(1.0, abs(c.value))))
     msg = (f"first instability at {axis} = {c.value:.12g} ({c.kind}); "
            f"bracket [{c.a:.12g}, {c.b:.12g}], error estimate {c.error:.2e}")
-    return CriticalPoint(axis, float(c.value), c.kind, (c.a, c.b), float(c.error), conv, msg, N)
+    return CriticalPoint(axis, float(c.value), c.kind, (c.a, c.b), float(c.error), conv, msg, N), windows, hi
+
+
+def _critical(params: RodParameters, axis: str, tol: float, hi: float | None, N: int,
+              n_scan: int, k: int) -> CriticalPoint:
+    return _scan(params, axis, tol, hi, N, n_scan, k)[0]
+
+
+@single_blas_thread
+def scan_line(params: RodParameters, axis: str = "omega", tol: float = 1e-10, hi: float | None = None,
+              N: int = 24, n_scan: int = 64, k: int = K_MODES) -> tuple[CriticalPoint, list, float]:
+    """First loss of stability from ``params`` along ``axis``, every stable window
+    [(start, end), ...] and the end of the scanned range (``hi``, by default as
+    in :func:`critical_spin`), from a single scan (dimensionless)."""
+    return _scan(params, axis, tol, hi, N, n_scan, k)
 
 
 @single_blas_thread
@@ -372,18 +399,7 @@ def stable_intervals(params: RodParameters, axis: str = "B", lo: float = 0.0, hi
     """
     if hi is None:
         hi = _default_hi(params, axis)
-    start_unstable, changes, _ = _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=False)
-    out = []
-    cur = None if start_unstable else lo
-    for c in changes:
-        if c.to_unstable and cur is not None:
-            out.append((float(cur), float(c.value)))
-            cur = None
-        elif not c.to_unstable and cur is None:
-            cur = c.value
-    if cur is not None:
-        out.append((float(cur), float(hi)))
-    return out
+    return _scan(params.with_(**{axis: lo}), axis, tol, hi, N, n_scan, k, refine_error=False)[1]
 
 
 @single_blas_thread

@@ -1,0 +1,25 @@
+"""A mission as nested dicts for the Python API: the static SET data
+(Table table:et:parameters, no spin), with fields overridden per test."""
+
+from __future__ import annotations
+
+OPERATION_KEYS = ("current", "axial_field", "spin_rate", "end_tension")
+
+
+def set_like(name: str = "api", description: str = "", check: dict | None = None, **fields) -> dict:
+    """Static SET mission dict; ``fields`` go to [operation] or [tether] by name."""
+    data = {
+        "mission": {"name": name, "description": description},
+        "tether": {
+            "length": "100 m",
+            "bending_stiffness": ["38 N m2", "21 N m2"],
+            "poisson_ratio": 0.3,
+            "mass_per_length": "0.1 kg/m",
+            "rotary_inertia_ratio": 0.001,
+        },
+        "operation": {"current": "1 A", "axial_field": "70 uT"},
+        "check": dict(check or {}),
+    }
+    for key, value in fields.items():
+        data["operation" if key in OPERATION_KEYS else "tether"][key] = value
+    return data
