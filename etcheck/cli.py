@@ -24,7 +24,8 @@ def _parser() -> argparse.ArgumentParser:
         prog="etcheck",
         description="Check an electrodynamic tether mission against magnetic buckling and whirl, "
         "and write HTML, PDF and JSON margin reports.",
-        epilog=EXIT_TEXT + "\nsee also: etcheck accuracy MISSION.toml (speed/accuracy of the solvers)",
+        epilog=EXIT_TEXT + "\nsee also: etcheck accuracy MISSION.toml (speed/accuracy of the solvers)\n"
+        "          etcheck sweep MISSION.toml --length 50m:5km:40:log --spin 0rpm:2rpm:40 (what-if maps)",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("mission", help="mission file (TOML), e.g. missions/set.toml")
@@ -50,10 +51,14 @@ def main(argv: list[str] | None = None) -> int:
         from .accuracy_cli import main as accuracy_main
 
         return accuracy_main(argv[1:])
+    if argv and argv[0] == "sweep":
+        from .sweep_cli import main as sweep_main
+
+        return sweep_main(argv[1:])
     parser = _parser()
     args = parser.parse_args(argv)
     formats = _formats(args.format, parser)
-    try:
+    def run():
         from .mission import load_mission
         from .pipeline import check
         from .report import write_reports
@@ -62,19 +67,33 @@ def main(argv: list[str] | None = None) -> int:
         if sys.stderr.isatty():
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         result = check(mission)
-        paths = write_reports(result.results, Path(args.out) / mission.slug, formats)
-    except EtcheckError as exc:
-        print(f"etcheck: error: {exc}", file=sys.stderr)
-        return exc.exit_code
-    except KeyboardInterrupt:
-        print("etcheck: interrupted; no report written", file=sys.stderr)
-        return 130
-    except Exception as exc:  # a bug, not the user's fault: say so, no traceback
-        print(f"etcheck: internal error ({type(exc).__name__}: {exc}); no report written. "
-              "Please report this with the mission file.", file=sys.stderr)
-        return 3
+        return result, write_reports(result.results, Path(args.out) / mission.slug, formats)
+
+    out = guarded(run, "no report written")
+    if isinstance(out, int):
+        return out
+    result, paths = out
     _summary(result.results, paths)
     return result.exit_code
+
+
+def guarded(action, interrupted: str):
+    """Run ``action()``; user errors, Ctrl-C and bugs become a message and an exit code (no traceback).
+
+    Returns the action's value, or the exit code (an int) when it failed.
+    """
+    try:
+        return action()
+    except EtcheckError as exc:
+        print(f"etcheck: {'error: ' if exc.exit_code != 130 else ''}{exc}", file=sys.stderr)
+        return exc.exit_code
+    except KeyboardInterrupt:
+        print(f"etcheck: interrupted; {interrupted}", file=sys.stderr)
+        return 130
+    except Exception as exc:  # a bug, not the user's fault: say so, no traceback
+        print(f"etcheck: internal error ({type(exc).__name__}: {exc}); {interrupted}. "
+              "Please report this with the mission file.", file=sys.stderr)
+        return 3
 
 
 def _summary(results: dict, paths: list[Path]) -> None:

@@ -20,6 +20,7 @@ from typing import Any
 
 import astropy.units as u
 
+from .axes import AXES, Axis, parse_table
 from .errors import MissionError
 from .rod.parameters import F_CLAMPED
 from .units import QuantityProblem, to_quantity
@@ -50,6 +51,7 @@ SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
         "spin_rate": ("angular_rate", False),
         "end_tension": ("force", False),
     },
+    "sweep": {name: ("sweep_axis", False) for name in AXES},
     "check": {
         "required_margin": ("number", False),
         "fidelity": ("text", False),
@@ -93,6 +95,7 @@ class Mission:
     file: str = "mission"
     sha256: str = ""
     notes: tuple[str, ...] = field(default_factory=tuple)
+    sweep: tuple[Axis, ...] = ()  # the [sweep] table: default axes of `etcheck sweep`
 
     @property
     def slug(self) -> str:
@@ -379,6 +382,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         file=source,
         sha256=sha256,
         notes=tuple(notes),
+        sweep=parse_table(data["sweep"], source) if data.get("sweep") else (),
     )
 
 

@@ -14,16 +14,22 @@ from pathlib import Path
 from ..errors import ReportError
 
 FILENAMES = {"html": "report.html", "pdf": "report.pdf", "json": "results.json"}
+SWEEP_FILENAMES = {"html": "sweep.html", "pdf": "sweep.pdf", "json": "sweep.json", "csv": "sweep.csv",
+                   "nc": "sweep.nc"}
 
 
-def render(results: dict, formats: tuple[str, ...]) -> dict[str, bytes]:
-    """Render the requested formats to bytes (nothing is written)."""
+def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict[str, bytes]:
+    """Render the requested formats to bytes (nothing is written).
+
+    ``kind`` is "check" (a mission check) or "sweep" (a what-if sweep, which
+    also has the data formats csv and nc).
+    """
     out: dict[str, bytes] = {}
     html = None
     if "html" in formats or "pdf" in formats:
-        from .html import render_html
+        from .html import render_html, render_sweep_html
 
-        html = render_html(results)
+        html = render_sweep_html(results) if kind == "sweep" else render_html(results)
     if "html" in formats:
         out["html"] = html.encode("utf-8")
     if "pdf" in formats:
@@ -32,12 +38,21 @@ def render(results: dict, formats: tuple[str, ...]) -> dict[str, bytes]:
         out["pdf"] = render_pdf(html)
     if "json" in formats:
         out["json"] = (json.dumps(results, indent=2, allow_nan=False, ensure_ascii=False, default=_json_default) + "\n").encode()
+    if "csv" in formats or "nc" in formats:
+        from ..sweep_files import to_csv, to_netcdf
+
+        if "csv" in formats:
+            out["csv"] = to_csv(results)
+        if "nc" in formats:
+            out["nc"] = to_netcdf(results)
     return out
 
 
-def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html", "pdf", "json")) -> list[Path]:
+def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html", "pdf", "json"),
+                  kind: str = "check") -> list[Path]:
     """Render and atomically write the reports into ``folder``; returns the paths."""
-    rendered = render(results, formats)
+    names = SWEEP_FILENAMES if kind == "sweep" else FILENAMES
+    rendered = render(results, formats, kind)
     folder = Path(folder)
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -45,7 +60,7 @@ def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html
         raise ReportError(f"cannot create the report folder {folder}: {exc.strerror}") from None
     paths = []
     for fmt, data in rendered.items():
-        path = folder / FILENAMES[fmt]
+        path = folder / names[fmt]
         atomic_write(path, data)
         paths.append(path)
     return paths

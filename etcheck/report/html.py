@@ -25,8 +25,7 @@ def sci(x, digits: int = 4) -> Markup:
     return Markup(f"{escape(mant)}×10<sup>{int(exp)}</sup>")
 
 
-def render_html(results: dict) -> str:
-    """The self-contained HTML report for check results (JSON-able dict)."""
+def _environment():
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(
@@ -36,6 +35,32 @@ def render_html(results: dict) -> str:
         lstrip_blocks=True,
     )
     env.filters["sci"] = sci
-    template = env.get_template("report.html.j2")
+    return env
+
+
+def render_html(results: dict) -> str:
+    """The self-contained HTML report for check results (JSON-able dict)."""
     figs = {name: Markup(svg) for name, svg in figures(results).items()}
-    return template.render(r=results, figs=figs)
+    return _environment().get_template("report.html.j2").render(r=results, figs=figs)
+
+
+def render_sweep_html(results: dict) -> str:
+    """The self-contained HTML report of a sweep (JSON-able sweep results)."""
+    from collections import Counter
+
+    import numpy as np
+
+    from .sweep_figures import sweep_figures
+
+    g = results["grid"]
+    models = Counter(m for m in np.ravel(np.array(g["model"], dtype=object)) if m)
+    failures = []
+    grids = [a["display_values"] for a in results["axes"]]
+    for idx in np.ndindex(*g["shape"]):
+        status = np.array(g["status"], dtype=object)[idx]
+        if status != "ok":
+            failures.append({"values": [grids[k][i] for k, i in enumerate(idx)], "status": status,
+                             "reason": np.array(g["reason"], dtype=object)[idx]})
+    figs = {name: Markup(svg) for name, svg in sweep_figures(results).items()}
+    return _environment().get_template("sweep.html.j2").render(r=results, figs=figs, models=dict(models),
+                                                               failures=failures[:50])

@@ -124,11 +124,17 @@ class StraightFamily:
     def pencil_roots(self, axis: str, B: float, omega: float, T: float) -> np.ndarray:
         """Real parameter values on ``axis`` where A0 is singular (others fixed).
 
-        Returns values of B (or T) or of omega^2 (axis "omega").
+        Returns values of B (or T) or of omega^2 (axis "omega"). ``axis =
+        "ray"`` gives the values t where A0(t B, sqrt(t) omega, T) is singular
+        (load and spin squared scaled together from zero).
         """
-        n0 = {"B": self.AB, "T": self.AT, "omega": self.Aw}[axis]
         vals = {"B": B, "omega": omega, "T": T}
-        vals[axis] = 0.0
+        if axis == "ray":
+            n0 = B * self.AB + omega**2 * self.Aw
+            vals["B"] = vals["omega"] = 0.0
+        else:
+            n0 = {"B": self.AB, "T": self.AT, "omega": self.Aw}[axis]
+            vals[axis] = 0.0
         A0, _, _ = self.operator(vals["B"], vals["omega"], vals["T"])
         # The lambda-free unknowns (phi, m) do not meet the parameter, so one
         # QR elimination reduces both matrices of the pencil A0 + x n0.

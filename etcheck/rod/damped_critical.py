@@ -1,0 +1,184 @@
+"""Critical load and critical spin of the *damped* straight rod from static pencils alone.
+
+Dimensionless (paper scalings, eq. ``eq:nondim``). With Kelvin-Voigt damping
+gamma > 0 the linearisation about the straight rod has the form
+M q'' + (G + gamma D) q' + K q = 0 with M > 0, G skew (Coriolis), D > 0
+(complete: it is the bending/torsion stiffness) and K symmetric; by the
+Kelvin-Tait-Chetaev theorem the number of unstable eigenvalues equals the
+number of negative eigenvalues of K (PHYSICS.md, "The paper's Hopf results
+are in doubt"). K is the lambda = 0 operator A0, affine in B, omega^2 and T
+(:class:`~etcheck.rod.stability.StraightFamily`), so along any of those axes
+stability changes only where A0 is singular: at the real roots of a linear
+pencil. With K positive definite at B = omega = 0 (T above the first
+compressive load), the straight rod is stable exactly while
+
+    omega < omega_c0(T)          (first omega root at B = 0)  and
+    B     < B_c(omega, T)        (first B root at the operating spin),
+
+and the critical spin at the operating load is the first omega root at
+(B, T) when B < B_c(0, T). No eigenvalue scan and no bisection: each value
+is one dense QZ per resolution, located exactly (to the discretisation
+error, which the two-resolution agreement estimates). This is what makes
+parametric sweeps cheap; :mod:`etcheck.rod.stability` is the general
+(also undamped) scan that it must agree with, and a test checks it does.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from ..numerics.eigen import single_blas_thread
+from .analytic import characteristic_roots, critical_loads
+from .parameters import RodParameters
+from .spectrum import check_resolution
+from .stability import _family
+
+__all__ = ["LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical"]
+
+#: Chebyshev resolutions tried in turn until two resolutions agree.
+LADDER = (16, 24, 32, 48, 64, 96, 128)
+
+
+@dataclass(frozen=True)
+class PencilRoot:
+    """The smallest positive root of the static pencil along one axis (dimensionless).
+
+    ``value`` is B, T or omega (not omega^2); inf when the pencil has no
+    positive root; ``error`` the relative two-resolution disagreement;
+    ``N`` the resolution that met the tolerance (or the last one tried).
+    ``model`` says whether it came from the chi roots (rung 0) or the pencil.
+    """
+
+    axis: str
+    value: float
+    error: float
+    N: int
+    converged: bool
+    model: str
+
+
+def _smallest_positive(params: RodParameters, axis: str, N: int, sign: float = 1.0) -> float:
+    r = _family(params, N).pencil_roots(axis, params.B, params.omega, params.T)
+    r = r[sign * r > 0]
+    if axis == "omega":
+        r = np.sqrt(r)
+    return float(np.min(np.abs(r))) if r.size else math.inf
+
+
+def first_root(params: RodParameters, axis: str, tol: float = 1e-8, sign: float = 1.0,
+               ladder: tuple[int, ...] = LADDER, floor: float = 0.0) -> PencilRoot:
+    """Smallest root of A0 on ``axis`` ("B", "omega", "T", "ray") on the side ``sign``.
+
+    The other parameters are fixed at ``params``; the axis value in params is
+    ignored (the pencil is A0 at axis = 0 plus axis times its derivative).
+    "ray" scales load and spin squared together: the root t has A0(t B,
+    sqrt(t) omega, T) singular, so with damping the rod is stable iff t > 1.
+    At omega = T = 0 the B root is beta_1^3 sqrt(R) / f from chi (rung 0).
+    The error is relative to max(|root|, floor): a root that tends to zero
+    (a critical load as the spin nears the critical spin of the unloaded rod)
+    is converged when it is small against ``floor``. Memoised: in a sweep
+    the roots at zero spin or zero load are shared by many points.
+    """
+    if axis != "ray":
+        params = params.with_(**{axis: 0.0})
+    return _first_root(params, axis, tol, sign, tuple(ladder), floor)
+
+
+@lru_cache(maxsize=512)
+def _first_root(params: RodParameters, axis: str, tol: float, sign: float, ladder: tuple[int, ...],
+                floor: float) -> PencilRoot:
+    if axis == "ray" and params.omega == 0 and params.B > 0:
+        load = _first_root(params.with_(B=0.0), "B", tol, sign, ladder, floor)
+        return PencilRoot("ray", load.value / params.B, load.error, load.N, load.converged, load.model)
+    if axis == "B" and sign > 0 and params.omega == 0 and params.T == 0:
+        root = characteristic_roots(1)[0]
+        return PencilRoot("B", float(critical_loads(params.R, params.f, 1)[0]), 3.0 * root.error, 0, True,
+                          "rung 0 (chi roots)")
+    err, value, N = math.inf, math.nan, ladder[0]
+    for N in ladder:
+        a = _smallest_positive(params, axis, N, sign)
+        b = _smallest_positive(params, axis, check_resolution(N), sign)
+        if math.isinf(a) and math.isinf(b):
+            return PencilRoot(axis, math.inf, 0.0, N, True, "rung 1 (static pencil)")
+        value = b
+        err = abs(a - b) / max(abs(b), floor, 1e-300) if math.isfinite(a) and math.isfinite(b) else math.inf
+        if err <= tol:
+            break
+    return PencilRoot(axis, sign * value, err, N, err <= tol, "rung 1 (static pencil)")
+
+
+@dataclass(frozen=True)
+class DampedCritical:
+    """Stability of the damped straight rod at one operating point (dimensionless).
+
+    ``critical_load``: first B at the operating omega and T (0 when the rod
+    is already unstable at B = 0); ``critical_spin``: first omega at the
+    operating B and T (0 when statically buckled); ``stable``: the operating
+    point itself; ``spin_at_rest``: first omega at B = 0 (above it the
+    unloaded rod whirls, and no load is safe).
+    """
+
+    critical_load: PencilRoot
+    critical_spin: PencilRoot
+    spin_at_rest: PencilRoot
+    stable: bool
+    converged: bool
+    message: str
+
+
+@single_blas_thread
+def damped_critical(params: RodParameters, tol: float = 1e-8, ladder: tuple[int, ...] = LADDER,
+                    spin: bool = True) -> DampedCritical:
+    """Critical load, critical spin and stability of the damped straight rod.
+
+    Requires gamma > 0 (Kelvin-Tait-Chetaev; undamped rods can flutter and
+    need :func:`etcheck.rod.stability.critical_load`). Exact pencil roots,
+    see the module docstring. Errors are relative to the root or to 1 % of
+    its value at zero spin (load) or zero load (spin), whichever is larger.
+    ``spin=False`` skips the critical spin at the operating load (NaN).
+    """
+    if not params.gamma > 0:
+        raise ValueError("damped_critical needs gamma > 0 (Kelvin-Tait-Chetaev); use the spectral scan")
+    p = params
+    if p.T < 0:
+        comp = first_root(p.with_(B=0.0, omega=0.0), "T", tol, sign=-1.0, ladder=ladder)
+        if not comp.converged:
+            return _failed(comp, "the compressive limit did not converge")
+        if p.T <= comp.value:
+            zero = PencilRoot("B", 0.0, 0.0, comp.N, True, comp.model)
+            return DampedCritical(zero, PencilRoot("omega", 0.0, 0.0, comp.N, True, comp.model), zero, False, True,
+                                  f"the end compression exceeds the Euler limit T = {comp.value:.6g}")
+    rest = first_root(p.with_(B=0.0), "omega", tol, ladder=ladder)  # spin that destabilises the unloaded rod
+    if not rest.converged:
+        return _failed(rest, "the critical spin of the unloaded rod did not converge")
+    static = first_root(p.with_(omega=0.0), "B", tol, ladder=ladder)
+    if not static.converged:
+        return _failed(static, "the static critical load did not converge")
+    if p.omega == 0:
+        load = static
+    elif p.omega >= rest.value:
+        load = PencilRoot("B", 0.0, 0.0, rest.N, True, rest.model)
+    else:
+        load = first_root(p, "B", tol, ladder=ladder, floor=1e-2 * static.value)
+    if not spin:
+        crit = PencilRoot("omega", math.nan, math.nan, 0, True, "not asked")
+    elif p.B >= static.value:
+        crit = PencilRoot("omega", 0.0, 0.0, static.N, True, static.model)
+    else:
+        crit = first_root(p, "omega", tol, ladder=ladder, floor=1e-2 * rest.value)
+    converged = load.converged and crit.converged
+    stable = p.omega < rest.value and p.B < load.value
+    msg = "converged" if converged else "; ".join(
+        f"{r.axis} root not converged at N = {r.N} (two-resolution error {r.error:.1e} > {tol:.0e})"
+        for r in (load, crit) if not r.converged)
+    return DampedCritical(load, crit, rest, bool(stable), converged, msg)
+
+
+def _failed(root: PencilRoot, why: str) -> DampedCritical:
+    nan = PencilRoot(root.axis, math.nan, root.error, root.N, False, root.model)
+    return DampedCritical(nan, nan, root, False, False,
+                          f"{why} at N = {root.N} (two-resolution error {root.error:.1e})")

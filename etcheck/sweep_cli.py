@@ -1,0 +1,88 @@
+"""``etcheck sweep MISSION.toml --length 50m:5km:40:log --spin 0rpm:2rpm:40``: the what-if sweep.
+
+Writes OUT/<mission>/sweep/{sweep.html, sweep.pdf, sweep.json, sweep.csv,
+sweep.nc}; per-point results are kept in OUT/<mission>/sweep/cache as they
+finish, so an interrupted sweep resumes when the same command is run again.
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from .cli import guarded
+
+FORMATS = ("html", "pdf", "json", "csv", "nc")
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="etcheck sweep",
+        description="Sweep one or two mission quantities and map the margins of the straight tether.",
+        epilog="axes: START:STOP:POINTS[:log], values with units, e.g. --length 50m:5km:40:log "
+        "--spin 0rpm:2rpm:40. Without axis options the mission's [sweep] table is used.\n"
+        "exit codes: 0 every point answered, 1 some points failed or lie outside the validated range, "
+        "2 bad input, 3 internal error, 130 interrupted (rerun to resume)",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("mission", help="mission file (TOML)")
+    for option, what in (("length", "tether length"), ("spin", "spin rate"), ("current", "current"),
+                         ("field", "axial magnetic field"), ("tension", "end tension")):
+        p.add_argument(f"--{option}", metavar="START:STOP:N[:log]", help=f"sweep the {what}")
+    p.add_argument("--out", default="reports", help="output folder (default: reports/); files go to OUT/<mission>/sweep/")
+    p.add_argument("--format", default=",".join(FORMATS), help=f"comma-separated list of {', '.join(FORMATS)} (default: all)")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: every core; 1: serial)")
+    p.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run on a dask.distributed cluster, e.g. tcp://10.0.0.5:8786 (needs etcheck[distributed])")
+    p.add_argument("--tolerance", type=float, default=None,
+                   help="relative two-resolution agreement of every critical value (default: the mission's [check] tolerance)")
+    p.add_argument("--no-cache", action="store_true", help="do not keep per-point results (no resume)")
+    return p
+
+
+def main(argv: list[str]) -> int:
+    parser = _parser()
+    args = parser.parse_args(argv)
+    formats = tuple(x.strip().lower() for x in args.format.split(",") if x.strip())
+    bad = [x for x in formats if x not in FORMATS]
+    if bad or not formats:
+        parser.error(f"--format: unknown format {', '.join(bad) or '(empty)'}; use any of {', '.join(FORMATS)}")
+    if args.workers is not None and args.workers < 1:
+        parser.error("--workers must be at least 1")
+    if args.tolerance is not None and not 1e-13 <= args.tolerance <= 1e-3:
+        parser.error("--tolerance must lie in [1e-13, 1e-3]")
+    def run():
+        from .axes import OPTIONS, parse_option
+        from .mission import load_mission
+        from .progress import ProgressBar
+        from .report import write_reports
+        from .sweep import SweepOptions, load_axes_or_table, sweep
+
+        mission = load_mission(args.mission)
+        axes = load_axes_or_table(mission, [parse_option(o, getattr(args, o)) for o in OPTIONS if getattr(args, o)])
+        folder = Path(args.out) / mission.slug / "sweep"
+        options = SweepOptions(tol=args.tolerance or mission.tolerance, workers=args.workers,
+                               scheduler=args.scheduler, cache=None if args.no_cache else folder / "cache")
+        results = sweep(mission, axes, options, progress=ProgressBar(f"etcheck sweep {mission.name}"))
+        return results, write_reports(results, folder, formats, kind="sweep")
+
+    out = guarded(run, "rerun the same command to resume")
+    if isinstance(out, int):
+        return out
+    results, paths = out
+    _summary(results, paths)
+    g = results["grid"]
+    return 0 if g["regions"]["failed"] == 0 else 1
+
+
+def _summary(results: dict, paths: list[Path]) -> None:
+    g, c = results["grid"], results["cost"]
+    print(f"etcheck sweep: {results['mission']['name']}: {c['points']} points "
+          f"({c['solved']} solved, {c['from_cache']} from the cache) in {c['wall_s']:.1f} s")
+    print(f"  straight-stable {g['regions']['straight-stable']}, straight-unstable {g['regions']['straight-unstable']}, "
+          f"no answer {g['regions']['failed']}; largest estimated error {g['max_error'] or 0:.1e}")
+    for row in results.get("critical_length") or []:
+        if row["status"] == "ok" and row.get("other") is None:
+            print(f"  critical length {row['length_m']:.6g} m")
+    for path in paths:
+        print(f"  wrote {path}")
