@@ -52,20 +52,19 @@ def margin_map(results: dict, field: str, title: str) -> str:
     if levels:
         cs = ax.contour(X, Y, lm, levels=sorted(set(levels)), colors="#555555", linewidths=0.8)
         ax.clabel(cs, fmt=lambda v: f"{10 ** v:.3g}", fontsize=7)
-    if np.nanmin(lm) < 0 < np.nanmax(lm):
+    cl = results.get("critical_length")
+    exact = bool(cl) and field == "load_margin" and any(r["length_m"] is not None for r in cl)
+    if np.nanmin(lm) < 0 < np.nanmax(lm) and not exact:
         ax.contour(X, Y, lm, levels=[0], colors="k", linewidths=2.0)
     if np.nanmin(lm) < np.log10(req) < np.nanmax(lm):
         ax.contour(X, Y, lm, levels=[np.log10(req)], colors="#1f4e79", linewidths=1.6, linestyles="--")
     bad = status != "ok"
     if bad.any():
         ax.scatter(X[bad], Y[bad], marker="x", color="#8e1b10", s=22, zorder=5, label="no answer (failed / outside range)")
-    cl = results.get("critical_length")
-    if cl and field == "load_margin":
-        pts = [(r["length_m"], r["other_display"]) for r in cl if r["length_m"] is not None]
-        if pts:
-            a, b = zip(*pts)
-            ax.plot(a, b, "-o", ms=2.5, lw=1.2, color="k", zorder=6,
-                    label="critical length (exact, Brent): the boundary between grid points")
+    if exact:
+        a, b = zip(*[(r["length_m"], r["other_display"]) for r in cl if r["length_m"] is not None])
+        ax.plot(a, b, "-o", ms=2.5, lw=2.0, color="k", zorder=6,
+                label="stability boundary: critical length located exactly (Brent)")
     _mark_operating(ax, results, x, y)
     for name, colour in (("straight-stable", "#14632c"), ("straight-unstable", "#8e1b10")):
         idx = np.argwhere(region == name)
@@ -73,7 +72,8 @@ def margin_map(results: dict, field: str, title: str) -> str:
             i, j = idx[len(idx) // 2]
             ax.text(x[i], y[j], name, color=colour, fontsize=8, ha="center", va="center", fontweight="bold",
                     bbox={"facecolor": "white", "alpha": 0.6, "edgecolor": "none", "pad": 1})
-    ax.plot([], [], color="k", lw=2, label="stability boundary (margin 1)")
+    if not exact:
+        ax.plot([], [], color="k", lw=2, label="stability boundary (margin 1)")
     ax.plot([], [], color="#1f4e79", lw=1.6, ls="--", label=f"required margin {req:g}")
     ax.plot([], [], color="#555555", lw=0.8, label="margin contours (labelled)")
     if xlog:
