@@ -74,6 +74,7 @@ __all__ = [
     "coefficient_blocks",
     "linear_operator",
     "field_slice",
+    "boundary_rows",
 ]
 
 VARIABLES = ("xi1", "xi2", "xi3", "a1", "a2", "a3", "phi1", "phi2", "phi3", "m1", "m2", "m3")
@@ -225,7 +226,7 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
     return out.reshape(NFIELDS * N, NFIELDS * (N + 1))
 
 
-def _boundary_rows(base: BaseState, N: int) -> np.ndarray:
+def boundary_rows(base: BaseState, N: int) -> np.ndarray:
     """The 12 linearised welded boundary conditions (``per:et:bc1``-``per:et:bc6``)."""
     rows = np.zeros((12, NFIELDS * (N + 1)))
     Dends = base.D0(np.array([0.0, 1.0]))
@@ -267,7 +268,7 @@ def linear_operator(params: RodParameters, base: BaseState, N: int):
     """
     col = collocation(int(N))
     E0, E1, G0, G1, G2 = coefficient_blocks(params, base, col.t)
-    A0 = np.vstack([_assemble(E0, G0, col), _boundary_rows(base, col.N)])
+    A0 = np.vstack([_assemble(E0, G0, col), boundary_rows(base, col.N)])
     zero = np.zeros((12, NFIELDS * (col.N + 1)))
     A1 = np.vstack([_assemble(E1, G1, col), zero])
     A2 = np.vstack([_assemble(None, G2, col), zero])

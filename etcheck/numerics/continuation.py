@@ -1,0 +1,411 @@
+"""Pseudo-arclength continuation of F(u, p) = 0 (generic, rod-agnostic, dimensionless).
+
+The problem is an object with
+
+* ``residual(u, p) -> r``            shape (m,)
+* ``jacobian(u, p) -> (Ju, Jp)``     shapes (m, m) and (m,): derivatives with
+  respect to the chart coordinates du of ``retract`` and to p;
+* ``retract(u, du) -> u'``           move u by du (u + du for vector spaces;
+  a manifold update, e.g. a rotation, otherwise). u is opaque to this module;
+* optionally ``tests(u, p, Ju) -> dict[str, float]``: scalar test functions
+  whose sign changes mark special points (e.g. a symmetry-breaking branch
+  point), evaluated at every accepted point.
+
+Method (Keller's pseudo-arclength; Allgower & Georg, *Introduction to
+Numerical Continuation Methods*, ch. 2-3, 8):
+
+* predictor u = retract(u0, ds tau_u), p = p0 + ds tau_p along the unit tangent;
+* corrector: Newton on (F(u, p) = 0, <tau, (xi, p - p0)>_W = ds), xi the
+  accumulated chart displacement, with the bordered matrix
+  [[Ju, Jp], [W tau]]; the next tangent solves [[Ju, Jp], [W tau0]] tau = e
+  (orientation kept);
+* adaptive step: grow after fast convergence, halve after failure or a large
+  turn of the tangent;
+* folds: sign change of tau_p; simple branch points: sign change of
+  det([[Ju, Jp], [tau]]) (a fold does not change it); user tests: sign
+  change of the test function. Every special point is located by the secant
+  (Illinois) method on the arclength between the two bracketing points, each
+  trial point being corrected onto the branch, and is stored with its
+  bracket.
+* branch switching: :func:`switch_branch` starts the continuation from a
+  branch point along a given kernel direction (the caller supplies it, e.g.
+  the kernel of the Jacobian restricted to a symmetry class).
+
+Options are an immutable :class:`ContinuationOptions` checked at construction
+(as BifurcationKit's ContinuationPar).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+
+__all__ = [
+    "ContinuationOptions",
+    "Point",
+    "SpecialPoint",
+    "ContinuationResult",
+    "continuation",
+    "switch_branch",
+    "correct",
+    "correct_at",
+    "tangent",
+    "signed_smallness",
+]
+
+
+@dataclass(frozen=True)
+class ContinuationOptions:
+    """Options of :func:`continuation` (all dimensionless).
+
+    ds: first step; ds_min/ds_max: step limits; p_min/p_max: stop when p leaves
+    [p_min, p_max] (the last point is placed on the bound); max_points: stop
+    after that many accepted points; tol: Newton tolerance on max|F| and on
+    the max-norm of the update; max_newton: corrector iterations;
+    max_angle: largest accepted turn of the tangent per step (radians);
+    weight_p: weight of the parameter in the arclength norm (the state part
+    has weight (1 - weight_p)/m per component, so both are O(1));
+    locate_tol: arclength tolerance when locating special points;
+    detect_folds / detect_bp: switch the built-in tests on or off.
+    stop: optional predicate stop(u, p) -> bool checked at each point;
+    stop_on: kinds of special points ("bp", "fold", a test name) at which the
+    continuation ends once the point is located (e.g. a connecting branch
+    that has reached another branch).
+    """
+
+    ds: float = 0.05
+    ds_min: float = 1e-6
+    ds_max: float = 0.5
+    p_min: float = -math.inf
+    p_max: float = math.inf
+    max_points: int = 500
+    tol: float = 1e-10
+    max_newton: int = 8
+    max_angle: float = 0.3
+    weight_p: float = 0.5
+    locate_tol: float = 1e-10
+    detect_folds: bool = True
+    detect_bp: bool = True
+    stop: Callable | None = None
+    stop_on: tuple = ()
+
+    def __post_init__(self) -> None:
+        if not (0 < self.ds_min <= abs(self.ds) <= self.ds_max):
+            raise ValueError(f"need 0 < ds_min <= |ds| <= ds_max, got {self.ds_min}, {self.ds}, {self.ds_max}")
+        if not self.p_min < self.p_max:
+            raise ValueError(f"need p_min < p_max, got {self.p_min}, {self.p_max}")
+        if self.max_points < 1 or self.max_newton < 1:
+            raise ValueError("max_points and max_newton must be >= 1")
+        if not 0 < self.weight_p < 1:
+            raise ValueError(f"weight_p must lie in (0, 1), got {self.weight_p}")
+        if self.tol <= 0 or self.locate_tol <= 0 or self.max_angle <= 0:
+            raise ValueError("tol, locate_tol and max_angle must be > 0")
+
+
+@dataclass(frozen=True, eq=False)
+class Point:
+    """An accepted point: state u, parameter p, unit tangent (tau_u, tau_p),
+    residual norm, Newton iterations, arclength s from the start, test values."""
+
+    u: object
+    p: float
+    tau: np.ndarray
+    residual: float
+    newton: int
+    s: float
+    tests: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False)
+class SpecialPoint:
+    """A located special point: kind ("fold", "bp" or a user test name), the
+    corrected point, the index i of the branch point before it, the arclength
+    bracket (s_lo, s_hi) it was located in, and the test value there."""
+
+    kind: str
+    point: Point
+    index: int
+    bracket: tuple
+    value: float
+
+
+@dataclass(frozen=True, eq=False)
+class ContinuationResult:
+    """Accepted points, located special points, why it stopped, wall time [s]."""
+
+    points: list
+    special: list
+    reason: str
+    time: float
+
+    @property
+    def p(self) -> np.ndarray:
+        return np.array([q.p for q in self.points])
+
+
+def weights(m: int, opts: ContinuationOptions) -> np.ndarray:
+    w = np.full(m + 1, (1.0 - opts.weight_p) / m)
+    w[-1] = opts.weight_p
+    return w
+
+
+def _bordered(Ju: np.ndarray, Jp: np.ndarray, row: np.ndarray) -> np.ndarray:
+    m = Ju.shape[0]
+    A = np.empty((m + 1, m + 1))
+    A[:m, :m] = Ju
+    A[:m, m] = Jp
+    A[m] = row
+    return A
+
+
+def tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Unit tangent (in the W-norm) at (u, p) oriented like tau0; returns (tau, Ju, Jp)."""
+    Ju, Jp = problem.jacobian(u, p)
+    A = _bordered(Ju, Jp, W * tau0)
+    e = np.zeros(A.shape[0])
+    e[-1] = 1.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)
+        t = sla.solve(A, e)
+    return t / math.sqrt(float(np.sum(W * t * t))), Ju, Jp
+
+
+def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, tol: float, max_newton: int):
+    """Predictor-corrector step of arclength ds from (u0, p0) along tau0.
+
+    Returns (u, p, residual_norm, iterations, converged).
+    """
+    m = tau0.size - 1
+    xi = ds * tau0[:m]
+    u = problem.retract(u0, xi)
+    p = p0 + ds * tau0[m]
+    row = W * tau0
+    rn = math.inf
+    for it in range(1, max_newton + 1):
+        r = problem.residual(u, p)
+        g = float(row[:m] @ xi + row[m] * (p - p0) - ds)
+        Ju, Jp = problem.jacobian(u, p)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", sla.LinAlgWarning)
+                d = sla.solve(_bordered(Ju, Jp, row), -np.append(r, g))
+        except (sla.LinAlgError, ValueError):
+            return u, p, math.inf, it, False
+        if not np.all(np.isfinite(d)):
+            return u, p, math.inf, it, False
+        u = problem.retract(u, d[:m])
+        xi = xi + d[:m]
+        p = p + float(d[m])
+        step = float(np.max(np.abs(d)))
+        rn = float(np.max(np.abs(r)))
+        if step < tol and rn < 1e2 * tol:
+            rn = float(np.max(np.abs(problem.residual(u, p))))
+            return u, p, rn, it, rn < tol
+        if it >= 3 and rn > 1e3:
+            break
+    rn = float(np.max(np.abs(problem.residual(u, p))))
+    return u, p, rn, max_newton, rn < tol
+
+
+def correct_at(problem, u, p: float, tol: float, max_newton: int):
+    """Newton at fixed parameter p (needs a regular Ju); returns like :func:`correct`."""
+    for it in range(1, max_newton + 1):
+        r = problem.residual(u, p)
+        Ju, _ = problem.jacobian(u, p)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", sla.LinAlgWarning)
+                d = sla.solve(Ju, -r)
+        except (sla.LinAlgError, ValueError):
+            return u, p, math.inf, it, False
+        u = problem.retract(u, d)
+        if float(np.max(np.abs(d))) < tol:
+            rn = float(np.max(np.abs(problem.residual(u, p))))
+            return u, p, rn, it, rn < tol
+    rn = float(np.max(np.abs(problem.residual(u, p))))
+    return u, p, rn, max_newton, rn < tol
+
+
+def signed_smallness(A: np.ndarray) -> float:
+    """sign(det A) / max|A^{-1} e| for a fixed vector e (one LU).
+
+    A continuous test function: zero exactly where A is singular, of the
+    order of the smallest singular value near it, and it changes sign at a
+    simple zero of det A (so the secant method locates it fast).
+    """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)
+        lu, piv = sla.lu_factor(A, check_finite=False)
+        d = np.diag(lu)
+        sign = np.prod(np.sign(d)) * (-1.0) ** int(np.sum(piv != np.arange(piv.size)))
+        e = np.cos(np.arange(A.shape[0]) * 0.7 + 0.3)
+        y = sla.lu_solve((lu, piv), e, check_finite=False)
+    big = float(np.max(np.abs(y)))
+    return float(sign / big) if np.isfinite(big) and big > 0 else 0.0
+
+
+def _det_sign(Ju, Jp, tau) -> float:
+    return signed_smallness(_bordered(Ju, Jp, tau))
+
+
+def _make_point(problem, u, p, tau_prev, W, s, residual, newton, opts) -> Point:
+    tau, Ju, Jp = tangent(problem, u, p, tau_prev, W)
+    tests = {}
+    if opts.detect_bp:
+        tests["bp"] = _det_sign(Ju, Jp, tau)
+    if opts.detect_folds:
+        tests["fold"] = float(tau[-1])
+    extra = getattr(problem, "tests", None)
+    if extra is not None:
+        tests.update(extra(u, p, Ju))
+    return Point(u, float(p), tau, residual, newton, s, tests)
+
+
+def illinois_update(x: float, fx: float, lo: float, hi: float, flo: float, fhi: float) -> tuple:
+    """One bracket update of the Illinois (modified regula falsi) method: keep the
+    sign change in [lo, hi] and halve the stale end's value."""
+    if (fx > 0) == (flo > 0):
+        return x, hi, fx, 0.5 * fhi
+    return lo, x, 0.5 * flo, fx
+
+
+def _locate(problem, a: Point, b: Point, name: str, W, opts) -> tuple[Point, tuple]:
+    """Secant/Illinois on the arclength from point a where tests[name] changes sign."""
+    fa, fb = a.tests[name], b.tests[name]
+    lo, hi = 0.0, b.s - a.s
+    flo, fhi = fa, fb
+    best = b
+    prev = math.inf
+    for _ in range(60):
+        sig = hi - fhi * (hi - lo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
+        if not (lo < sig < hi):
+            sig = 0.5 * (lo + hi)
+        if abs(sig - prev) < opts.locate_tol:
+            break
+        prev = sig
+        u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, sig, W, opts.tol, opts.max_newton + 4)
+        if not ok:
+            break
+        q = _make_point(problem, u, p, a.tau, W, a.s + sig, rn, it, opts)
+        fq = q.tests[name]
+        best = q
+        lo, hi, flo, fhi = illinois_update(sig, fq, lo, hi, flo, fhi)
+        if hi - lo < opts.locate_tol or fq == 0.0:
+            break
+    return best, (a.s + lo, a.s + hi)
+
+
+def continuation(problem, u0, p0: float, tau0: np.ndarray, opts: ContinuationOptions,
+                 first_residual: float = 0.0) -> ContinuationResult:
+    """Continue the solution branch through (u0, p0) (a solution) along tau0.
+
+    tau0 (shape (m+1,)) gives the initial direction (it is replaced by the true
+    tangent oriented like it). Returns every accepted point and the special
+    points located between them.
+    """
+    t_start = time.perf_counter()
+    m = np.asarray(tau0).size - 1
+    W = weights(m, opts)
+    tau0 = np.asarray(tau0, dtype=float)
+    tau0 = tau0 / math.sqrt(float(np.sum(W * tau0 * tau0)))
+    pts = [_make_point(problem, u0, p0, tau0, W, 0.0, first_residual, 0, opts)]
+    special: list[SpecialPoint] = []
+    ds = abs(opts.ds)
+    reason = "max_points"
+    while len(pts) < opts.max_points:
+        a = pts[-1]
+        step = ds
+        tp = float(a.tau[-1])
+        clipped = None
+        for bound in (opts.p_max, opts.p_min):
+            if tp != 0.0 and math.isfinite(bound) and (a.p + step * tp - bound) * (a.p - bound) < 0:
+                step = (bound - a.p) / tp
+                clipped = bound
+        try:
+            u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, step, W, opts.tol, opts.max_newton)
+            if ok and clipped is not None and abs(p - clipped) <= 0.1 * abs(step * tp):
+                u, p, rn, it, ok = correct_at(problem, u, clipped, opts.tol, opts.max_newton + 4)
+            else:
+                clipped = None
+        except ValueError:  # parameter left its admissible range
+            ok = False
+        if ok:
+            b = _make_point(problem, u, p, a.tau, W, a.s + step, rn, it, opts)
+            cosang = float(np.sum(W * a.tau * b.tau))
+            if cosang < math.cos(opts.max_angle) and ds > opts.ds_min:
+                ok = False
+        if not ok:
+            ds *= 0.5
+            if ds < opts.ds_min:
+                reason = "step size underflow"
+                break
+            continue
+        # parameter bounds: place the last point on the bound
+        hit_bound = clipped is not None
+        if not hit_bound and (b.p > opts.p_max or b.p < opts.p_min):
+            bound = opts.p_max if b.p > opts.p_max else opts.p_min
+            frac = (bound - a.p) / (b.p - a.p)
+            try:
+                u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, frac * step, W, opts.tol, opts.max_newton + 4)
+                if ok:
+                    u, p, rn, it, ok = correct_at(problem, u, bound, opts.tol, opts.max_newton + 4)
+            except ValueError:
+                ok = False
+            if ok:
+                b = _make_point(problem, u, p, a.tau, W, a.s + frac * step, rn, it, opts)
+                hit_bound = True
+        hit_special = None
+        for name, fa in a.tests.items():
+            fb = b.tests.get(name)
+            if fb is None or fa == 0.0 or (fa > 0) == (fb > 0):
+                continue
+            q, br = _locate(problem, a, b, name, W, opts)
+            special.append(SpecialPoint(name, q, len(pts) - 1, br, float(q.tests[name])))
+            if name in opts.stop_on:
+                hit_special = name
+        pts.append(b)
+        if hit_special is not None:
+            reason = f"special point ({hit_special})"
+            break
+        if hit_bound or b.p >= opts.p_max or b.p <= opts.p_min:
+            reason = "parameter bound"
+            break
+        if opts.stop is not None and opts.stop(b.u, b.p):
+            reason = "stop condition"
+            break
+        if it <= 3:
+            ds = min(ds * 1.5, opts.ds_max)
+        elif it >= 6:
+            ds = max(ds * 0.5, opts.ds_min)
+    return ContinuationResult(pts, special, reason, time.perf_counter() - t_start)
+
+
+def switch_branch(problem, u_bp, p_bp: float, direction: np.ndarray, opts: ContinuationOptions,
+                  amplitude: float | None = None) -> ContinuationResult:
+    """Leave a branch point (u_bp, p_bp) along ``direction`` (shape (m+1,), chart
+    coordinates plus parameter), e.g. (v, 0) for a pitchfork with kernel v.
+
+    The first point is one corrected step of size ``amplitude`` (default
+    opts.ds) along the direction; continuation then proceeds from it.
+    """
+    m = np.asarray(direction).size - 1
+    W = weights(m, opts)
+    d = np.asarray(direction, dtype=float)
+    d = d / math.sqrt(float(np.sum(W * d * d)))
+    ds = abs(amplitude if amplitude is not None else opts.ds)
+    for _ in range(30):
+        u, p, rn, it, ok = correct(problem, u_bp, p_bp, d, ds, W, opts.tol, opts.max_newton + 4)
+        if ok:
+            break
+        ds *= 0.5
+    else:
+        return ContinuationResult([], [], "branch switch failed", 0.0)
+    # tangent at the new point, oriented away from the branch point
+    res = continuation(problem, u, p, d, opts, first_residual=rn)
+    return res

@@ -1,0 +1,675 @@
+"""Branches of whirling relative equilibria: start, continue, switch (dimensionless).
+
+Rod-specific layer over :mod:`etcheck.numerics.continuation` and
+:mod:`etcheck.rod.equilibria` (paper Sec. 5.1 and 7; PHYSICS.md "Symmetry of
+the welded problem").
+
+Symmetry. The welded problem is equivariant under the involutions
+
+    S_Q: x(s) -> Q x(1-s) + (x3(0) + x3(1)) e3,  D(s) -> Q D(1-s) Q,
+         F(s) -> -Q F(1-s),  M(s) -> -Q M(1-s),
+
+with Q = diag(1, -1, -1) (``"S1"``: s -> 1-s and a half-turn about e1) or
+Q = diag(-1, 1, -1) (``"S2"``: half-turn about e2), for every B, omega, T, R
+(Lorentz, centrifugal and rotary-inertia terms all commute with Q; the
+sliding-end position z0 = x3(0) is kept). Their linear action S on an update
+(xi, a, phi, m) is xi(s) -> Q xi(1-s) + (xi3(0) + xi3(1)) e3,
+a(s) -> Q a(1-s), phi(s) -> -Q phi(1-s), m(s) -> -Q m(1-s) (an exact
+involution, :func:`symmetry_matrix`); on the residual rows it acts by a
+constant matrix S_row = J S J^{-1}, computed once per N at a regular straight
+state (equivariance J S = S_row J is checked at another state and, in the
+tests, on a buckled one). Each doubly degenerate pitchfork of the straight rod is simple
+inside Fix(S1) and inside Fix(S2): the primary branches are continued with
+Newton restricted to the fixed-point space (square restricted Jacobian
+L_+ J V_+, with V_+ / L_+ orthonormal bases of the +1 eigenspaces of S and
+S_row^T), which also keeps them exactly symmetric. Symmetry-breaking
+(secondary) branch points on a primary branch are zeros of the Jacobian
+restricted to the -1 eigenspace, L_- J V_-; they are detected by the sign
+change of a continuous test function (sign det times a smallest-singular-value
+estimate) and the connecting branch (b12) is followed in the full space from
+the kernel of L_- J V_-.
+
+Labels. "b1" is the Fix(S1) branch from BP1 (x(s) = x(1-s), y(s) = -y(1-s)),
+whose pitchfork load decreases with spin and reaches B = 0 at the spin where
+the weak-axis whirl mode goes static (omega -> sqrt(R) for P -> 0); "b2" is
+the Fix(S2) branch from BP1 (x odd, y even about s = 1/2; stiff-axis mode,
+lift-off at omega -> 1 for P -> 0). This matches the paper's b1 (B = 0.595 at
+measure_1 = 0.04, stable up to the secondary pitchfork, first to lift off).
+For k >= 2 the same rule is used: b(2k-1) is the Fix(S1) branch from BP_k
+and b(2k) the Fix(S2) one. This agrees with the paper's statement that the
+connecting branch (b12, b34, ...) comes out of a secondary pitchfork on the
+first branch of the pair: on the SET data b3 (Fix(S1)) carries one at
+B = 13.46 and b4 has none below B = 28 (inferred; the paper's figures are not
+available).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import scipy.linalg as sla
+
+from ..numerics.continuation import (
+    ContinuationOptions,
+    ContinuationResult,
+    SpecialPoint,
+    continuation,
+    correct,
+    illinois_update,
+    signed_smallness,
+    switch_branch,
+    weights,
+)
+from ..numerics.eigen import single_blas_thread
+from . import equilibria as eq
+from .linear import NFIELDS
+from .parameters import RodParameters
+
+__all__ = [
+    "SYMMETRIES",
+    "BRANCH_CLASS",
+    "symmetry_matrix",
+    "reflect",
+    "SymmetryBases",
+    "symmetry_bases",
+    "BranchStart",
+    "RodBranchPoint",
+    "Branch",
+    "class_loads",
+    "primary_branches",
+    "continue_branch",
+    "connecting_branch",
+    "locate",
+    "liftoff_spin",
+    "trivial_branch_points",
+    "ResolutionCheck",
+    "resolution_check",
+]
+
+SYMMETRIES = {"S1": np.array([1.0, -1.0, -1.0]), "S2": np.array([-1.0, 1.0, -1.0])}
+#: symmetry class of the paper's primary branches from BP1
+BRANCH_CLASS = {"b1": "S1", "b2": "S2"}
+
+
+def _class(which: str) -> str:
+    which = BRANCH_CLASS.get(which, which)
+    if which not in SYMMETRIES:
+        raise ValueError(f"unknown branch/symmetry {which!r}; use 'b1', 'b2', 'S1' or 'S2'")
+    return which
+
+
+# --- symmetry --------------------------------------------------------------------------
+
+
+@lru_cache(maxsize=16)
+def symmetry_matrix(N: int, which: str) -> np.ndarray:
+    """Linear action S of the involution ``which`` on updates (xi, a, phi, m), shape (n, n).
+
+    n = 12 (N+1), ``linear.VARIABLES`` ordering; S @ S = I exactly.
+    """
+    q = SYMMETRIES[_class(which)]
+    n1 = N + 1
+    S = np.zeros((NFIELDS * n1, NFIELDS * n1))
+    signs = np.concatenate([q, q, -q, -q])
+    j = np.arange(n1)
+    for c in range(NFIELDS):
+        S[c * n1 + j, c * n1 + (N - j)] = signs[c]
+    z = 2 * n1  # xi3 block: xi3~(s) = -xi3(1-s) + xi3(0) + xi3(1)
+    S[z + j, z] += 1.0
+    S[z + j, z + N] += 1.0
+    S.setflags(write=False)
+    return S
+
+
+def reflect(state: eq.Equilibrium, which: str) -> eq.Equilibrium:
+    """The image S(state) of an equilibrium under the involution ``which`` (dimensionless)."""
+    Q = np.diag(SYMMETRIES[_class(which)])
+    x = state.x[::-1] @ Q
+    x[:, 2] += state.x[0, 2] + state.x[-1, 2]
+    D = np.einsum("ab,nbc,cd->nad", Q, state.D[::-1], Q)
+    return eq.Equilibrium(state.params, x, D, -state.F[::-1] @ Q, -state.M[::-1] @ Q)
+
+
+@dataclass(frozen=True, eq=False)
+class SymmetryBases:
+    """Orthonormal bases of the +/-1 eigenspaces of S (columns V) and of S_row^T (columns L).
+
+    ``equivariance`` is ||J S - S_row J|| / ||J|| at a second (curved-free)
+    check state: rounding level when the row action is state independent.
+    """
+
+    which: str
+    N: int
+    S: np.ndarray
+    S_row: np.ndarray
+    V_plus: np.ndarray
+    V_minus: np.ndarray
+    L_plus: np.ndarray
+    L_minus: np.ndarray
+    equivariance: float
+
+
+@lru_cache(maxsize=16)
+def _bases(N: int, which: str, P: float, R: float, Gamma: float, f: float) -> SymmetryBases:
+    S = symmetry_matrix(N, which)
+    p = RodParameters(P=P, R=R, Gamma=Gamma, f=f, B=0.37 * 7.33**3 * math.sqrt(R) / f, omega=0.3, T=0.1)
+    J0 = eq.jacobian(p, eq.straight_state(p, N))
+    # S_row = J0 S J0^{-1}; its left eigenvectors are y J0^{-1} with y a left eigenvector of S
+    S_row = np.linalg.solve(J0.T, (J0 @ S).T).T
+    p2 = p.with_(B=0.9 * p.B, omega=0.7, T=-0.05)
+    J2 = eq.jacobian(p2, eq.straight_state(p2, N))
+    equiv = float(np.max(np.abs(J2 @ S - S_row @ J2)) / np.max(np.abs(J2)))
+    n = S.shape[0]
+    eye = np.eye(n)
+    Vp = sla.null_space(S - eye, rcond=1e-9, lapack_driver="gesvd")
+    Vm = sla.null_space(S + eye, rcond=1e-9, lapack_driver="gesvd")
+    Yp = sla.null_space(S.T - eye, rcond=1e-9, lapack_driver="gesvd")
+    Ym = sla.null_space(S.T + eye, rcond=1e-9, lapack_driver="gesvd")
+    Lp = np.linalg.qr(np.linalg.solve(J0.T, Yp))[0]
+    Lm = np.linalg.qr(np.linalg.solve(J0.T, Ym))[0]
+    if Vp.shape[1] != Lp.shape[1] or Vm.shape[1] != Lm.shape[1] or Vp.shape[1] + Vm.shape[1] != n:
+        raise RuntimeError(f"symmetry bases inconsistent: {Vp.shape}, {Vm.shape}, {Lp.shape}, {Lm.shape}")
+    return SymmetryBases(which, N, S, S_row, Vp, Vm, Lp.T, Lm.T, equiv)
+
+
+def symmetry_bases(params: RodParameters, N: int, which: str) -> SymmetryBases:
+    """Cached :class:`SymmetryBases` for resolution N (depend on P, R, Gamma, f only through
+    the check state; the eigenspaces themselves are parameter independent)."""
+    return _bases(int(N), _class(which), params.P, params.R, params.Gamma, params.f)
+
+
+# --- continuation problems -------------------------------------------------------------
+
+
+class _RodProblem:
+    """F(u, p) = 0 for the equilibrium BVP in one parameter, optionally restricted to Fix(S)."""
+
+    def __init__(self, params: RodParameters, parameter: str, N: int, which: str | None = None):
+        if parameter not in eq.PARAMETERS:
+            raise ValueError(f"parameter must be one of {eq.PARAMETERS}, got {parameter!r}")
+        self.params, self.parameter, self.N = params, parameter, int(N)
+        self.which = None if which is None else _class(which)
+        self.bases = None if which is None else symmetry_bases(params, N, which)
+        self._last = None
+
+    def at(self, p: float) -> RodParameters:
+        return self.params.with_(**{self.parameter: float(p)})
+
+    def _full(self, u, p):
+        key = (id(u), p)
+        if self._last is not None and self._last[0] == key:
+            return self._last[1]
+        pp = self.at(p)
+        J = eq.jacobian(pp, u)
+        Jp = eq.parameter_derivative(pp, u, self.parameter)
+        self._last = (key, (J, Jp), u)
+        return J, Jp
+
+    def residual(self, u, p):
+        r = eq.residual(self.at(p), u)
+        return r if self.bases is None else self.bases.L_plus @ r
+
+    def jacobian(self, u, p):
+        J, Jp = self._full(u, p)
+        if self.bases is None:
+            return J, Jp
+        b = self.bases
+        return b.L_plus @ J @ b.V_plus, b.L_plus @ Jp
+
+    def retract(self, u, du):
+        full = du if self.bases is None else self.bases.V_plus @ du
+        return eq.retract(u, full, u.params)
+
+    def tests(self, u, p, Ju):
+        if self.bases is None:
+            return {}
+        J, _ = self._full(u, p)
+        b = self.bases
+        return {"break": signed_smallness(b.L_minus @ J @ b.V_minus)}
+
+
+# --- results -----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class BranchStart:
+    """A pitchfork of the straight rod inside one symmetry class (dimensionless).
+
+    ``load``: B_k in that class at the given omega, T (the generalised
+    eigenvalue of the restricted pencil, exact at resolution N); ``kernel``:
+    restricted kernel vector (unit 2-norm); ``direction``: the same in full
+    update coordinates; ``singular_values``: the two smallest singular values
+    of the full A0(B_k) (both ~0 at omega = T = 0: the double pitchfork).
+    """
+
+    name: str
+    which: str
+    k: int
+    params: RodParameters
+    N: int
+    load: float
+    kernel: np.ndarray
+    direction: np.ndarray
+    singular_values: tuple
+
+
+@dataclass(frozen=True, eq=False)
+class RodBranchPoint:
+    """A special point on a branch: kind ("fold", "bp", "break" = symmetry-breaking
+    branch point), parameter value, bracket in the parameter, the state and its measure_1."""
+
+    kind: str
+    value: float
+    bracket: tuple
+    state: eq.Equilibrium
+    measure1: float
+    raw: SpecialPoint
+
+
+@dataclass(frozen=True, eq=False)
+class Branch:
+    """A continued branch of relative equilibria (dimensionless).
+
+    ``values``: the continuation parameter ``parameter`` at each point;
+    ``measure1``, ``measure2``, ``max_deflection``: measures (paper captions of
+    Figs. ``fig:tet:bif-measure1``/``-measure2``); ``states``: the
+    :class:`~etcheck.rod.equilibria.Equilibrium` at each point; ``special``:
+    folds and branch points located on it; ``time``: wall seconds; ``N``:
+    resolution; ``which``: symmetry class it was restricted to (None: full
+    space); ``residual``: largest residual max-norm over the points.
+    """
+
+    name: str
+    parameter: str
+    params: RodParameters
+    N: int
+    which: str | None
+    values: np.ndarray
+    measure1: np.ndarray
+    measure2: np.ndarray
+    max_deflection: np.ndarray
+    states: tuple
+    special: tuple
+    time: float
+    reason: str
+    residual: float
+    result: ContinuationResult
+    problem: object
+
+    def summary(self) -> dict:
+        """Plain, JSON-serialisable data of the branch (no states)."""
+        return _summary(self)
+
+
+def _summary(branch: Branch) -> dict:
+    return {
+        "name": branch.name, "parameter": branch.parameter, "N": branch.N, "symmetry": branch.which,
+        "values": branch.values.tolist(), "measure1": branch.measure1.tolist(),
+        "measure2": branch.measure2.tolist(), "max_deflection": branch.max_deflection.tolist(),
+        "special": [{"kind": q.kind, "value": q.value, "bracket": list(q.bracket), "measure1": q.measure1}
+                    for q in branch.special],
+        "time": branch.time, "reason": branch.reason, "residual": branch.residual,
+    }
+
+
+def _stamp(problem: _RodProblem, pt) -> eq.Equilibrium:
+    """The point's state carrying its own parameters and residual."""
+    u = pt.u
+    return eq.Equilibrium(problem.at(pt.p), u.x, u.D, u.F, u.M, float(pt.residual), int(pt.newton),
+                          bool(pt.residual < 1e-9))
+
+
+def _branch(name, problem: _RodProblem, res: ContinuationResult) -> Branch:
+    states = tuple(_stamp(problem, pt) for pt in res.points)
+    ms = [eq.measures(s) for s in states]
+    special = []
+    for sp in res.special:
+        st = _stamp(problem, sp.point)
+        a, b = res.points[sp.index], res.points[min(sp.index + 1, len(res.points) - 1)]
+        special.append(RodBranchPoint(sp.kind, sp.point.p, (a.p, b.p), st, eq.measure1(st), sp))
+    return Branch(
+        name=name, parameter=problem.parameter, params=problem.params, N=problem.N, which=problem.which,
+        values=res.p, measure1=np.array([m.measure1 for m in ms]), measure2=np.array([m.measure2 for m in ms]),
+        max_deflection=np.array([m.max_deflection for m in ms]), states=states, special=tuple(special),
+        time=res.time, reason=res.reason,
+        residual=max((pt.residual for pt in res.points), default=math.nan), result=res, problem=problem,
+    )
+
+
+# --- straight rod: pitchforks in each symmetry class -------------------------------------
+
+
+def _straight_pencil(params: RodParameters, N: int, which: str, axis: str = "B"):
+    """Restricted A0 = A + x C of the straight rod, x = B or omega^2 (others from params)."""
+    b = symmetry_bases(params, N, which)
+    if axis == "B":
+        p0, p1 = params.with_(B=0.0), params.with_(B=1.0)
+    else:
+        p0, p1 = params.with_(omega=0.0), params.with_(omega=1.0)
+    A0 = eq.jacobian(p0, eq.straight_state(p0, N))
+    A1 = eq.jacobian(p1, eq.straight_state(p1, N)) - A0
+    return b.L_plus @ A0 @ b.V_plus, b.L_plus @ A1 @ b.V_plus, b
+
+
+def _real_roots(A: np.ndarray, C: np.ndarray) -> np.ndarray:
+    alpha, beta = sla.eig(A, -C, right=False, homogeneous_eigvals=True)
+    ok = np.abs(beta) > 1e-12 * np.abs(alpha)
+    x = alpha[ok] / beta[ok]
+    x = x[np.abs(x.imag) <= 1e-7 * np.maximum(np.abs(x), 1e-12)].real
+    return np.sort(x)
+
+
+@single_blas_thread
+def class_loads(params: RodParameters, which: str, N: int = 32, n: int = 3) -> np.ndarray:
+    """The n smallest B > 0 where the straight rod has a pitchfork inside the class
+    ``which`` ("b1"/"S1", "b2"/"S2") at params.omega, params.T (dimensionless; exact
+    real eigenvalues of the restricted linear pencil in B at resolution N)."""
+    A, C, _ = _straight_pencil(params, N, which, "B")
+    r = _real_roots(A, C)
+    return r[r > 1e-12][:n]
+
+
+@single_blas_thread
+def primary_branches(params: RodParameters, k: int = 1, N: int = 40) -> tuple[BranchStart, BranchStart]:
+    """The two branch starts at the k-th pitchfork of the straight rod (dimensionless).
+
+    One in Fix(S1) and one in Fix(S2) ("b1" and "b2" for k = 1: the first
+    pitchfork of each class; past a branch's lift-off spin, see
+    :func:`liftoff_spin`, the first pitchfork of its class belongs to a
+    higher branch); each with its
+    exact load at resolution N (restricted pencil), restricted kernel and full
+    kernel direction. At omega = T = 0 both loads equal beta_k^3 sqrt(R)/f
+    (``char_welded``); spin or tension (R != 1) splits them.
+    """
+    out = []
+    for which in ("S1", "S2"):
+        A, C, b = _straight_pencil(params, N, which, "B")
+        roots = _real_roots(A, C)
+        roots = roots[roots > 1e-12]
+        if roots.size < k:
+            raise ValueError(f"class {which} has only {roots.size} pitchforks with B > 0 at {params}")
+        Bk = float(roots[k - 1])
+        _, sv, vh = np.linalg.svd(A + Bk * C)
+        c = vh[-1]
+        v = b.V_plus @ c
+        n1 = N + 1
+        xy = v[: 2 * n1]
+        if xy[np.argmax(np.abs(xy))] < 0:
+            c, v = -c, -v
+        pk = params.with_(B=Bk)
+        full = np.linalg.svd(eq.jacobian(pk, eq.straight_state(pk, N)), compute_uv=False)
+        name = f"b{2 * k - 1}" if which == "S1" else f"b{2 * k}"
+        out.append(BranchStart(name, which, k, pk, N, Bk, c, v, (float(full[-1]), float(full[-2]))))
+    return tuple(out)
+
+
+# --- continuation -----------------------------------------------------------------------
+
+
+def _options(ds, ds_max, p_range, max_points, extra_stop=None) -> ContinuationOptions:
+    lo, hi = p_range
+    return ContinuationOptions(ds=ds, ds_min=1e-7, ds_max=ds_max, p_min=lo, p_max=hi, max_points=max_points,
+                               tol=1e-10, stop=extra_stop)
+
+
+def _stop_fn(max_measure1: float | None):
+    if max_measure1 is None:
+        return None
+    return lambda u, p: eq.measure1(u) > max_measure1
+
+
+@single_blas_thread
+def continue_branch(params: RodParameters, start, parameter: str = "B", stop: tuple = (-math.inf, math.inf),
+                    N: int | None = None, ds: float = 0.02, ds_max: float = 0.3, max_points: int = 400,
+                    max_measure1: float | None = None, amplitude: float = 0.02,
+                    direction: float = 1.0, which: str | None = None) -> Branch:
+    """Continue a branch of relative equilibria in ``parameter`` (B, omega, T or R).
+
+    ``start`` is a :class:`BranchStart` (leave the straight rod at its
+    pitchfork, restricted to its symmetry class; the step ``amplitude`` is in
+    the weighted arclength norm), a :class:`Branch` (continue from its last
+    point, same symmetry restriction, in ``parameter``) or an
+    :class:`~etcheck.rod.equilibria.Equilibrium` (a regular solution at its
+    own parameters; ``which`` = "S1"/"S2"/"b1"/"b2" restricts to that
+    symmetry class, None continues in the full space). ``direction`` = +1/-1
+    orients the first tangent along +/- the parameter. ``stop`` = (p_min, p_max)
+    bounds the parameter, ``max_measure1`` stops when measure_1 exceeds it.
+    Dimensionless. Returns a :class:`Branch` with located folds ("fold"),
+    restricted branch points ("bp") and symmetry-breaking branch points
+    ("break").
+    """
+    opts = _options(ds, ds_max, stop, max_points, _stop_fn(max_measure1))
+    if isinstance(start, BranchStart):
+        if parameter != "B":
+            raise ValueError("a branch starts at a pitchfork in B; continue it in another parameter afterwards")
+        NN = start.N if N is None else int(N)
+        if NN != start.N:
+            start = _restart(start, NN)
+        prob = _RodProblem(start.params, "B", NN, start.which)
+        u0 = eq.straight_state(start.params, NN)
+        d = np.append(start.kernel, 0.0)
+        res = switch_branch(prob, u0, start.load, d, opts, amplitude=amplitude)
+        return _branch(start.name, prob, res)
+    if isinstance(start, Branch):
+        u0, which, name = start.states[-1], start.which, start.name
+    elif isinstance(start, eq.Equilibrium):
+        u0, name = start, f"from {which or 'full'} state"
+    else:
+        raise TypeError(f"start must be a BranchStart, a Branch or an Equilibrium, got {type(start).__name__}")
+    p_here = u0.params
+    NN = u0.N if N is None else int(N)
+    if NN != u0.N:
+        u0 = eq.resample_state(u0, NN).with_params(p_here)
+    prob = _RodProblem(p_here, parameter, NN, which)
+    p0 = getattr(p_here, parameter)
+    r0 = float(np.max(np.abs(prob.residual(u0, p0))))
+    if r0 > 1e-8:
+        raise ValueError(f"the start state is not an equilibrium at its parameters (residual {r0:.1e}); "
+                         "solve it first (solve_equilibrium)")
+    Ju, Jp = prob.jacobian(u0, p0)
+    # initial tangent: Ju du = -Jp dp with dp = direction (a regular point is assumed)
+    du = np.linalg.solve(Ju, -Jp * direction)
+    res = continuation(prob, u0, p0, np.append(du, direction), opts, first_residual=r0)
+    return _branch(name, prob, res)
+
+
+def _restart(start: BranchStart, N: int) -> BranchStart:
+    for s in primary_branches(start.params, start.k, N):
+        if s.which == start.which:
+            return s
+    raise RuntimeError("unreachable")
+
+
+@single_blas_thread
+def connecting_branch(branch: Branch, bp: RodBranchPoint | None = None, ds: float = 0.02, ds_max: float = 0.3,
+                      stop: tuple = (-math.inf, math.inf), max_points: int = 400,
+                      min_measure1: float | None = 0.02, sign: float = 1.0, stop_at_bp: bool = True) -> Branch:
+    """Switch at a symmetry-breaking branch point of a primary branch onto the
+    connecting branch (b12 from b1, b34 from b3, ...) and continue it in the
+    full space (dimensionless).
+
+    ``bp`` defaults to the first "break" point of ``branch``. The new branch
+    leaves along the kernel of the Jacobian restricted to the -1 eigenspace of
+    the branch's symmetry (a pure symmetry-breaking direction, parameter
+    tangent 0); ``sign`` picks one of the mirror pair (measure_2 of either
+    sign). Stops when measure_1 drops below ``min_measure1`` (at omega = T = 0
+    the branch heads into the degenerate pitchfork of the straight rod, where
+    the full Jacobian becomes doubly singular), when it leaves ``stop``, or,
+    with ``stop_at_bp``, at the first branch point it meets: with spin, b12
+    runs from b1's secondary pitchfork to a secondary pitchfork on b2 (where
+    it would otherwise turn back along its mirror image and cycle).
+    """
+    if bp is None:
+        breaks = [q for q in branch.special if q.kind == "break"]
+        if not breaks:
+            raise ValueError(f"branch {branch.name} has no symmetry-breaking branch point")
+        bp = breaks[0]
+    b = symmetry_bases(branch.params, branch.N, branch.which)
+    u = bp.state
+    p = bp.value
+    full = _RodProblem(branch.params, branch.parameter, branch.N, None)
+    J, _ = full._full(u, p)
+    _, _, vh = np.linalg.svd(b.L_minus @ J @ b.V_minus)
+    v = sign * (b.V_minus @ vh[-1])
+    stop_fn = None if min_measure1 is None else (lambda uu, pp: eq.measure1(uu) < min_measure1)
+    opts = ContinuationOptions(ds=ds, ds_min=1e-7, ds_max=ds_max, p_min=stop[0], p_max=stop[1],
+                               max_points=max_points, tol=1e-10, stop=stop_fn,
+                               stop_on=("bp",) if stop_at_bp else ())
+    res = switch_branch(full, u, p, np.append(v, 0.0), opts, amplitude=ds)
+    odd = branch.name[1:] if branch.name.startswith("b") and branch.name[1:].isdigit() else None
+    name = f"b{odd}{int(odd) + 1}" if odd is not None else branch.name + "-connecting"
+    return _branch(name, full, res)
+
+
+@single_blas_thread
+def locate(branch: Branch, fn, target: float, tol: float = 1e-12) -> tuple[float, eq.Equilibrium]:
+    """Parameter value and state where fn(state) = target on ``branch`` (first crossing).
+
+    fn is a scalar function of an Equilibrium (e.g. :func:`equilibria.measure1`);
+    the crossing is bracketed by consecutive points and refined by the secant
+    method on the arclength, each trial corrected onto the branch.
+    """
+    vals = np.array([fn(s) - target for s in branch.states])
+    idx = np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)[0]
+    if idx.size == 0:
+        raise ValueError(f"{target} not crossed on branch {branch.name} (range {vals.min() + target:.4g} .. "
+                         f"{vals.max() + target:.4g})")
+    i = int(idx[0])
+    pts = branch.result.points
+    a, bpt = pts[i], pts[i + 1]
+    m = a.tau.size - 1
+    W = weights(m, ContinuationOptions())
+    prob = branch.problem
+    lo, hi = 0.0, bpt.s - a.s
+    flo, fhi = vals[i], vals[i + 1]
+    best = (bpt.p, bpt.u)
+    for _ in range(60):
+        sig = hi - fhi * (hi - lo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
+        if not lo < sig < hi:
+            sig = 0.5 * (lo + hi)
+        u, p, rn, it, ok = correct(prob, a.u, a.p, a.tau, sig, W, 1e-11, 12)
+        if not ok:
+            raise RuntimeError("corrector failed while locating")
+        u = eq.Equilibrium(prob.at(p), u.x, u.D, u.F, u.M, rn, it, True)
+        fq = fn(u) - target
+        best = (p, u)
+        if abs(fq) < tol:
+            break
+        lo, hi, flo, fhi = illinois_update(sig, fq, lo, hi, flo, fhi)
+        if hi - lo < 1e-14:
+            break
+    return float(best[0]), best[1]
+
+
+@single_blas_thread
+def trivial_branch_points(params: RodParameters, which: str | None, B_max: float, N: int = 32, dB: float = 0.05):
+    """Continue the straight rod in B inside Fix(``which``) and return the located
+    branch points (sign changes of the restricted bordered determinant) below B_max.
+
+    Dimensionless. Demonstrates that the pitchforks are simple in each class;
+    with ``which=None`` (full space) the determinant only touches zero at a
+    double pitchfork (omega = T = 0) and nothing is found there.
+    """
+    prob = _RodProblem(params, "B", N, which)
+    u0 = eq.straight_state(params.with_(B=0.0), N)
+    m = prob.bases.V_plus.shape[1] if prob.bases is not None else NFIELDS * (N + 1)
+    tau = np.zeros(m + 1)
+    tau[-1] = 1.0
+    opts = ContinuationOptions(ds=dB, ds_min=1e-9, ds_max=dB, p_min=-1.0, p_max=B_max, max_points=100000,
+                               tol=1e-10, locate_tol=1e-13, weight_p=0.5)
+    res = continuation(prob, u0, 0.0, tau, opts)
+    return [sp.point.p for sp in res.special if sp.kind == "bp"], res
+
+
+@dataclass(frozen=True)
+class ResolutionCheck:
+    """Two-resolution check of a branch (dimensionless).
+
+    Each checked point is re-solved at ``N_check`` with the same parameters
+    (Newton at fixed parameter, same symmetry restriction); ``measure1_error``
+    and ``deflection_error`` are the largest differences of measure_1 and of
+    the max deflection, ``residual`` the largest residual at N_check,
+    ``checked``/``skipped`` how many points were (not) re-solved (a point next
+    to a branch point or fold, where the Jacobian is singular, is skipped).
+    """
+
+    N: int
+    N_check: int
+    measure1_error: float
+    deflection_error: float
+    residual: float
+    checked: int
+    skipped: int
+
+
+@single_blas_thread
+def resolution_check(branch: Branch, N_check: int | None = None, stride: int = 4) -> ResolutionCheck:
+    """Re-solve every ``stride``-th point of ``branch`` (and its last) at N_check
+    (default N + max(8, N // 2)) and compare the measures (dimensionless)."""
+    from ..numerics.continuation import correct_at
+
+    M = branch.N + max(8, branch.N // 2) if N_check is None else int(N_check)
+    prob = _RodProblem(branch.params, branch.parameter, M, branch.which)
+    idx = sorted(set(range(1, len(branch.states), stride)) | {len(branch.states) - 1})
+    e1 = e2 = res = 0.0
+    checked = skipped = 0
+    for i in idx:
+        st = branch.states[i]
+        p = float(branch.values[i])
+        u, _, rn, _, ok = correct_at(prob, eq.resample_state(st, M), p, 1e-11, 12)
+        if not ok:
+            skipped += 1
+            continue
+        checked += 1
+        ms = eq.measures(u)
+        e1 = max(e1, abs(ms.measure1 - branch.measure1[i]))
+        e2 = max(e2, abs(ms.max_deflection - branch.max_deflection[i]))
+        res = max(res, rn)
+    return ResolutionCheck(branch.N, M, e1, e2, res, checked, skipped)
+
+
+# --- lift-off ----------------------------------------------------------------------------
+
+
+@single_blas_thread
+def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 24, omega_max: float = 4.0,
+                 d_omega: float = 0.05) -> float:
+    """Spin at which the pitchfork of the k-th primary branch of class ``which`` reaches B = 0.
+
+    Linear theory of the straight rod (dimensionless): the pitchfork load of the
+    class-restricted pencil (exact lambda = 0 problem) is followed from its
+    omega = 0 value (the k-th root) as omega grows; where it reaches B = 0 the
+    branch no longer bifurcates from the straight rod (it has merged with its
+    mirror image at -B and lifted off, Sec. 7.2). The value is the root of the
+    restricted omega^2 pencil at B = 0 inside the last bracket. Returns nan if
+    it does not happen below ``omega_max``.
+    """
+    base = params.with_(B=0.0, omega=0.0)
+    roots0 = class_loads(base, which, N, n=k)
+    if roots0.size < k:
+        raise ValueError("not enough pitchforks at omega = 0")
+    cur = float(roots0[k - 1])
+    w = 0.0
+    slope = 0.0
+    while w < omega_max:
+        w2 = w + d_omega
+        r = class_loads(base.with_(omega=w2), which, N, n=50)
+        guess = cur + slope * d_omega
+        if r.size == 0 or np.min(np.abs(r - guess)) > max(0.25 * cur, 0.02) or (cur < 0.5 * roots0[k - 1] and
+                                                                                np.min(r) > 2 * cur):
+            # the tracked pitchfork has left B > 0: refine at B = 0 in omega^2
+            A, C, _ = _straight_pencil(base.with_(omega=0.0), N, which, "omega")
+            om2 = _real_roots(A, C)
+            om = np.sqrt(om2[om2 > 0])
+            inside = om[(om > w - 1e-9) & (om <= w2 + 1e-9)]
+            if inside.size == 0:
+                cand = om[np.argmin(np.abs(om - w2))]
+                return float(cand)
+            return float(inside[0])
+        new = float(r[np.argmin(np.abs(r - guess))])
+        slope = (new - cur) / d_omega
+        cur, w = new, w2
+    return math.nan
