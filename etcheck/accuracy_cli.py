@@ -35,6 +35,8 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--N", type=_ints, default=(8, 12, 16, 24, 32, 48, 64),
                         help="comma-separated resolutions (default 8,12,16,24,32,48,64)")
     parser.add_argument("--pairs", type=int, default=10, help="eigenvalue pairs compared (default 10)")
+    parser.add_argument("--rung2", action="store_true",
+                        help="also measure rung 2: time and error of tracing the first post-buckling branch b1")
     args = parser.parse_args(argv)
     if not 1 <= args.pairs <= 30:
         parser.error("--pairs must lie in [1, 30]")
@@ -65,4 +67,30 @@ def main(argv: list[str]) -> int:
     state = "converged" if auto.converged else "NOT converged"
     print(f"automatic stability solve (two resolutions, N = {auto.N_check} and {auto.N}): "
           f"{best * 1e3:.1f} ms, {state}, max error estimate {max(auto.errors, default=float('nan')):.1e}")
+    if args.rung2:
+        _rung2(p)
     return 0
+
+
+def _rung2(p) -> None:
+    """Rung 2: trace b1 from its pitchfork to 4 x that load at several N (errors against N = 48)."""
+    import math
+
+    from .numerics.eigen import single_blas_thread
+    from .rod import branches as br
+
+    @single_blas_thread
+    def trace(N):
+        t0 = time.perf_counter()
+        start = next(s for s in br.primary_branches(p.with_(B=0.0), 1, N) if s.which == "S1")
+        b1 = br.continue_branch(p, start, stop=(0.0, 4.0 * start.load), N=N)
+        brk = next((q.value for q in b1.special if q.kind == "break"), math.nan)
+        return time.perf_counter() - t0, b1, brk
+
+    print("rung 2: branch b1 from its pitchfork to B = 4 B_1 at the mission's spin and tension (one BLAS thread)")
+    _, ref, ref_brk = trace(48)
+    print(f"{'N':>4} {'time [s]':>9} {'points':>7} {'measure1 at end':>16} {'error':>9} {'2nd pitchfork B':>16} {'error':>9}")
+    for N in (20, 24, 32, 40):
+        t, b1, brk = trace(N)
+        print(f"{N:>4} {t:>9.2f} {len(b1.values):>7} {b1.measure1[-1]:>16.10f} {abs(b1.measure1[-1] - ref.measure1[-1]):>9.1e}"
+              f" {brk:>16.10f} {abs(brk - ref_brk) / ref_brk:>9.1e}")

@@ -25,7 +25,8 @@ def _parser() -> argparse.ArgumentParser:
         description="Check an electrodynamic tether mission against magnetic buckling and whirl, "
         "and write HTML, PDF and JSON margin reports.",
         epilog=EXIT_TEXT + "\nsee also: etcheck accuracy MISSION.toml (speed/accuracy of the solvers)\n"
-        "          etcheck sweep MISSION.toml --length 50m:5km:40:log --spin 0rpm:2rpm:40 (what-if maps)",
+        "          etcheck sweep MISSION.toml --length 50m:5km:40:log --spin 0rpm:2rpm:40 (what-if maps)\n"
+        "          etcheck diagram MISSION.toml --spin 0.25 --branches 3 (post-buckling bifurcation diagram)",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("mission", help="mission file (TOML), e.g. missions/set.toml")
@@ -51,6 +52,10 @@ def main(argv: list[str] | None = None) -> int:
         from .accuracy_cli import main as accuracy_main
 
         return accuracy_main(argv[1:])
+    if argv and argv[0] == "diagram":
+        from .diagram_cli import main as diagram_main
+
+        return diagram_main(argv[1:])
     if argv and argv[0] == "sweep":
         from .sweep_cli import main as sweep_main
 
@@ -100,7 +105,7 @@ def _summary(results: dict, paths: list[Path]) -> None:
     """A few lines on stdout: verdict, margins, where the reports are."""
     print(f"etcheck {__version__}: {results['mission']['name']}: {results['verdict'].upper()}")
     for m in results["margins"]:
-        value = "unlimited" if m["value"] is None else f"{m['value']:.4g}"
+        value = "not answered" if m["verdict"] == "incomplete" else "unlimited" if m["value"] is None else f"{m['value']:.4g}"
         print(f"  {m['name']}: margin {value} (required {m['required']:g}) -> {m['verdict']} [{m['model']}]")
         if m["verdict"] == "incomplete":
             print(f"    incomplete: {m['why']}")

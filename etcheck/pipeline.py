@@ -65,6 +65,9 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         linear = linear_stability(scaled, options)
         accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N else None
     margins = _margins(mission, sc, scaled, chosen, static, linear)
+    post = _postbuckling(mission, scaled, static, linear)
+    if post and post.get("computed"):
+        margins += _buckled_margins(post, sc, scaled, mission.required_margin)
     results = {
         "schema_version": SCHEMA_VERSION,
         "etcheck_version": __version__,
@@ -81,10 +84,11 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete},
         "straight_rod": static,
         "linear": linear,
+        "postbuckling": post,
         "accuracy": accuracy_rows,
         "margins": [m.as_dict() for m in margins],
         "verdict": overall_verdict(margins),
-        "validity": _validity(mission, scaled, chosen),
+        "validity": _validity(mission, scaled, chosen, post),
         "elapsed_s": time.perf_counter() - started,
     }
     return CheckResult(results=results)
@@ -144,6 +148,44 @@ def static_buckling(scaled: Scaled) -> dict[str, Any]:
             for name, values in freq.items()
         },
     }
+
+
+def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict | None) -> dict | None:
+    """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load."""
+    from .postbuckling import needs_postbuckling, postbuckling_check
+
+    p = scaled.params
+    if linear is not None:
+        crit = linear["critical_load"]
+        B_c = crit["value"] if crit["kind"] in ("divergence", "flutter") else (0.0 if crit["kind"] == "unstable at start" else None)
+    else:
+        B_c = static["critical_loads"][0]["B"] if p.omega == 0 and p.T == 0 else None
+    if B_c is None or not needs_postbuckling(p.B, B_c, mission.required_margin):
+        return None
+    if B_c == 0.0:
+        return {"computed": False, "B_c": 0.0, "load_ratio": None,
+                "reason": "the straight tether is unstable without any magnetic load at this spin and tension "
+                "(it whirls): no buckled branch grows from a stable straight state here"}
+    return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
+
+
+def _buckled_margins(post: dict, sc: Scene, scaled: Scaled, required: float) -> list[Margin]:
+    """Load margin of the buckled tether on b1 up to its secondary pitchfork (rungs 2-3)."""
+    B_star = post.get("secondary_pitchfork_B")
+    op = post.get("operating")
+    if op is None or not op.get("available"):
+        return []
+    if B_star is None:
+        return [incomplete_margin("buckled tether (b1): load to its secondary pitchfork", "N/m", sc.load, required, 3,
+                                  "no secondary pitchfork found on b1 in the computed range")]
+    if not op["stable"]:
+        return [ratio_margin("buckled tether (b1): load to its secondary pitchfork", "N/m", 0.0, sc.load, required, 3,
+                             0.0, "the buckled state at the operating load is unstable (rung 3)")]
+    return [ratio_margin("buckled tether (b1): load to its secondary pitchfork", "N/m",
+                         post["secondary_pitchfork_IB0_N_per_m"], sc.load, required, 3,
+                         post["secondary_pitchfork_error"],
+                         "the buckled (coiled) tether on b1 stays stable up to its symmetry-breaking secondary "
+                         "pitchfork at the operating spin and tension (rungs 2-3)")]
 
 
 def _margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: dict, linear: dict | None) -> list[Margin]:
@@ -256,13 +298,22 @@ def _scene_dict(mission: Mission, sc: Scene) -> dict[str, float]:
     }
 
 
-def _validity(mission: Mission, scaled: Scaled, chosen: Plan) -> list[str]:
+def _after_buckling(post: dict | None) -> str:
+    if post and post.get("computed"):
+        return ("Past (or near) the first critical load the first post-buckling branch b1 is followed as nonlinear "
+                "whirling equilibria (rung 2, Chebyshev collocation, Newton with the exact Jacobian, pseudo-arclength "
+                "continuation) and each state's stability from its linearisation (rung 3); other branches (b2, b12, "
+                "...) are in `etcheck diagram`. Every measure is checked at a second resolution.")
+    return ("Linear stability of the straight tether: margins say where it first buckles or whirls; when the operating "
+            "point is within the required margin of that load, the buckled tether is analysed too (rungs 2-3).")
+
+
+def _validity(mission: Mission, scaled: Scaled, chosen: Plan, post: dict | None = None) -> list[str]:
     p = scaled.params
     items = [
         "Model: inextensible, unshearable, intrinsically straight Kirchhoff rod, welded (clamped) at both ends, "
         "uniform field along the undeformed axis (Valverde & van der Heijden).",
-        "Linear stability of the straight tether only: margins say where it first buckles or whirls, "
-        "not what happens after (post-buckling needs rung 2/3).",
+        _after_buckling(post),
         "The load is the worst case |I| x |B0| over the given ranges; field components across the tether "
         "(which drive the intended drag) are not part of this check.",
     ]

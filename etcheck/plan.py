@@ -6,7 +6,8 @@ from dataclasses import dataclass
 
 from .rod.parameters import RodParameters
 
-RUNG_NAMES = {0: "rung 0 (analytic)", 1: "rung 1 (linear spectral)"}
+RUNG_NAMES = {0: "rung 0 (analytic)", 1: "rung 1 (linear spectral)",
+              3: "rungs 2-3 (post-buckling equilibria and their stability)"}
 
 
 @dataclass(frozen=True)

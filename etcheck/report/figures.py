@@ -255,11 +255,36 @@ def _shade_grid(ax, load, rpm, g, thr):
     return b_row, rpm, load, w_col
 
 
+def postbuckling_plots(results: dict) -> dict[str, str]:
+    """b1 in physical units with the operating point, and the buckled shape at the operating load."""
+    from .diagram_figures import branch_plot, shapes_plot
+
+    post = results["postbuckling"]
+    d = post["diagram"]
+    op = post.get("operating")
+    out = {"b1": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]", "maximum lateral deflection [m]",
+                             "first post-buckling branch b1 at the operating spin and tension",
+                             "pitchfork_IB0_N_per_m", mark=_operating_mark(results, op))}
+    if op and op.get("available"):
+        out["shape"] = shapes_plot([(f"b1 at I·B0 = {results['scene']['load_N_per_m']:.3g} N/m", op["shape"])],
+                                   results["scales"]["length_m"])
+    return out
+
+
+def _operating_mark(results: dict, op: dict | None):
+    load = results["scene"]["load_N_per_m"]
+    if op and op.get("available"):
+        return (load, op["max_deflection_m"], "operating point (buckled)")
+    return (load, 0.0, "operating point (straight)")
+
+
 def figures(results: dict) -> dict[str, str]:
     """All figures the report shows, keyed by name."""
     out = {"chi": chi_plot(results), "mode": mode_plot(results)}
     if results.get("linear"):
         out["campbell"] = campbell_plot(results)
         out["map"] = stability_map_plot(results)
+    if (results.get("postbuckling") or {}).get("computed"):
+        out |= postbuckling_plots(results)
     return out
 

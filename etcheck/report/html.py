@@ -64,3 +64,11 @@ def render_sweep_html(results: dict) -> str:
     figs = {name: Markup(svg) for name, svg in sweep_figures(results).items()}
     return _environment().get_template("sweep.html.j2").render(r=results, figs=figs, models=dict(models),
                                                                failures=failures[:50])
+
+
+def render_diagram_html(results: dict) -> str:
+    """The self-contained HTML report of a bifurcation diagram."""
+    from .diagram_figures import diagram_figures
+
+    figs = {name: Markup(svg) for name, svg in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
+    return _environment().get_template("diagram.html.j2").render(r=results, d=results["diagram"], figs=figs)

@@ -224,7 +224,9 @@ class _RodProblem:
         return eq.retract(u, full, u.params)
 
     def tests(self, u, p, Ju):
-        if self.bases is None:
+        # R = 1: rotations about e3 are a continuous symmetry whose generator lies in the antisymmetric space,
+        # so the restricted antisymmetric Jacobian is singular at every buckled state: no break test there
+        if self.bases is None or self.at(p).R == 1.0:
             return {}
         J, _ = self._full(u, p)
         b = self.bases

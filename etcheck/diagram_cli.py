@@ -1,0 +1,123 @@
+"""``etcheck diagram MISSION.toml --spin 0.25 --branches 3``: bifurcation diagrams of the buckled tether.
+
+Rung 2 (whirling equilibria, continuation from the pitchforks of the straight
+tether, branch switching onto the connecting branches) with the stability of
+every state (rung 3). ``--spin`` takes the paper's dimensionless omega (a
+bare number) or a spin rate with units ("0.1 rpm"); ``--R`` overrides the
+stiffness ratio EI2/EI1 (the paper's R = 1 figure). Writes
+OUT/<mission>/diagram-<spin>[-R<R>]/{diagram.html, diagram.pdf, diagram.json}.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime as _dt
+import math
+from pathlib import Path
+
+from .cli import guarded
+
+FORMATS = ("html", "pdf", "json")
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="etcheck diagram",
+        description="Bifurcation diagram of the buckled tether (post-buckling branches, their stability and shapes).",
+        epilog="exit codes: 0 written, 2 bad input, 3 a solve failed. Example (paper Fig. fig:tet:bif-w025-measure1): "
+        "etcheck diagram missions/set.toml --spin 0.25 --branches 3",
+    )
+    p.add_argument("mission", help="mission file (TOML)")
+    p.add_argument("--spin", default=None,
+                   help="spin: dimensionless omega (e.g. 0.25) or a rate with units (e.g. '0.1 rpm'); default: the mission's")
+    p.add_argument("--R", type=float, default=None, help="override the stiffness ratio EI2/EI1 (0 < R <= 1)")
+    p.add_argument("--branches", type=int, default=3, help="number of primary branches b1, b2, ... (default 3)")
+    p.add_argument("--B-max", type=float, default=None, help="end of the load range (dimensionless B; default 3 or past the last pitchfork)")
+    p.add_argument("--N", type=int, default=32, help="Chebyshev resolution of the equilibria (default 32)")
+    p.add_argument("--no-stability", action="store_true", help="skip the stability of each state (rung 3)")
+    p.add_argument("--out", default="reports", help="output folder (default: reports/)")
+    p.add_argument("--format", default="html,pdf,json", help="comma-separated list of html, pdf, json")
+    return p
+
+
+def _spin(text: str | None, scaled) -> float:
+    from .errors import MissionError
+
+    if text is None:
+        return scaled.params.omega
+    try:
+        value = float(text)
+    except ValueError:
+        from .units import QuantityProblem, to_quantity
+
+        try:
+            q = to_quantity(text, "angular_rate")
+        except QuantityProblem as exc:
+            raise MissionError("command line", "--spin", str(exc)) from None
+        value = float(q.value) / scaled.scales.frequency
+    if not math.isfinite(value) or value < 0:
+        raise MissionError("command line", "--spin", f"must be a finite, non-negative spin, got {text!r}")
+    return value
+
+
+def main(argv: list[str]) -> int:
+    parser = _parser()
+    args = parser.parse_args(argv)
+    formats = tuple(x.strip().lower() for x in args.format.split(",") if x.strip())
+    if not formats or any(x not in FORMATS for x in formats):
+        parser.error(f"--format: use any of {', '.join(FORMATS)}")
+    if not 1 <= args.branches <= 8:
+        parser.error("--branches must lie in [1, 8]")
+    if not 16 <= args.N <= 96:
+        parser.error("--N must lie in [16, 96]")
+    if args.R is not None and not 0 < args.R <= 1:
+        parser.error("--R must lie in (0, 1]")
+    if args.B_max is not None and not 0 < args.B_max <= 1e3:
+        parser.error("--B-max must lie in (0, 1000]")
+
+    def run():
+        from . import __version__
+        from .mission import load_mission
+        from .postbuckling import DiagramOptions, bifurcation_diagram
+        from .report import write_reports
+        from .scaling import scale, scene
+
+        mission = load_mission(args.mission)
+        scaled = scale(scene(mission))
+        omega = _spin(args.spin, scaled)
+        params = scaled.params.with_(omega=omega)
+        if args.R is not None:
+            params = params.with_(R=args.R)
+        options = DiagramOptions(branches=args.branches, B_max=args.B_max, N=args.N, stability=not args.no_stability)
+        d = bifurcation_diagram(params, scaled.scales, options)
+        tag = f"diagram-w{omega:.4g}" + (f"-R{args.R:g}" if args.R is not None else "")
+        results = {
+            "schema_version": 1,
+            "etcheck_version": __version__,
+            "generated": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+            "mission": mission.echo(),
+            "spin_rpm": omega * scaled.scales.frequency * 60 / (2 * math.pi),
+            "R_override": args.R,
+            "scales": {"length_m": scaled.scales.length, "load_N_per_m": scaled.scales.load,
+                       "force_N": scaled.scales.force},
+            "diagram": d,
+        }
+        return results, write_reports(results, Path(args.out) / mission.slug / tag, formats, kind="diagram")
+
+    out = guarded(run, "nothing written")
+    if isinstance(out, int):
+        return out
+    results, paths = out
+    d = results["diagram"]
+    print(f"etcheck diagram: {results['mission']['name']} at omega = {d['params']['omega']:.4g} "
+          f"(R = {d['params']['R']:.4g}), B up to {d['B_max']:.4g}, {d['time_s']:.1f} s")
+    for b in d["branches"]:
+        sp = ", ".join(f"{q['kind']} at B = {q['B']:.6g}" for q in b["special"]) or "no special points"
+        start = f"pitchfork B = {b['pitchfork_B']:.10g}" if b.get("pitchfork_B") is not None else f"from {b.get('from')}"
+        print(f"  {b['label']}: {start}; {b['points']} points, N = {b['N']}, {b['time']:.2f} s, "
+              f"measure1 error {b['measure1_error']:.1e}; {sp}")
+    for lifted in d["lifted_off"]:
+        print(f"  {lifted['label']}: lifted off at omega = {lifted['liftoff_omega']:.6g} (no longer bifurcates)")
+    for path in paths:
+        print(f"  wrote {path}")
+    return 0

@@ -1,0 +1,297 @@
+"""Rungs 2 and 3 for a mission: the buckled tether, in the numbers an engineer reads.
+
+Everything is solved dimensionless in :mod:`etcheck.rod.branches` (whirling
+equilibria, continuation, branch switching) and :mod:`etcheck.rod.spectrum`
+(the linearisation about a buckled state); this module chooses what to ask
+(which branches, how far, which shapes) and returns JSON-able data with the
+dimensionless values and their SI counterparts (lengths in m, loads in N/m,
+forces in N, moments in N m) from the mission's :class:`~etcheck.scaling.Scales`.
+
+Branch labels follow the paper: b(2k-1) is the branch of the k-th pitchfork
+in Fix(S1), b(2k) the one in Fix(S2), b(2k-1)(2k) the connecting branch that
+leaves b(2k-1) at its symmetry-breaking (secondary) pitchfork. A branch whose
+pitchfork has reached B = 0 (lift-off under spin) no longer starts on the
+straight tether; the labels of the branches above it keep their numbers.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .errors import SolverError
+from .rod import equilibria as eq
+from .rod.branches import (
+    Branch,
+    connecting_branch,
+    continue_branch,
+    liftoff_spin,
+    locate,
+    primary_branches,
+    resolution_check,
+)
+from .rod.parameters import RodParameters
+from .rod.spectrum import spectrum
+from .rod.stability import THRESHOLD
+from .scaling import Scales
+
+#: arc-length samples of a drawn shape
+SHAPE_POINTS = 121
+
+
+@dataclass(frozen=True)
+class DiagramOptions:
+    """What a bifurcation diagram contains (dimensionless settings).
+
+    ``branches``: number of primary branches still attached to the straight
+    tether at the scene's spin (b1, b2, ... in order; lifted-off ones are
+    listed, not counted);
+    ``B_max``: end of the load range (None: 3, or 1.3 x the highest pitchfork);
+    ``N``: Chebyshev resolution of the equilibria; ``connect``: follow the
+    connecting branches (b12, b34, ...); ``stability``: mark each point stable
+    or unstable (rung 3, at the scene's damping); ``shape_measure``: measure_1
+    at which the shapes are drawn (the paper's Fig.
+    ``fig:tet:tether-modes-transition`` uses 0.04).
+    """
+
+    branches: int = 3
+    B_max: float | None = None
+    N: int = 32
+    connect: bool = True
+    stability: bool = True
+    shape_measure: float = 0.04
+    max_points: int = 400
+
+
+def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, float]]:
+    """(label, symmetry, k-th pitchfork of its class, lift-off spin) of branches b1, b2, ... until n of them
+    are still attached to the straight tether at the scene's spin (lifted-off ones are listed too)."""
+    out, attached, j = [], 0, 0
+    while attached < n and j < n + 8:
+        j += 1
+        which = "S1" if j % 2 else "S2"
+        kk = (j + 1) // 2
+        w = (liftoff_spin(params.with_(B=0.0), which="b1" if which == "S1" else "b2", k=kk, N=24)
+             if params.omega > 0 else math.nan)
+        out.append((f"b{j}", which, kk, w))
+        attached += not (math.isfinite(w) and params.omega >= w)
+    return out
+
+
+def _shape(state: eq.Equilibrium, L: float) -> dict[str, Any]:
+    s = np.linspace(0.0, 1.0, SHAPE_POINTS)
+    x = state.x0(s)
+    return {"s": s.tolist(), "x": x[:, 0].tolist(), "y": x[:, 1].tolist(), "z": x[:, 2].tolist(),
+            "x_m": (x[:, 0] * L).tolist(), "y_m": (x[:, 1] * L).tolist(), "z_m": (x[:, 2] * L).tolist()}
+
+
+def _stability(branch: Branch, gamma: float, k: int = 6) -> tuple[list, list, list]:
+    """Stable flag, max Re lambda and its two-resolution error at every point of a branch (rung 3)."""
+    stable, growth, errors = [], [], []
+    for st in branch.states:
+        sp = spectrum(st.params.with_(gamma=gamma), base=st, k=k, tol=1e-6)
+        g = float(np.max(sp.eigenvalues.real)) if sp.eigenvalues.size else math.nan
+        stable.append(bool(sp.converged and g <= THRESHOLD) if sp.converged else None)
+        growth.append(g if math.isfinite(g) else None)
+        errors.append(float(np.max(sp.errors)) if sp.errors.size else None)
+    return stable, growth, errors
+
+
+def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float) -> dict:
+    L = scales.length
+    t0 = time.perf_counter()
+    check = resolution_check(branch)
+    out = branch.summary() | {
+        "label": label,
+        "points": len(branch.values),
+        "IB0_N_per_m": (np.asarray(branch.values) * scales.load).tolist(),
+        "max_deflection_m": (branch.max_deflection * L).tolist(),
+        "measure1_error": check.measure1_error,
+        "deflection_error": check.deflection_error,
+        "N_check": check.N_check,
+        "special": [
+            {"kind": q.kind, "B": q.value, "IB0_N_per_m": q.value * scales.load, "measure1": q.measure1,
+             "bracket": list(q.bracket)}
+            for q in branch.special
+        ],
+    }
+    if options.stability:
+        stable, growth, errs = _stability(branch, gamma)
+        out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
+    shapes = {}
+    try:
+        B, st = locate(branch, eq.measure1, options.shape_measure)
+        shapes[f"measure1={options.shape_measure:g}"] = _shape(st, L) | {"B": B, "measure1": eq.measure1(st)}
+    except ValueError:
+        pass
+    shapes["end"] = _shape(branch.states[-1], L) | {"B": float(branch.values[-1]),
+                                                    "measure1": float(branch.measure1[-1])}
+    out["shapes"] = shapes
+    out["check_time"] = time.perf_counter() - t0
+    return out
+
+
+def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DiagramOptions()) -> dict:
+    """Branches of whirling equilibria of the tether in the load B (rung 2), with stability (rung 3).
+
+    ``params`` fixes omega, T, R, ... (B is the continuation parameter).
+    Returns JSON-able data: per branch its label, symmetry class, pitchfork
+    load, points (B, measure_1, measure_2, max deflection; I·B0 in N/m and
+    deflection in m), special points (folds, branch points), shapes, cost,
+    the two-resolution error and, with ``options.stability``, the stability
+    of every point at the scene's damping.
+    """
+    t_all = time.perf_counter()
+    labels = _labels(params, options.branches)
+    attached = [(lab, which, kk, w) for lab, which, kk, w in labels if not (math.isfinite(w) and params.omega >= w)]
+    lifted = [{"label": lab, "liftoff_omega": w} for lab, _, _, w in labels if math.isfinite(w) and params.omega >= w]
+    # the j-th attached branch of a class starts at that class's j-th pitchfork (lifted ones are gone)
+    starts: dict[str, Any] = {}
+    count = {"S1": 0, "S2": 0}
+    for lab, which, _, _ in attached:
+        count[which] += 1
+        pair = primary_branches(params.with_(B=0.0), count[which], options.N)
+        starts[lab] = next(s for s in pair if s.which == which)
+    loads = [s.load for s in starts.values()]
+    B_max = options.B_max or max(3.0, 1.3 * max(loads, default=0.0))
+    out_branches = []
+    for lab, which, _, w in attached:
+        start = starts[lab]
+        branch = continue_branch(params, start, stop=(0.0, B_max), N=options.N, max_points=options.max_points)
+        data = _branch_data(branch, lab, scales, options, params.gamma)
+        data |= {"pitchfork_B": start.load, "pitchfork_IB0_N_per_m": start.load * scales.load,
+                 "symmetry": which, "liftoff_omega": w if math.isfinite(w) else None}
+        out_branches.append(data)
+        odd = int(lab[1:])
+        if options.connect and which == "S1" and any(q.kind == "break" for q in branch.special):
+            con = connecting_branch(branch, stop=(0.0, B_max), max_points=options.max_points)
+            cdata = _branch_data(con, f"b{odd}{odd + 1}", scales, options, params.gamma)
+            cdata |= {"symmetry": None, "from": lab}
+            out_branches.append(cdata)
+    if not out_branches and not lifted:
+        raise SolverError("rung 2: no branch was found")
+    return {
+        "model": "rung 2 (whirling equilibria, pseudo-arclength continuation)"
+        + (" + rung 3 (stability of each state)" if options.stability else ""),
+        "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "omega", "T", "gamma")},
+        "B_max": B_max,
+        "IB0_max_N_per_m": B_max * scales.load,
+        "N": options.N,
+        "branches": out_branches,
+        "lifted_off": lifted,
+        "time_s": time.perf_counter() - t_all,
+    }
+
+
+def operating_state(params: RodParameters, scales: Scales, N: int = 32) -> dict:
+    """The post-buckled tether at the operating load on b1 (rung 2) and its stability (rung 3).
+
+    For an operating B past b1's pitchfork at the operating spin and tension.
+    Returns shape (m), maximum lateral deflection (m), end forces (N) and
+    moments (N m) in the rotating frame, the least-damped eigenvalue (in 1/s
+    and Hz, with damping ratio), and the two-resolution errors. Raises
+    :class:`~etcheck.errors.SolverError` if b1 cannot be followed there.
+    """
+    t0 = time.perf_counter()
+    w = liftoff_spin(params.with_(B=0.0), which="b1", k=1, N=24)
+    if math.isfinite(w) and params.omega >= w:
+        return {"available": False, "reason": f"b1 has lifted off at omega = {w:.4g} (< operating omega = "
+                f"{params.omega:.4g}): no buckled state grows from the straight tether here"}
+    start = next(s for s in primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
+    if params.B <= start.load:
+        return {"available": False, "reason": "the operating load is below b1's pitchfork: the tether is straight"}
+    branch = continue_branch(params, start, stop=(0.0, params.B * (1 + 1e-9)), N=N, max_points=800)
+    if branch.values[-1] < params.B * (1 - 1e-9):
+        raise SolverError(f"rung 2: b1 could not be followed to the operating load ({branch.reason})")
+    B, st = locate(branch, lambda s: s.params.B, params.B)
+    check = resolution_check(branch)
+    ms = eq.measures(st)
+    sp = spectrum(st.params, base=st, k=8, tol=1e-6)
+    lam = sp.eigenvalues
+    i = int(np.argmax(lam.real)) if lam.size else None
+    L, force, moment, wc = scales.length, scales.force, scales.force * scales.length, scales.frequency
+    least = None
+    if i is not None:
+        z = lam[i]
+        least = {"re": float(z.real), "im": float(z.imag), "growth_rate_per_s": float(z.real * wc),
+                 "frequency_Hz": float(abs(z.imag) * wc / (2 * math.pi)),
+                 "damping_ratio": float(-z.real / abs(z)) if abs(z) else None,
+                 "decay_time_s": float(-1.0 / (z.real * wc)) if z.real < 0 else None,
+                 "error": float(sp.errors[i])}
+    return {
+        "available": True,
+        "branch": "b1",
+        "B": B,
+        "measure1": ms.measure1,
+        "max_deflection": ms.max_deflection,
+        "max_deflection_m": ms.max_deflection * L,
+        "end_shortening_m": ms.end_shortening * L,
+        "end_force_N": {"s=0": [v * force for v in ms.F0], "s=L": [v * force for v in ms.F1]},
+        "end_moment_N_m": {"s=0": [v * moment for v in ms.M0], "s=L": [v * moment for v in ms.M1]},
+        "shape": _shape(st, L),
+        "deflection_error_m": check.deflection_error * L,
+        "residual": st.residual_norm,
+        "N": N,
+        "N_check": check.N_check,
+        "stable": bool(sp.converged and lam.size and np.max(lam.real) <= THRESHOLD),
+        "spectrum_converged": bool(sp.converged),
+        "least_damped": least,
+        "points": len(branch.values),
+        "time_s": time.perf_counter() - t0,
+    }
+
+
+#: beyond this multiple of the first critical load the tether has many coils: rung 2 is not attempted
+MAX_LOAD_RATIO = 6.0
+
+
+def needs_postbuckling(B: float, B_c: float | None, required: float) -> bool:
+    """The scene needs rungs 2-3 when the operating load is past, or within the
+    required margin of, the first critical load (dimensionless loads)."""
+    return B_c is not None and B > 0 and B * required >= B_c
+
+
+def _break_error(params: RodParameters, B_star: float, N: int) -> float:
+    """Relative change of b1's first secondary pitchfork when b1 is recomputed at 1.5 N."""
+    M = N + N // 2
+    start = next(s for s in primary_branches(params.with_(B=0.0), 1, M) if s.which == "S1")
+    branch = continue_branch(params, start, stop=(0.0, 1.05 * B_star), N=M)
+    other = [q.value for q in branch.special if q.kind == "break"]
+    return abs(other[0] - B_star) / B_star if other else math.inf
+
+
+def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, required: float, N: int = 32) -> dict:
+    """Rung 2/3 answers for a scene near or past its first critical load B_c (dimensionless).
+
+    The first branch b1 at the operating spin and tension (with stability at
+    the scene's damping) up to past the operating load, its secondary
+    pitchfork (the end of its stable part), and, past B_c, the buckled state
+    at the operating load (:func:`operating_state`). JSON-able.
+    """
+    t0 = time.perf_counter()
+    ratio = params.B / B_c if B_c > 0 else math.inf
+    base = {"B_c": B_c, "load_ratio": ratio}
+    if ratio > MAX_LOAD_RATIO:
+        return base | {"computed": False,
+                       "reason": f"the operating load is {ratio:.3g} times the first critical load: the buckled tether "
+                       f"has many coils, beyond rung 2's validated range (up to {MAX_LOAD_RATIO:g} times)"}
+    opts = DiagramOptions(branches=1, connect=False, stability=True, N=N,
+                          B_max=max(1.5 * params.B, 5.0 * B_c))
+    diagram = bifurcation_diagram(params, scales, opts)
+    out = base | {"computed": True, "diagram": diagram}
+    b1 = next((b for b in diagram["branches"] if b["label"] == "b1"), None)
+    if b1 is not None:
+        breaks = [q for q in b1["special"] if q["kind"] == "break"]
+        first_unstable = next((v for v, st in zip(b1["values"], b1["stable"]) if st is False), None)
+        out["secondary_pitchfork_B"] = breaks[0]["B"] if breaks else None
+        out["secondary_pitchfork_error"] = _break_error(params, breaks[0]["B"], N) if breaks else None
+        out["secondary_pitchfork_IB0_N_per_m"] = breaks[0]["IB0_N_per_m"] if breaks else None
+        out["b1_first_unstable_B"] = first_unstable
+        out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
+    out["operating"] = operating_state(params, scales, N) if params.B > B_c else None
+    out["time_s"] = time.perf_counter() - t0
+    return out
