@@ -89,15 +89,45 @@ def _shape(state: eq.Equilibrium, L: float) -> dict[str, Any]:
             "x_m": (x[:, 0] * L).tolist(), "y_m": (x[:, 1] * L).tolist(), "z_m": (x[:, 2] * L).tolist()}
 
 
-def _stability(branch: Branch, gamma: float, k: int = 6) -> tuple[list, list, list]:
-    """Stable flag, max Re lambda and its two-resolution error at every point of a branch (rung 3)."""
-    stable, growth, errors = [], [], []
-    for st in branch.states:
-        sp = spectrum(st.params.with_(gamma=gamma), base=st, k=k, tol=1e-6)
-        g = float(np.max(sp.eigenvalues.real)) if sp.eigenvalues.size else math.nan
-        stable.append(bool(sp.converged and g <= THRESHOLD) if sp.converged else None)
-        growth.append(g if math.isfinite(g) else None)
-        errors.append(float(np.max(sp.errors)) if sp.errors.size else None)
+def _spectrum_at(state: eq.Equilibrium, gamma: float, k: int = 6):
+    sp = spectrum(state.params.with_(gamma=gamma), base=state, k=k, tol=1e-6)
+    g = float(np.max(sp.eigenvalues.real)) if sp.eigenvalues.size else math.nan
+    err = float(np.max(sp.errors)) if sp.errors.size else None
+    return (bool(g <= THRESHOLD) if sp.converged and math.isfinite(g) else None), g, err
+
+
+def _stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
+    """Stable flag, max Re lambda and its error at the points of a branch (rung 3).
+
+    With damping (gamma > 0) stability can change only where the static
+    operator is singular (Kelvin-Tait-Chetaev): at the special points located
+    on the branch (folds and branch points in the symmetric space, symmetry-
+    breaking pitchforks in the antisymmetric one). Each stretch between them is
+    then classified by its middle and last state (they must agree); the other
+    points carry the stretch's flag and no eigenvalue (None). Without damping
+    every state is checked (gyroscopic Krein collisions can occur anywhere).
+    """
+    n = len(branch.states)
+    stable: list = [None] * n
+    growth: list = [None] * n
+    errors: list = [None] * n
+    if gamma > 0:
+        cuts = sorted({q.raw.index for q in branch.special})
+        bounds = [0, *[c + 1 for c in cuts], n]
+        stretches = [(a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+    else:
+        stretches = [(i, i + 1) for i in range(n)]
+    for a, b in stretches:
+        probe = sorted({(a + b) // 2, b - 1} - ({0} if b - a > 1 else set()))
+        flags = []
+        for i in probe:
+            flag, g, err = _spectrum_at(branch.states[i], gamma)
+            growth[i] = g if math.isfinite(g) else None
+            errors[i] = err
+            flags.append(flag)
+        verdict = flags[0] if len(set(flags)) == 1 else None  # disagreement: leave unclassified
+        for i in range(a, b):
+            stable[i] = verdict
     return stable, growth, errors
 
 
