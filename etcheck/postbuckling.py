@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -325,3 +326,35 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
     out["operating"] = operating_state(params, scales, N) if params.B > B_c else None
     out["time_s"] = time.perf_counter() - t0
     return out
+
+
+@lru_cache(maxsize=256)
+def _b1_liftoff(P: float, R: float, Gamma: float, f: float, T: float) -> float:
+    return liftoff_spin(RodParameters(P=P, R=R, Gamma=Gamma, f=f, T=T), which="b1", k=1, N=24)
+
+
+def buckled_point(params: RodParameters, N: int = 24) -> dict:
+    """Is the tether stable on b1 at this (straight-unstable) point? Dimensionless, for sweeps.
+
+    b1 exists when its pitchfork has not lifted off at this spin; it is
+    followed from its pitchfork to the point's load and the state there is
+    classified by its spectrum (rung 3, the scene's damping). Returns
+    ``stable`` (True/False, None when not assessed), ``max_deflection`` (units
+    of L) and ``reason``.
+    """
+    out = {"stable": None, "max_deflection": None, "reason": ""}
+    lift = _b1_liftoff(params.P, params.R, params.Gamma, params.f, params.T)
+    if math.isfinite(lift) and params.omega >= lift:
+        return out | {"stable": False, "reason": f"b1 lifted off at omega = {lift:.6g}: no coiled state to settle in"}
+    start = next(s for s in primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
+    if params.B <= start.load:
+        return out | {"reason": "below b1's pitchfork"}
+    if params.B > MAX_LOAD_RATIO * start.load:
+        return out | {"reason": f"more than {MAX_LOAD_RATIO:g} times b1's pitchfork load (many coils): not assessed"}
+    branch = continue_branch(params, start, stop=(0.0, params.B * (1 + 1e-9)), N=N, max_points=800)
+    if branch.values[-1] < params.B * (1 - 1e-9):
+        return out | {"reason": f"b1 could not be followed to this load ({branch.reason})"}
+    _, st = locate(branch, lambda s: s.params.B, params.B)
+    flag, g, _ = _spectrum_at(st, params.gamma)
+    return out | {"stable": flag, "max_deflection": eq.measures(st).max_deflection,
+                  "reason": "" if flag is not None else "spectrum not converged"}

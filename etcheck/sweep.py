@@ -56,6 +56,7 @@ RPM = 60.0 / (2.0 * math.pi)
 P_MAX = 0.1
 STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE = "ok", "failed", "outside validated range"
 REGION_STABLE, REGION_UNSTABLE, REGION_FAILED = "straight-stable", "straight-unstable", "failed"
+REGION_BUCKLED = "buckled-stable"
 
 
 class SweepInterrupted(EtcheckError):
@@ -73,7 +74,10 @@ class SweepOptions:
     process); ``scheduler``: address of a dask.distributed scheduler (then
     ``workers`` is ignored); ``cache``: folder of per-point results (None:
     no cache); ``chunk``: points per task; ``connect_timeout``: seconds to
-    wait for the dask scheduler.
+    wait for the dask scheduler; ``buckled``: at straight-unstable points,
+    follow the first post-buckling branch b1 to the point and label it
+    buckled-stable when the coiled state is stable (rungs 2-3; about a
+    second per such point).
     """
 
     tol: float = 1e-8
@@ -82,6 +86,7 @@ class SweepOptions:
     cache: Path | None = None
     chunk: int = 8
     connect_timeout: float = 10.0
+    buckled: bool = False
 
 
 # --------------------------------------------------------------------------- points
@@ -106,7 +111,7 @@ def point_scene(base: Scene, current: float, field: float, values: dict[str, flo
     return replace(s, **changes)
 
 
-def solve_point(params: RodParameters, tol: float, spin: bool = True) -> dict[str, Any]:
+def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: bool = False) -> dict[str, Any]:
     """The straight-tether critical values at one point (dimensionless, JSON-able).
 
     Returns ``status`` (ok, failed, outside validated range), ``reason``,
@@ -114,7 +119,9 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True) -> dict[st
     unstable without load), ``omega_c`` (critical spin at the point's load; 0
     if statically buckled), ``omega_rest`` (critical spin without load, damped
     only), their relative errors, ``stable`` and the resolution ``N``.
-    ``spin=False`` skips the critical spin (damped only).
+    ``spin=False`` skips the critical spin (damped only). ``buckled=True``
+    adds ``buckled_stable`` (and ``buckled_deflection``, units of L) at
+    straight-unstable points: is the coiled state on b1 stable there (rungs 2-3).
     """
     out: dict[str, Any] = {"status": STATUS_OK, "reason": "", "model": "", "B_c": None, "B_c_error": None,
                            "omega_c": None, "omega_c_error": None, "omega_rest": None, "stable": None, "N": None}
@@ -143,6 +150,14 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True) -> dict[st
             out[key] = None if math.isnan(v) else v
     if out["status"] != STATUS_OK:
         out["stable"] = None
+    elif buckled and out["stable"] is False and params.gamma > 0:
+        from .postbuckling import buckled_point
+
+        try:
+            b = buckled_point(params)
+        except (ArithmeticError, ValueError, EtcheckError, np.linalg.LinAlgError) as exc:
+            b = {"stable": None, "max_deflection": None, "reason": f"rung 2 failed: {exc}"}
+        out |= {"buckled_stable": b["stable"], "buckled_deflection": b["max_deflection"], "buckled_reason": b["reason"]}
     return out
 
 
@@ -236,15 +251,15 @@ def _worker_init(parent: int) -> None:
     threading.Thread(target=watch, daemon=True).start()
 
 
-def _solve_chunk(items: list[tuple[str, dict, float]]) -> list[tuple[str, dict]]:
-    """Worker entry: solve a list of (key, params dict, tol); adds wall time."""
+def _solve_chunk(items: list[tuple[str, dict, float, bool]]) -> list[tuple[str, dict]]:
+    """Worker entry: solve a list of (key, params dict, tol, buckled); adds wall time."""
     from threadpoolctl import threadpool_limits
 
     out = []
     with threadpool_limits(limits=1):
-        for key, pdict, tol in items:
+        for key, pdict, tol, buckled in items:
             t0 = time.perf_counter()
-            r = solve_point(RodParameters(**pdict), tol)
+            r = solve_point(RodParameters(**pdict), tol, buckled=buckled)
             out.append((key, r | {"time_s": time.perf_counter() - t0}))
     return out
 
@@ -359,7 +374,8 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = Swee
         values = {a.name: float(g[i]) for a, g, i in zip(axes, grids, idx)}
         sc = point_scene(base, current, field, values)
         scaled = scale(sc)
-        points.append((idx, values, sc, scaled, point_key(scaled.params, options.tol)))
+        kind = "point+buckled" if options.buckled else "point"
+        points.append((idx, values, sc, scaled, point_key(scaled.params, options.tol, kind)))
 
     results: dict[str, dict] = {}
     todo, queued = [], set()
@@ -369,7 +385,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = Swee
             results[key] = hit
         elif key not in queued:
             queued.add(key)
-            todo.append((key, asdict(scaled.params), options.tol))
+            todo.append((key, asdict(scaled.params), options.tol, options.buckled))
     total, cached = len({p[4] for p in points}), len(results)
 
     def arrived(key: str, r: dict) -> None:
@@ -399,6 +415,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = Swee
         "mission": mission.echo(),
         "axes": [a.as_dict() for a in axes],
         "tolerance": options.tol,
+        "buckled_assessed": options.buckled,
         "required_margin": mission.required_margin,
         "operating": _operating(base, current, field),
         "grid": grid,
@@ -427,7 +444,8 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     """Per-point SI data as arrays of the grid shape (lists, JSON-able)."""
     required = mission.required_margin
     fields = ("load_N_per_m", "critical_load_N_per_m", "load_margin", "load_error", "spin_rpm", "critical_spin_rpm",
-              "spin_margin", "spin_error", "critical_spin_at_rest_rpm", "B", "omega", "T", "gamma", "P", "N")
+              "spin_margin", "spin_error", "critical_spin_at_rest_rpm", "B", "omega", "T", "gamma", "P", "N",
+              "buckled_deflection_m")
     data: dict[str, np.ndarray] = {f: np.full(shape, np.nan) for f in fields}
     text = {f: np.full(shape, "", dtype=object) for f in ("status", "region", "model", "reason", "verdict")}
     for idx, _, sc, scaled, key in points:
@@ -443,12 +461,15 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
                   "critical_spin_at_rest_rpm": np.nan if wrest is None else wrest * wc * RPM,
                   "load_margin": Bc / p.B if p.B > 0 else np.inf,
                   "spin_margin": wcrit / p.omega if p.omega > 0 else np.inf}
+            if r.get("buckled_deflection") is not None:
+                d["buckled_deflection_m"] = r["buckled_deflection"] * scales.length
         for f, v in d.items():
             data[f][idx] = v
         text["status"][idx] = r["status"]
-        text["reason"][idx] = r["reason"]
+        text["reason"][idx] = r["reason"] or r.get("buckled_reason", "")
         text["model"][idx] = r["model"]
-        text["region"][idx] = REGION_FAILED if not ok else (REGION_STABLE if r["stable"] else REGION_UNSTABLE)
+        text["region"][idx] = (REGION_FAILED if not ok else REGION_STABLE if r["stable"] else
+                               REGION_BUCKLED if r.get("buckled_stable") else REGION_UNSTABLE)
         if ok:
             good = r["stable"] and d["load_margin"] >= required and d["spin_margin"] >= required
             text["verdict"][idx] = "pass" if good else "fail"
@@ -460,7 +481,7 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     status = text["status"].ravel().tolist()
     out["counts"] = {s: status.count(s) for s in (STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE)}
     region = text["region"].ravel().tolist()
-    out["regions"] = {s: region.count(s) for s in (REGION_STABLE, REGION_UNSTABLE, REGION_FAILED)}
+    out["regions"] = {s: region.count(s) for s in (REGION_STABLE, REGION_BUCKLED, REGION_UNSTABLE, REGION_FAILED)}
     out["max_error"] = max([e for e in np.concatenate([data["load_error"].ravel(), data["spin_error"].ravel()])
                             if np.isfinite(e)], default=None)
     return out

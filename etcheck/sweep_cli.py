@@ -37,6 +37,8 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--tolerance", type=float, default=None,
                    help="relative two-resolution agreement of every critical value (default: the mission's [check] tolerance)")
     p.add_argument("--no-cache", action="store_true", help="do not keep per-point results (no resume)")
+    p.add_argument("--buckled", action="store_true",
+                   help="at straight-unstable points, check the coiled tether on b1 (rungs 2-3; about 1 s per point)")
     return p
 
 
@@ -62,7 +64,8 @@ def main(argv: list[str]) -> int:
         axes = load_axes_or_table(mission, [parse_option(o, getattr(args, o)) for o in OPTIONS if getattr(args, o)])
         folder = Path(args.out) / mission.slug / "sweep"
         options = SweepOptions(tol=args.tolerance or mission.tolerance, workers=args.workers,
-                               scheduler=args.scheduler, cache=None if args.no_cache else folder / "cache")
+                               scheduler=args.scheduler, cache=None if args.no_cache else folder / "cache",
+                               buckled=args.buckled)
         results = sweep(mission, axes, options, progress=ProgressBar(f"etcheck sweep {mission.name}"))
         return results, write_reports(results, folder, formats, kind="sweep")
 
@@ -79,7 +82,8 @@ def _summary(results: dict, paths: list[Path]) -> None:
     g, c = results["grid"], results["cost"]
     print(f"etcheck sweep: {results['mission']['name']}: {c['points']} points "
           f"({c['solved']} solved, {c['from_cache']} from the cache) in {c['wall_s']:.1f} s")
-    print(f"  straight-stable {g['regions']['straight-stable']}, straight-unstable {g['regions']['straight-unstable']}, "
+    print(f"  straight-stable {g['regions']['straight-stable']}, buckled-stable {g['regions']['buckled-stable']}, "
+          f"straight-unstable {g['regions']['straight-unstable']}, "
           f"no answer {g['regions']['failed']}; largest estimated error {g['max_error'] or 0:.1e}")
     for row in results.get("critical_length") or []:
         if row["status"] == "ok" and row.get("other") is None:

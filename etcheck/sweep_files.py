@@ -34,6 +34,8 @@ FIELDS = {
     "gamma": ("gamma", "", "dimensionless Kelvin-Voigt damping"),
     "P": ("P", "", "rotary inertia ratio"),
     "N": ("resolution", "", "Chebyshev resolution that met the tolerance (0: rung 0)"),
+    "buckled_deflection_m": ("buckled_deflection", "m", "maximum lateral deflection of the coiled tether on b1 "
+                             "(sweeps with --buckled, straight-unstable points)"),
 }
 TEXT = ("status", "region", "verdict", "model", "reason")
 UNLIMITED = ("load_margin", "spin_margin")

@@ -370,3 +370,15 @@ def test_mission_sweep_table_drives_the_command(tmp_path):
     assert code == 0
     data = json.loads((tmp_path / "set" / "sweep" / "sweep.json").read_text())
     assert data["axes"][0]["name"] == "length" and data["grid"]["shape"] == [3]
+
+
+def test_buckled_option_labels_coiled_points_like_the_check():
+    """--buckled: a straight-unstable point whose coiled state on b1 is stable is buckled-stable, and its
+    deflection is the one the check reports for the same mission (set-600m)."""
+    m = load_mission(ROOT / "missions" / "set-600m.toml")
+    res = sweep(m, (parse_option("length", "600m:1000m:2"),), SweepOptions(workers=1, buckled=True))
+    g = res["grid"]
+    assert g["region"] == ["buckled-stable", "straight-unstable"]  # 1000 m: past b1's secondary pitchfork
+    post = check(m).results["postbuckling"]["operating"]
+    assert g["buckled_deflection_m"][0] == pytest.approx(post["max_deflection_m"], rel=1e-6)
+    assert res["grid"]["regions"]["buckled-stable"] == 1

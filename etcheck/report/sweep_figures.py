@@ -13,7 +13,7 @@ from ..axes import AXES
 from ..sweep_files import _array
 from .figures import _plt, _svg
 
-STABLE, UNSTABLE, NOANSWER = "#d8efdd", "#f6d5d1", "#9a9a9a"
+STABLE, UNSTABLE, BUCKLED, NOANSWER = "#d8efdd", "#f6d5d1", "#d6e4f5", "#9a9a9a"
 
 
 def _axis(results: dict, k: int) -> tuple[np.ndarray, str, bool]:
@@ -44,9 +44,10 @@ def margin_map(results: dict, field: str, title: str) -> str:
     status = np.array(g["status"], dtype=object)
     req = results["required_margin"]
     fig, ax = plt.subplots(figsize=(6.6, 4.3))
-    code = np.where(region == "straight-stable", 1.0, np.where(region == "straight-unstable", 0.0, np.nan))
+    code = np.select([region == "straight-stable", region == "buckled-stable", region == "straight-unstable"],
+                     [2.0, 1.0, 0.0], np.nan)
     X, Y = np.meshgrid(x, y, indexing="ij")
-    ax.contourf(X, Y, code, levels=[-0.5, 0.5, 1.5], colors=[UNSTABLE, STABLE])
+    ax.contourf(X, Y, code, levels=[-0.5, 0.5, 1.5, 2.5], colors=[UNSTABLE, BUCKLED, STABLE])
     lm = _log_margin(results, field)
     levels = [lv for lv in (-1, np.log10(0.5), 0, np.log10(req), 1, 2, 3) if np.nanmin(lm) < lv < np.nanmax(lm)]
     if levels:
@@ -66,7 +67,8 @@ def margin_map(results: dict, field: str, title: str) -> str:
         ax.plot(a, b, "-o", ms=2.5, lw=2.0, color="k", zorder=6,
                 label="stability boundary: critical length located exactly (Brent)")
     _mark_operating(ax, results, x, y)
-    for name, colour in (("straight-stable", "#14632c"), ("straight-unstable", "#8e1b10")):
+    for name, colour in (("straight-stable", "#14632c"), ("buckled-stable", "#1f4e79"),
+                         ("straight-unstable", "#8e1b10")):
         idx = np.argwhere(region == name)
         if len(idx):
             i, j = idx[len(idx) // 2]
