@@ -26,7 +26,8 @@ def _parser() -> argparse.ArgumentParser:
         "and write HTML, PDF and JSON margin reports.",
         epilog=EXIT_TEXT + "\nsee also: etcheck accuracy MISSION.toml (speed/accuracy of the solvers)\n"
         "          etcheck sweep MISSION.toml --length 50m:5km:40:log --spin 0rpm:2rpm:40 (what-if maps)\n"
-        "          etcheck diagram MISSION.toml --spin 0.25 --branches 3 (post-buckling bifurcation diagram)",
+        "          etcheck diagram MISSION.toml --spin 0.25 --branches 3 (post-buckling bifurcation diagram)\n"
+        "          etcheck damping-map MISSION.toml (stability and damping of the coiled tether)",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     p.add_argument("mission", help="mission file (TOML), e.g. missions/set.toml")
@@ -56,6 +57,10 @@ def main(argv: list[str] | None = None) -> int:
         from .diagram_cli import main as diagram_main
 
         return diagram_main(argv[1:])
+    if argv and argv[0] == "damping-map":
+        from .damping_cli import main as damping_main
+
+        return damping_main(argv[1:])
     if argv and argv[0] == "sweep":
         from .sweep_cli import main as sweep_main
 
@@ -80,6 +85,23 @@ def main(argv: list[str] | None = None) -> int:
     result, paths = out
     _summary(result.results, paths)
     return result.exit_code
+
+
+def results_header(mission) -> dict:
+    """Version, time stamp and mission echo at the top of every results file."""
+    import datetime as dt
+
+    return {"schema_version": 1, "etcheck_version": __version__,
+            "generated": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"), "mission": mission.echo()}
+
+
+def run_and_summarise(action, summary) -> int:
+    """``guarded(action)``, then ``summary(results, paths)``; exit 0, or the error's exit code."""
+    out = guarded(action, "nothing written")
+    if isinstance(out, int):
+        return out
+    summary(*out)
+    return 0
 
 
 def guarded(action, interrupted: str):

@@ -11,11 +11,10 @@ OUT/<mission>/diagram-<spin>[-R<R>]/{diagram.html, diagram.pdf, diagram.json}.
 from __future__ import annotations
 
 import argparse
-import datetime as _dt
 import math
 from pathlib import Path
 
-from .cli import guarded
+from .cli import results_header, run_and_summarise
 
 FORMATS = ("html", "pdf", "json")
 
@@ -76,7 +75,6 @@ def main(argv: list[str]) -> int:
         parser.error("--B-max must lie in (0, 1000]")
 
     def run():
-        from . import __version__
         from .mission import load_mission
         from .postbuckling import DiagramOptions, bifurcation_diagram
         from .report import write_reports
@@ -91,11 +89,7 @@ def main(argv: list[str]) -> int:
         options = DiagramOptions(branches=args.branches, B_max=args.B_max, N=args.N, stability=not args.no_stability)
         d = bifurcation_diagram(params, scaled.scales, options)
         tag = f"diagram-w{omega:.4g}" + (f"-R{args.R:g}" if args.R is not None else "")
-        results = {
-            "schema_version": 1,
-            "etcheck_version": __version__,
-            "generated": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-            "mission": mission.echo(),
+        results = results_header(mission) | {
             "spin_rpm": omega * scaled.scales.frequency * 60 / (2 * math.pi),
             "R_override": args.R,
             "scales": {"length_m": scaled.scales.length, "load_N_per_m": scaled.scales.load,
@@ -104,10 +98,10 @@ def main(argv: list[str]) -> int:
         }
         return results, write_reports(results, Path(args.out) / mission.slug / tag, formats, kind="diagram")
 
-    out = guarded(run, "nothing written")
-    if isinstance(out, int):
-        return out
-    results, paths = out
+    return run_and_summarise(run, _summary)
+
+
+def _summary(results: dict, paths: list) -> None:
     d = results["diagram"]
     print(f"etcheck diagram: {results['mission']['name']} at omega = {d['params']['omega']:.4g} "
           f"(R = {d['params']['R']:.4g}), B up to {d['B_max']:.4g}, {d['time_s']:.1f} s")
@@ -120,4 +114,3 @@ def main(argv: list[str]) -> int:
         print(f"  {lifted['label']}: lifted off at omega = {lifted['liftoff_omega']:.6g} (no longer bifurcates)")
     for path in paths:
         print(f"  wrote {path}")
-    return 0

@@ -160,3 +160,30 @@ def test_many_coils_are_not_attempted():
     post = res["postbuckling"]
     assert post is not None and post["computed"] is False and "many coils" in post["reason"]
     assert math.isfinite(post["load_ratio"])
+
+
+# --- rung 3 for users: the damping map (cf. Fig. fig:hopf) ------------------------------------------
+
+
+def test_damping_map_command(tmp_path):
+    code = main(["damping-map", "missions/set.toml", "--points", "3x2", "--B-max", "2.4", "--spin-max", "0.5",
+                 "--gammas", "0.01,0.04375", "--out", str(tmp_path)])
+    assert code == 0
+    folder = tmp_path / "set" / "damping-map"
+    s = json.loads((folder / "damping.json").read_text())["study"]
+    assert s["unstable_points"] == 0
+    # the secondary pitchfork at rest is the paper's 1.942, and spin pushes it up (Sec. 8)
+    assert s["secondary_pitchfork_B"][0] == pytest.approx(1.942, abs=5e-4)
+    assert s["secondary_pitchfork_B"][1] > s["secondary_pitchfork_B"][0]
+    zeta = np.array(s["damping_ratio"], dtype=float)
+    ok = np.isfinite(zeta)
+    assert ok.any() and (zeta[ok] > 0).all()
+    assert np.nanmin(zeta[1]) > np.nanmin(zeta[0])  # more damping, larger damping ratio
+    assert (folder / "damping.html").stat().st_size > 0 and (folder / "damping.pdf").stat().st_size > 0
+
+
+@pytest.mark.parametrize("args", [["--gammas", "0,1"], ["--points", "3"], ["--B-max", "-1"]])
+def test_damping_map_bad_input_exits_2(args, tmp_path):
+    with pytest.raises(SystemExit) as exc:
+        main(["damping-map", "missions/set.toml", "--out", str(tmp_path), *args])
+    assert exc.value.code == 2

@@ -14,6 +14,7 @@ from pathlib import Path
 from ..errors import ReportError
 
 FILENAMES = {"html": "report.html", "pdf": "report.pdf", "json": "results.json"}
+DAMPING_FILENAMES = {"html": "damping.html", "pdf": "damping.pdf", "json": "damping.json"}
 DIAGRAM_FILENAMES = {"html": "diagram.html", "pdf": "diagram.pdf", "json": "diagram.json"}
 SWEEP_FILENAMES = {"html": "sweep.html", "pdf": "sweep.pdf", "json": "sweep.json", "csv": "sweep.csv",
                    "nc": "sweep.nc"}
@@ -23,14 +24,16 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
     """Render the requested formats to bytes (nothing is written).
 
     ``kind`` is "check" (a mission check), "sweep" (a what-if sweep, which
-    also has the data formats csv and nc) or "diagram" (a bifurcation diagram).
+    also has the data formats csv and nc), "diagram" (a bifurcation diagram) or
+    "damping" (a damping map of the coiled tether).
     """
     out: dict[str, bytes] = {}
     html = None
     if "html" in formats or "pdf" in formats:
-        from .html import render_diagram_html, render_html, render_sweep_html
+        from .html import render_damping_html, render_diagram_html, render_html, render_sweep_html
 
-        html = {"sweep": render_sweep_html, "diagram": render_diagram_html}.get(kind, render_html)(results)
+        html = {"sweep": render_sweep_html, "diagram": render_diagram_html,
+                "damping": render_damping_html}.get(kind, render_html)(results)
     if "html" in formats:
         out["html"] = html.encode("utf-8")
     if "pdf" in formats:
@@ -52,7 +55,7 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
 def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html", "pdf", "json"),
                   kind: str = "check") -> list[Path]:
     """Render and atomically write the reports into ``folder``; returns the paths."""
-    names = {"sweep": SWEEP_FILENAMES, "diagram": DIAGRAM_FILENAMES}.get(kind, FILENAMES)
+    names = {"sweep": SWEEP_FILENAMES, "diagram": DIAGRAM_FILENAMES, "damping": DAMPING_FILENAMES}.get(kind, FILENAMES)
     rendered = render(results, formats, kind)
     folder = Path(folder)
     try:

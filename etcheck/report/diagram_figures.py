@@ -122,3 +122,52 @@ def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
     if chosen:
         figs["shapes"] = shapes_plot(chosen, length_m)
     return figs
+
+
+def damping_maps(r: dict) -> str:
+    """Damping ratio of b1's least-damped mode over (B, omega), one panel per damping (cf. Fig. fig:hopf)."""
+    plt = _plt()
+    from matplotlib.colors import LogNorm
+
+    s = r["study"]
+    B, w = np.asarray(s["B"]), np.asarray(s["omega"])
+    zeta = np.array(s["damping_ratio"], dtype=float)
+    n = len(s["gammas"])
+    cols = min(3, n)
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(2.5 * cols + 0.8, 2.3 * rows + 0.3), squeeze=False,
+                             sharex=True, sharey=True)
+    finite = zeta[np.isfinite(zeta) & (zeta > 0)]
+    norm = LogNorm(vmin=max(finite.min(), 1e-5), vmax=finite.max()) if finite.size else None
+    star = np.array([np.nan if v is None else v for v in s["secondary_pitchfork_B"]], dtype=float)
+    prim = np.array([np.nan if v is None else v for v in s["primary_pitchfork_B"]], dtype=float)
+    mesh = None
+    for k, ax in enumerate(axes.ravel()):
+        if k >= n:
+            ax.set_visible(False)
+            continue
+        z = np.ma.masked_invalid(np.where(zeta[k] > 0, zeta[k], np.nan))
+        if z.count():
+            mesh = ax.pcolormesh(B, w, z, norm=norm, cmap="viridis", shading="nearest")
+        bad = np.nan_to_num(np.array(s["max_real"], dtype=float)[k], nan=-1.0) > 0
+        if bad.any():
+            W, BB = np.meshgrid(w, B, indexing="ij")
+            ax.plot(BB[bad], W[bad], "x", color="#c0392b", ms=4)
+        ax.plot(star, w, color="k", lw=2, label="secondary pitchfork B*(ω)")
+        ax.plot(prim, w, color="#888", lw=1.2, ls="--", label="b1 pitchfork (straight tether)")
+        op = r["operating"]
+        if B[0] <= op["B"] <= B[-1] and w[0] <= op["omega"] <= w[-1]:
+            ax.plot([op["B"]], [op["omega"]], marker="*", color="#27ae60", mec="k", ms=10, ls="none",
+                    label="mission operating point")
+        ax.set_title(f"γ = {s['gammas'][k]:g} (γ_v = {s['damping_time_s'][k]:.3g} s)", fontsize=8)
+        ax.set_xlim(0, B[-1])
+        ax.set_ylim(w[0], w[-1])
+        if k % cols == 0:
+            ax.set_ylabel("spin ω (dimensionless)")
+        if k >= n - cols:
+            ax.set_xlabel("load B (dimensionless)")
+    handles, labels = axes.ravel()[0].get_legend_handles_labels()
+    fig.legend(handles, labels, fontsize=7, loc="lower center", ncol=3, bbox_to_anchor=(0.45, -0.04))
+    if mesh is not None:
+        fig.colorbar(mesh, ax=axes.ravel().tolist(), label="damping ratio ζ of the least-damped mode", shrink=0.9)
+    return _svg(fig)

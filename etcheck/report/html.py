@@ -72,3 +72,10 @@ def render_diagram_html(results: dict) -> str:
 
     figs = {name: Markup(svg) for name, svg in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
     return _environment().get_template("diagram.html.j2").render(r=results, d=results["diagram"], figs=figs)
+
+
+def render_damping_html(results: dict) -> str:
+    """The self-contained HTML report of a damping map of the coiled tether."""
+    from .diagram_figures import damping_maps
+
+    return _environment().get_template("damping.html.j2").render(r=results, figs={"maps": Markup(damping_maps(results))})

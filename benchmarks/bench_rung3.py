@@ -1,0 +1,159 @@
+"""Rung 3 benchmark: stability of buckled, whirling SET tethers (dimensionless).
+
+Prints, per curve, the wall time (one core, BLAS pinned to one thread with
+threadpoolctl) and the estimated numerical error (two resolutions of the
+operator and of the base state). Not a test: nothing here is asserted.
+
+    python benchmarks/bench_rung3.py [--quick]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+
+import numpy as np
+from threadpoolctl import threadpool_limits
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+
+from etcheck.rod import branch_stability as bs  # noqa: E402
+from etcheck.rod import branches as br  # noqa: E402
+from etcheck.rod import equilibria as eq  # noqa: E402
+from etcheck.rod.parameters import RodParameters  # noqa: E402
+
+SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
+
+
+def pitchfork_curve(omegas, N, N_check):
+    t = time.perf_counter()
+    c = bs.secondary_pitchfork_curve(SET, omegas, N=N, N_check=N_check)
+    print(f"\n[1] secondary pitchfork B*(omega) of b1, N = {N} vs {N_check}: {time.perf_counter() - t:.1f} s")
+    print("    omega      B*(N)          B*(N_check)     |error|   measure1")
+    for p in c.points:
+        print(f"    {p.omega:5.2f}  {p.B:.9f}  {p.B_check:.9f}  {p.error:.1e}  {p.measure1:.4f}")
+    return c
+
+
+def b1_static(N):
+    t = time.perf_counter()
+    start = br.primary_branches(SET, 1, N)[0]
+    b1 = br.continue_branch(SET, start, stop=(0.0, 2.5))
+    t_b = time.perf_counter() - t
+    sp = bs.branch_spectra(b1, 0.04375, k=6, state_stride=4)
+    change = np.nonzero(np.diff(sp.stable.astype(int)))[0]
+    print(f"\n[2] b1 at omega = 0, gamma = 0.04375, N = {N}: branch {t_b:.1f} s, spectra {sp.time:.1f} s "
+          f"({len(b1.states)} points); operator error {np.max(sp.errors[1:]):.1e}, "
+          f"state error {np.nanmax(sp.state_errors):.1e}")
+    for i in change:
+        print(f"    stability changes between B = {sp.values[i]:.4f} and {sp.values[i + 1]:.4f} "
+              f"({'stable->unstable' if sp.stable[i] else 'unstable->stable'})")
+    print(f"    path crossings flagged: {len(sp.crossings)}")
+    return b1
+
+
+def spun_b1(Ns, omega_max, gammas):
+    print(f"\n[3] b1 at B = 1.2 continued in omega to {omega_max}: Hopf search")
+    res = {}
+    for N in Ns:
+        t = time.perf_counter()
+        bw = bs.b1_spin_branch(SET, 1.2, omega_max, N)
+        t_b = time.perf_counter() - t
+        for g in gammas:
+            sp = bs.branch_spectra(bw, g, k=6, state_stride=4)
+            scan = bs.find_hopf(bw, g, k=6)
+            i = int(np.nanargmax(sp.max_real))
+            res[(N, g)] = sp
+            print(f"    N = {N} (check {sp.N_check}), gamma = {g}: branch {t_b:.1f} s, spectra {sp.time:.1f} s, "
+                  f"hopf scan {scan.time:.1f} s; stable everywhere: {bool(np.all(sp.stable))}; "
+                  f"max Re lambda = {sp.max_real[i]:.4e} at omega = {sp.values[i]:.3f} "
+                  f"(op. error {sp.max_real_error[i]:.1e}); complex modes max Re {np.nanmax(scan.max_real_complex):.4e}"
+                  f" (error {np.nanmax(scan.error):.1e}); Hopf points: {len(scan.points)}; "
+                  f"base-state error {np.nanmax(sp.state_errors):.1e}")
+    for g in gammas:
+        a, b = res[(Ns[0], g)], res[(Ns[-1], g)]
+        w = np.linspace(0.0, omega_max, 27)
+        da = np.interp(w, a.values, a.max_real)
+        db = np.interp(w, b.values, b.max_real)
+        print(f"    gamma = {g}: max Re lambda on a common omega grid, N = {Ns[0]} vs {Ns[-1]} base states: "
+              f"max difference {np.max(np.abs(da - db)):.1e} (interpolation included)")
+    a = res[(Ns[-1], gammas[0])]
+    print(f"    omega   least-damped modes (gamma = {gammas[0]:g}, N = {Ns[-1]}), labels")
+    for i in range(0, len(a.values), 4):
+        lam = a.eigenvalues[i, :3]
+        print(f"    {a.values[i]:5.2f}  " + "  ".join(f"{z.real:+.4e}{z.imag:+.4f}j" for z in lam)
+              + "  " + ",".join(a.labels[i, :3]))
+    for om in (0.0, 1.5, 2.2, 4.0, 6.0):
+        st = bs.b1_state(SET, 1.2, om, N=Ns[-1])
+        c = bs.structure_check(st, gammas=(0.01, 0.04375))
+        print(f"    structure at omega = {om}: index(K) = {c.index}, unstable(gamma) = {c.unstable_damped}, "
+              f"Hamiltonian defect {c.hamiltonian_defect:.1e}, K asymmetry {c.stiffness_asymmetry:.1e}, "
+              f"max |Re| undamped {c.max_real_undamped:.1e}")
+
+
+def b2_check():
+    print("\n[4] b2 at omega = 0 (paper: unstable)")
+    for N in (24, 32):
+        start = br.primary_branches(SET, 1, N)[1]
+        b2 = br.continue_branch(SET, start, stop=(0.0, 2.5))
+        for B in (0.7, 1.2, 2.0):
+            st = br.locate(b2, lambda s: s.params.B, B)[1]
+            for n_op in (N, N + 16):
+                c = bs.structure_check(st, N=n_op, gammas=(0.01, 0.04375))
+                lam = bs.operator_eigenvalues(bs.damped_operator(st.params, st, n_op), 0.0, 8, False)
+                print(f"    base N = {N}, operator N = {n_op}, B = {B}: measure1 {eq.measure1(st):.4f}, "
+                      f"index(K) = {c.index}, unstable(gamma) = {c.unstable_damped}, "
+                      f"max|Re| undamped {c.max_real_undamped:.1e}, lowest |lambda| {np.min(np.abs(lam)):.6f}")
+
+
+def damping(B_grid, omega_grid, N):
+    t = time.perf_counter()
+    dm = bs.damping_map(SET, B_grid, omega_grid, gammas=bs.HOPF_GAMMAS, N=N)
+    wall = time.perf_counter() - t
+    print(f"\n[5] damping map, {len(omega_grid)} x {len(B_grid)} grid, gammas {bs.HOPF_GAMMAS}, N = {N} vs "
+          f"{dm.N_check}: {wall:.1f} s ({dm.timing['points']} b1 points; equilibria "
+          f"{dm.timing['equilibria_s']:.1f} s, spectra {dm.timing['spectra_s']:.1f} s for all gammas)")
+    print(f"    max two-resolution error of max Re lambda: {np.nanmax(dm.error):.1e}")
+    print(f"    max Re lambda over the stable region, all gammas: {np.nanmax(dm.max_real):.3e} "
+          f"(> 0 would be a Hopf/instability inside)")
+    print("    secondary pitchfork B* at the grid omegas:", np.round(dm.curve_B, 4).tolist())
+    print("    primary pitchfork of b1 (-inf: lifted off):", np.round(dm.primary_B, 4).tolist())
+    for w, B in ((0.0, 1.2), (0.5, 1.2), (1.0, 2.0), (2.0, 1.2), (2.0, 4.0), (3.0, 6.0)):
+        iw = int(np.argmin(np.abs(dm.omega - w)))
+        ib = int(np.argmin(np.abs(dm.B - B)))
+        if not dm.inside[iw, ib]:
+            continue
+        row = ", ".join(f"g={g}: decay {dm.decay[k, iw, ib]:.2e} zeta {dm.zeta[k, iw, ib]:.2e} "
+                        f"logdec {dm.log_decrement[k, iw, ib]:.3f}" for k, g in enumerate(dm.gammas))
+        print(f"    omega={dm.omega[iw]:.2f} B={dm.B[ib]:.2f}: {row}")
+    return dm
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--json", default=None, help="write the damping map and curve here")
+    a = ap.parse_args()
+    with threadpool_limits(limits=1):
+        t0 = time.perf_counter()
+        omegas = [0.0, 0.25, 0.5, 1.0] if a.quick else [0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0]
+        curve = pitchfork_curve(omegas, 32, 40)
+        if not a.quick:  # high spin: the coiled states at B* ~ 6..16 need more points
+            pitchfork_curve([2.0, 3.0, 4.0], 48, 64)
+        b1_static(32)
+        spun_b1((24, 32), 4.0 if a.quick else 6.5, (0.01, 0.04375))
+        b2_check()
+        Bg = np.arange(0.25, 6.01, 0.25) if not a.quick else np.arange(0.5, 3.01, 0.5)
+        wg = np.array([0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0]) if not a.quick else np.array([0.0, 0.5, 1.0])
+        dm = damping(Bg, wg, 24)
+        print(f"\ntotal {time.perf_counter() - t0:.1f} s")
+        if a.json:
+            with open(a.json, "w") as fh:
+                json.dump({"curve": curve.as_dict(), "damping_map": dm.as_dict()}, fh)
+
+
+if __name__ == "__main__":
+    main()

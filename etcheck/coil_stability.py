@@ -1,0 +1,127 @@
+"""Rung 3 for a mission: where the coiled (buckled) tether is stable, and how well damped.
+
+The dimensionless work is in :mod:`etcheck.rod.branch_stability`; this module
+asks the engineer's questions of the first post-buckling branch b1 and returns
+JSON-able data in both the paper's numbers and SI (I·B0 in N/m, spin in rpm,
+decay rates in 1/s, decay times in s):
+
+* the stable region of b1 in the (load, spin) plane: above b1's primary
+  pitchfork B_pf(omega) (where the coil appears) and below its secondary
+  pitchfork B*(omega) (where it loses stability, independent of damping);
+* the damping margin over that region: decay rate, damping ratio and
+  logarithmic decrement of the least-damped mode, for given damping values
+  (the tether's version of Fig. ``fig:hopf``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from .rod import branches as br
+from .rod.branch_stability import HOPF_GAMMAS, damping_map, secondary_pitchfork
+from .rod.parameters import RodParameters
+from .scaling import Scales
+
+RPM = 60.0 / (2.0 * math.pi)
+
+
+def _finite(a) -> list:
+    return [None if v is None or not math.isfinite(v) else float(v) for v in np.ravel(a)]
+
+
+def _grid(a: np.ndarray) -> list:
+    return np.where(np.isfinite(a), a, None).tolist()
+
+
+def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_max: float = 3.0,
+                  omega_max: float = 4.0, n_B: int = 14, n_omega: int = 12, N: int = 24) -> dict[str, Any]:
+    """Damping margin of b1 over (B, omega) for each gamma, with the secondary-pitchfork curve.
+
+    B from 0 to ``B_max`` and omega from 0 to ``omega_max`` (dimensionless,
+    grid ``n_B`` x ``n_omega``); the equilibria are computed once and reused
+    for every gamma. Returns JSON-able arrays of shape (gamma, omega, B)
+    (None outside b1's stable region) and their SI counterparts.
+    """
+    t0 = time.perf_counter()
+    B = np.linspace(0.0, B_max, n_B + 1)[1:]
+    w = np.linspace(0.0, omega_max, n_omega)
+    m = damping_map(params, B, w, gammas=gammas, N=N)
+    wc = scales.frequency
+    zeta = m.zeta
+    unstable = np.nan_to_num(m.max_real, nan=-1.0) > 0
+    return {
+        "model": "rungs 2-3: b1 (whirling equilibria) and the lowest eigenvalues about each state",
+        "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "T")},
+        "gammas": list(m.gammas),
+        "damping_time_s": [g / wc for g in m.gammas],
+        "B": B.tolist(), "omega": w.tolist(),
+        "IB0_N_per_m": (B * scales.load).tolist(), "spin_rpm": (w * wc * RPM).tolist(),
+        "secondary_pitchfork_B": _finite(m.curve_B),
+        "secondary_pitchfork_IB0_N_per_m": _finite(m.curve_B * scales.load),
+        "primary_pitchfork_B": _finite(m.primary_B),
+        "max_real": _grid(m.max_real), "decay_rate_per_s": _grid(-m.max_real * wc),
+        "damping_ratio": _grid(zeta), "log_decrement": _grid(np.where(np.isinf(m.log_decrement), np.nan,
+                                                                       m.log_decrement)),
+        "frequency_Hz": _grid(m.frequency * wc / (2 * math.pi)), "error": _grid(m.error),
+        "unstable_points": int(np.count_nonzero(unstable)),
+        "smallest_damping_ratio": [float(np.nanmin(zeta[i])) if np.isfinite(zeta[i]).any() else None
+                                   for i in range(len(m.gammas))],
+        "largest_error": float(np.nanmax(m.error)) if np.isfinite(m.error).any() else None,
+        "N": m.N, "N_check": m.N_check,
+        "timing": m.timing,
+        "time_s": time.perf_counter() - t0,
+    }
+
+
+def coil_region(params: RodParameters, scales: Scales, omega_max: float, n: int = 7, N: int = 24) -> dict[str, Any]:
+    """The stable region of b1 in the (load, spin) plane at the scene's tension (damping-independent).
+
+    Its lower edge is b1's pitchfork on the straight tether (the class-S1
+    static load), its upper edge the secondary pitchfork B*(omega), each at
+    ``n`` spins from 0 to ``omega_max`` (dimensionless), located exactly (B*
+    at two resolutions). With damping, stability changes only at these static
+    points (Kelvin-Tait-Chetaev), so the region between them is the stable
+    region of the coil. JSON-able, with SI.
+    """
+    t0 = time.perf_counter()
+    lift = br.liftoff_spin(params.with_(B=0.0, omega=0.0), "b1", 1, N=N)
+    ws = np.linspace(0.0, omega_max, n)
+    rows = []
+    for w in ws:
+        p = params.with_(omega=float(w))
+        attached = not (math.isfinite(lift) and w >= lift)
+        loads = br.class_loads(p.with_(B=0.0), "S1", N, n=1) if attached else np.array([])
+        try:
+            sp = secondary_pitchfork(p, float(w), N=N, B_ref=min(1.2, 2.0 * float(loads[0])) if loads.size else 1.2)
+            star, err = sp.B, sp.error
+        except ValueError:
+            star, err = math.inf, None
+        rows.append({"omega": float(w), "spin_rpm": float(w * scales.frequency * RPM),
+                     "pitchfork_B": float(loads[0]) if loads.size else None,
+                     "secondary_B": star if math.isfinite(star) else None, "secondary_error": err})
+    for r in rows:
+        for k in ("pitchfork_B", "secondary_B"):
+            r[k.replace("_B", "_IB0_N_per_m")] = None if r[k] is None else r[k] * scales.load
+    return {"rows": rows, "liftoff_omega": lift if math.isfinite(lift) else None,
+            "liftoff_rpm": lift * scales.frequency * RPM if math.isfinite(lift) else None,
+            "time_s": time.perf_counter() - t0}
+
+
+def spin_limit(region: dict, B: float) -> float | None:
+    """Lowest spin (dimensionless) at which the coil at load B is still below its secondary
+    pitchfork, from the region's table (B*(omega) increases with spin, Sec. 8); 0 if stable
+    at rest, None if B is above B* everywhere in the table."""
+    rows = [r for r in region["rows"] if r["secondary_B"] is not None]
+    if not rows:
+        return None
+    if B < rows[0]["secondary_B"]:
+        return 0.0
+    for a, b in zip(rows[:-1], rows[1:]):
+        if a["secondary_B"] <= B < b["secondary_B"]:
+            t = (B - a["secondary_B"]) / (b["secondary_B"] - a["secondary_B"])
+            return a["omega"] + t * (b["omega"] - a["omega"])
+    return None
