@@ -77,36 +77,38 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     }
 
 
-def coil_region(params: RodParameters, scales: Scales, omega_max: float, n: int = 7, N: int = 24) -> dict[str, Any]:
+def coil_region(params: RodParameters, scales: Scales, omega_max: float, n: int = 4, N: int = 24) -> dict[str, Any]:
     """The stable region of b1 in the (load, spin) plane at the scene's tension (damping-independent).
 
     Its lower edge is b1's pitchfork on the straight tether (the class-S1
     static load), its upper edge the secondary pitchfork B*(omega), each at
-    ``n`` spins from 0 to ``omega_max`` (dimensionless), located exactly (B*
-    at two resolutions). With damping, stability changes only at these static
-    points (Kelvin-Tait-Chetaev), so the region between them is the stable
-    region of the coil. JSON-able, with SI.
+    ``n`` spins from 0 to ``omega_max`` (dimensionless), located exactly at
+    resolution N (one resolution: a drawing of the region; the margin at the
+    operating spin is computed at two). With damping, stability changes only at
+    these static points (Kelvin-Tait-Chetaev), so the region between them is the
+    stable region of the coil. JSON-able, with SI.
     """
     t0 = time.perf_counter()
     lift = br.liftoff_spin(params.with_(B=0.0, omega=0.0), "b1", 1, N=N)
-    ws = np.linspace(0.0, omega_max, n)
     rows = []
-    for w in ws:
+    # b1 is reached at B_ref by continuation in spin: above b1's pitchfork at rest (which falls with spin)
+    # and below its secondary pitchfork (about 3.3 times it for SET)
+    B_ref = 1.5 * float(br.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
+    for w in np.linspace(0.0, omega_max, n):
         p = params.with_(omega=float(w))
         attached = not (math.isfinite(lift) and w >= lift)
         loads = br.class_loads(p.with_(B=0.0), "S1", N, n=1) if attached else np.array([])
         try:
-            sp = secondary_pitchfork(p, float(w), N=N, B_ref=min(1.2, 2.0 * float(loads[0])) if loads.size else 1.2)
-            star, err = sp.B, sp.error
+            star = secondary_pitchfork(p, float(w), N=N, N_check=N, B_ref=B_ref).B
         except ValueError:
-            star, err = math.inf, None
+            star = math.inf
         rows.append({"omega": float(w), "spin_rpm": float(w * scales.frequency * RPM),
                      "pitchfork_B": float(loads[0]) if loads.size else None,
-                     "secondary_B": star if math.isfinite(star) else None, "secondary_error": err})
+                     "secondary_B": star if math.isfinite(star) else None})
     for r in rows:
         for k in ("pitchfork_B", "secondary_B"):
             r[k.replace("_B", "_IB0_N_per_m")] = None if r[k] is None else r[k] * scales.load
-    return {"rows": rows, "liftoff_omega": lift if math.isfinite(lift) else None,
+    return {"rows": rows, "N": N, "liftoff_omega": lift if math.isfinite(lift) else None,
             "liftoff_rpm": lift * scales.frequency * RPM if math.isfinite(lift) else None,
             "time_s": time.perf_counter() - t0}
 

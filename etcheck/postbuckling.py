@@ -218,6 +218,28 @@ def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramO
     }
 
 
+#: damping multipliers of the sensitivity table (the mission's damping is often an estimate)
+DAMPING_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
+
+
+def _damping_sensitivity(state: eq.Equilibrium, scales: Scales) -> list[dict]:
+    """Least-damped mode of a state for the scene's damping times DAMPING_FACTORS (one operator, rung 3)."""
+    from .rod.branch_stability import damped_operator, operator_eigenvalues
+
+    op = damped_operator(state.params, state, state.N)
+    wc = scales.frequency
+    rows = []
+    for k in DAMPING_FACTORS:
+        g = k * state.params.gamma
+        lam = operator_eigenvalues(op, g, 20, False)
+        z = lam[int(np.argmax(lam.real))]
+        rows.append({"factor": k, "gamma": g, "damping_time_s": g / wc, "growth_rate_per_s": float(z.real * wc),
+                     "damping_ratio": float(-z.real / abs(z)) if abs(z) else None,
+                     "decay_time_s": float(-1.0 / (z.real * wc)) if z.real < 0 else None,
+                     "stable": bool(z.real <= THRESHOLD)})
+    return rows
+
+
 def operating_state(params: RodParameters, scales: Scales, N: int = 32) -> dict:
     """The post-buckled tether at the operating load on b1 (rung 2) and its stability (rung 3).
 
@@ -254,6 +276,7 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32) -> dict:
                  "decay_time_s": float(-1.0 / (z.real * wc)) if z.real < 0 else None,
                  "error": float(sp.errors[i])}
     return {
+        "damping_sensitivity": _damping_sensitivity(st, scales),
         "available": True,
         "branch": "b1",
         "B": B,
@@ -324,6 +347,15 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         out["b1_first_unstable_B"] = first_unstable
         out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
     out["operating"] = operating_state(params, scales, N) if params.B > B_c else None
+    if out["operating"] and out["operating"].get("available"):
+        from .coil_stability import coil_region, spin_limit
+
+        region = coil_region(params, scales, omega_max=max(1.0, 2.0 * params.omega))
+        low = spin_limit(region, params.B)
+        rpm = scales.frequency * 60.0 / (2.0 * math.pi)
+        region |= {"operating_rpm": params.omega * rpm,
+                   "lowest_stable_spin_rpm": None if low is None else low * rpm}
+        out["region"] = region
     out["time_s"] = time.perf_counter() - t0
     return out
 

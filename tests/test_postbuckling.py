@@ -115,8 +115,13 @@ def test_far_from_critical_has_no_postbuckling_section():
     assert b"buckled tether (rungs" not in render(res, ("html",))["html"]
 
 
-def test_past_critical_reports_the_buckled_state(tmp_path):
-    res = check(ROOT / "missions" / "set-600m.toml").results
+@pytest.fixture(scope="module")
+def coiled():
+    return check(ROOT / "missions" / "set-600m.toml").results
+
+
+def test_past_critical_reports_the_buckled_state(coiled):
+    res = coiled
     post = res["postbuckling"]
     assert post["computed"] and post["load_ratio"] > 1
     op = post["operating"]
@@ -187,3 +192,23 @@ def test_damping_map_bad_input_exits_2(args, tmp_path):
     with pytest.raises(SystemExit) as exc:
         main(["damping-map", "missions/set.toml", "--out", str(tmp_path), *args])
     assert exc.value.code == 2
+
+
+def test_design_answer_for_a_coiled_tether(coiled):
+    """Region, margins in N/m and rpm, and damping sensitivity in the check of a tether past BP1."""
+    res = coiled
+    post = res["postbuckling"]
+    reg = post["region"]
+    rows = reg["rows"]
+    assert rows[0]["secondary_B"] == pytest.approx(1.94246, rel=1e-4)
+    assert all(b["secondary_B"] > a["secondary_B"] for a, b in zip(rows[:-1], rows[1:]))  # spin raises B* (Sec. 8)
+    assert reg["lowest_stable_spin_rpm"] == 0.0  # B = 0.795 < B*(0): stable down to rest
+    sens = post["operating"]["damping_sensitivity"]
+    assert [d["factor"] for d in sens] == [0.25, 0.5, 1.0, 2.0, 4.0]
+    ratios = [d["damping_ratio"] for d in sens]
+    assert all(d["stable"] for d in sens) and ratios == sorted(ratios)
+    assert sens[2]["damping_ratio"] == pytest.approx(post["operating"]["least_damped"]["damping_ratio"], rel=1e-6)
+    from etcheck.report import render
+
+    html = render(res, ("html",))["html"].decode()
+    assert "where the coiled tether is stable" in html and "How the damping moves the answer" in html

@@ -265,10 +265,37 @@ def postbuckling_plots(results: dict) -> dict[str, str]:
     out = {"b1": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]", "maximum lateral deflection [m]",
                              "first post-buckling branch b1 at the operating spin and tension",
                              "pitchfork_IB0_N_per_m", mark=_operating_mark(results, op))}
+    if post.get("region"):
+        out["region"] = coil_region_plot(results)
     if op and op.get("available"):
         out["shape"] = shapes_plot([(f"b1 at I·B0 = {results['scene']['load_N_per_m']:.3g} N/m", op["shape"])],
                                    results["scales"]["length_m"])
     return out
+
+
+def coil_region_plot(results: dict) -> str:
+    """Stable region of the coiled tether (b1) in the (spin rate, I·B0) plane at the mission's tension."""
+    plt = _plt()
+    reg = results["postbuckling"]["region"]
+    rows = reg["rows"]
+    rpm = [r["spin_rpm"] for r in rows]
+    low = [r["pitchfork_IB0_N_per_m"] or 0.0 for r in rows]
+    top = [r["secondary_IB0_N_per_m"] if r["secondary_IB0_N_per_m"] is not None else math.nan for r in rows]
+    fig, ax = plt.subplots(figsize=(6.4, 3.2))
+    ax.fill_between(rpm, 0.0, low, color="#d8efdd", label="straight tether stable")
+    ax.fill_between(rpm, low, top, color="#d6e4f5", label="coiled tether (b1) stable")
+    ax.plot(rpm, low, "-o", color="#555", ms=3, label="b1 leaves the straight tether (pitchfork)")
+    ax.plot(rpm, top, "-s", color="k", ms=3, lw=2, label="secondary pitchfork of b1 (coil loses stability)")
+    if reg.get("liftoff_rpm") is not None and reg["liftoff_rpm"] <= rpm[-1]:
+        ax.axvline(reg["liftoff_rpm"], color="#888", ls=":", label="b1 lift-off (straight tether whirls above)")
+    ax.plot([reg["operating_rpm"]], [results["scene"]["load_N_per_m"]], marker="*", ms=13, color="#27ae60",
+            mec="k", ls="none", label="operating point")
+    ax.set_ylim(0, 1.15 * max([v for v in top if math.isfinite(v)] + [results["scene"]["load_N_per_m"]]))
+    ax.set_xlabel("spin rate [rpm]")
+    ax.set_ylabel("I·B0 [N/m]")
+    ax.set_title(f"where the coiled tether is stable (N = {reg['N']}, damping-independent)", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left")
+    return _svg(fig)
 
 
 def _operating_mark(results: dict, op: dict | None):

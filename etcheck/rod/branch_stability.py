@@ -509,13 +509,14 @@ def secondary_pitchfork(params: RodParameters, omega: float, N: int = 32, N_chec
     zero of the Jacobian restricted to the -1 eigenspace of S1 (kind
     "break") is located exactly (secant on a continuous test function,
     each trial corrected onto the branch). Done at N and N_check (default
-    check_resolution(N)); error = |B_N - B_check|. Dimensionless.
+    check_resolution(N)); error = |B_N - B_check| (NaN when N_check = N:
+    one resolution only). Dimensionless.
     """
     t0 = time.perf_counter()
     Nc = check_resolution(N) if N_check is None else int(N_check)
     out = []
     m1 = math.nan
-    for n in (int(N), Nc):
+    for n in (int(N),) if Nc == int(N) else (int(N), Nc):
         up, _ = _b1_in_B(params, omega, n, B_ref, B_max)
         brk = [q for q in up.special if q.kind == "break" and q.value > B_ref]
         if not brk:
@@ -523,8 +524,10 @@ def secondary_pitchfork(params: RodParameters, omega: float, N: int = 32, N_chec
         out.append(brk[0].value)
         if n == N:
             m1 = brk[0].measure1
-    return PitchforkPoint(float(omega), out[0], out[1], abs(out[0] - out[1]), int(N), Nc, m1,
-                          time.perf_counter() - t0)
+    if len(out) == 1:  # N_check = N: one resolution, no error estimate
+        out.append(out[0])
+    return PitchforkPoint(float(omega), out[0], out[1], abs(out[0] - out[1]) if Nc != int(N) else math.nan,
+                          int(N), Nc, m1, time.perf_counter() - t0)
 
 
 @single_blas_thread
