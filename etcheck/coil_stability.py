@@ -21,8 +21,9 @@ from typing import Any
 
 import numpy as np
 
+from .postbuckling import eigenvalue_paths
 from .rod import branches as br
-from .rod.branch_stability import HOPF_GAMMAS, damping_map, secondary_pitchfork
+from .rod.branch_stability import HOPF_GAMMAS, b1_spin_branch, damping_map, secondary_pitchfork
 from .rod.parameters import RodParameters
 from .scaling import Scales
 
@@ -53,7 +54,12 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     wc = scales.frequency
     zeta = m.zeta
     unstable = np.nan_to_num(m.max_real, nan=-1.0) > 0
+    # b1 at fixed load followed in spin: the paper's Hopf test (Sec. 7.2, B = 1.2), at the smallest damping
+    B_path = min(1.2, 0.5 * (B[0] + B[-1]))
+    paths = eigenvalue_paths(b1_spin_branch(params, B_path, omega_max, N), min(m.gammas))
+    paths["B"] = B_path
     return {
+        "spin_paths": paths,
         "model": "rungs 2-3: b1 (whirling equilibria) and the lowest eigenvalues about each state",
         "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "T")},
         "gammas": list(m.gammas),

@@ -132,6 +132,27 @@ def _stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
     return stable, growth, errors
 
 
+def eigenvalue_paths(branch, gamma: float, k: int = 6) -> dict:
+    """The k least-|lambda| eigenvalue paths along a branch (rung 3), tracked through crossings and
+    labelled by mode type (bending about d1 / d2, torsion); JSON-able (dimensionless)."""
+    from collections import Counter
+
+    from .rod.branch_stability import branch_spectra
+
+    bs = branch_spectra(branch, gamma, k=k)
+    lam = np.asarray(bs.eigenvalues)
+    labels = [Counter(bs.labels[:, j].tolist()).most_common(1)[0][0] for j in range(lam.shape[1])]
+    return {"parameter": bs.parameter, "values": np.asarray(bs.values).tolist(), "gamma": gamma,
+            "re": _grid_list(lam.real), "im": _grid_list(lam.imag), "labels": labels,
+            "error": bs.error if math.isfinite(bs.error) else None, "N": bs.N, "N_check": bs.N_check,
+            "max_re": float(np.nanmax(lam.real)) if np.isfinite(lam.real).any() else None,
+            "time_s": bs.time}
+
+
+def _grid_list(a: np.ndarray) -> list:
+    return np.where(np.isfinite(a), a, None).tolist()
+
+
 def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float) -> dict:
     L = scales.length
     t0 = time.perf_counter()
@@ -152,7 +173,8 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     }
     if options.stability:
         stable, growth, errs = _stability(branch, gamma)
-        out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
+        out |= {"stable": stable, "max_growth": growth, "growth_error": errs,
+                "eigenvalue_paths": eigenvalue_paths(branch, gamma)}
     shapes = {}
     try:
         B, st = locate(branch, eq.measure1, options.shape_measure)

@@ -184,6 +184,7 @@ def test_damping_map_command(tmp_path):
     ok = np.isfinite(zeta)
     assert ok.any() and (zeta[ok] > 0).all()
     assert np.nanmin(zeta[1]) > np.nanmin(zeta[0])  # more damping, larger damping ratio
+    assert s["spin_paths"]["max_re"] < 0  # b1 followed in spin: no mode crosses (no Hopf)
     assert (folder / "damping.html").stat().st_size > 0 and (folder / "damping.pdf").stat().st_size > 0
 
 

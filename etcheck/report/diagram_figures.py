@@ -103,6 +103,32 @@ def shapes_plot(shapes: list[tuple[str, dict]], length_m: float | None = None) -
     return _svg(fig)
 
 
+def eigen_paths_plot(paths: dict, xlabel: str, title: str) -> str:
+    """Real and imaginary parts of the tracked eigenvalue paths, coloured by mode type."""
+    plt = _plt()
+    colour = {"bend-d1": "#1f4e79", "bend-d2": "#c0392b", "torsion": "#27ae60"}
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(7.2, 2.9))
+    x = np.asarray(paths["values"], dtype=float)
+    re = np.array(paths["re"], dtype=float)
+    im = np.array(paths["im"], dtype=float)
+    seen = set()
+    for j, lab in enumerate(paths["labels"]):
+        c = colour.get(lab, "#555")
+        name = {"bend-d1": "bending about d1", "bend-d2": "bending about d2", "torsion": "torsion"}.get(lab, lab)
+        a1.plot(x, re[:, j], color=c, lw=1.2, label=name if lab not in seen else None)
+        a2.plot(x, im[:, j], color=c, lw=1.2)
+        seen.add(lab)
+    a1.axhline(0.0, color="k", lw=0.8)
+    a1.set_ylabel("Re λ (growth rate, units of ω_c)")
+    a2.set_ylabel("Im λ (frequency, units of ω_c)")
+    for ax in (a1, a2):
+        ax.set_xlabel(xlabel)
+    a1.legend(fontsize=7)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    return _svg(fig)
+
+
 def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
     figs = {
         "measure1": branch_plot(d, "values", "measure1", "B (dimensionless load)",
@@ -116,6 +142,11 @@ def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
                                 "maximum lateral deflection [m]", "the same branches in physical units",
                                 "pitchfork_IB0_N_per_m"),
     }
+    for b in d["branches"]:
+        if b.get("eigenvalue_paths") and b["label"] in ("b1", "b12"):
+            figs[f"paths_{b['label']}"] = eigen_paths_plot(
+                b["eigenvalue_paths"], "B (dimensionless load)",
+                f"lowest eigenvalues along {b['label']} (γ = {b['eigenvalue_paths']['gamma']:.4g})")
     key = next((k for b in d["branches"] for k in b["shapes"] if k.startswith("measure1=")), None)
     chosen = [(f"{b['label']} (B = {b['shapes'][key]['B']:.4g})", b["shapes"][key])
               for b in d["branches"] if key in b["shapes"]]

@@ -76,6 +76,11 @@ def render_diagram_html(results: dict) -> str:
 
 def render_damping_html(results: dict) -> str:
     """The self-contained HTML report of a damping map of the coiled tether."""
-    from .diagram_figures import damping_maps
+    from .diagram_figures import damping_maps, eigen_paths_plot
 
-    return _environment().get_template("damping.html.j2").render(r=results, figs={"maps": Markup(damping_maps(results))})
+    paths = results["study"]["spin_paths"]
+    figs = {"maps": Markup(damping_maps(results)),
+            "paths": Markup(eigen_paths_plot(paths, "spin ω (dimensionless)",
+                                             f"b1 at B = {paths['B']:g}, γ = {paths['gamma']:g}: lowest eigenvalues "
+                                             "against spin"))}
+    return _environment().get_template("damping.html.j2").render(r=results, figs=figs)
