@@ -38,24 +38,38 @@ def _grid(a: np.ndarray) -> list:
     return np.where(np.isfinite(a), a, None).tolist()
 
 
-def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_max: float = 3.0,
+def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_max: float | None = None,
                   omega_max: float = 4.0, n_B: int = 14, n_omega: int = 12, N: int = 24) -> dict[str, Any]:
     """Damping margin of b1 over (B, omega) for each gamma, with the secondary-pitchfork curve.
 
-    B from 0 to ``B_max`` and omega from 0 to ``omega_max`` (dimensionless,
-    grid ``n_B`` x ``n_omega``); the equilibria are computed once and reused
-    for every gamma. Returns JSON-able arrays of shape (gamma, omega, B)
-    (None outside b1's stable region) and their SI counterparts.
+    B from 0 to ``B_max`` (default 5 times b1's pitchfork at rest) and omega
+    from 0 to ``omega_max`` (dimensionless, grid ``n_B`` x ``n_omega``); the
+    equilibria are computed once and reused for every gamma. The curve B*(omega)
+    is located at N and at the check resolution (its error). Returns JSON-able
+    arrays of shape (gamma, omega, B) (None outside b1's stable region) and
+    their SI counterparts.
     """
     t0 = time.perf_counter()
+    pf0 = float(br.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
+    B_ref = 1.5 * pf0  # b1 is reached here and followed in spin (above its pitchfork, below B*)
+    B_max = B_max or 5.0 * pf0
     B = np.linspace(0.0, B_max, n_B + 1)[1:]
     w = np.linspace(0.0, omega_max, n_omega)
-    m = damping_map(params, B, w, gammas=gammas, N=N)
+    m = damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref)
+    t_curve = time.perf_counter()
+    curve = []
+    for wi in w:
+        try:
+            pt = secondary_pitchfork(params, float(wi), N=N, B_ref=B_ref, B_max=max(20.0, 2 * B_max))
+            curve.append({"omega": float(wi), "B": pt.B, "error": pt.error})
+        except ValueError:
+            curve.append({"omega": float(wi), "B": None, "error": None})
+    t_curve = time.perf_counter() - t_curve
     wc = scales.frequency
     zeta = m.zeta
     unstable = np.nan_to_num(m.max_real, nan=-1.0) > 0
     # b1 at fixed load followed in spin: the paper's Hopf test (Sec. 7.2, B = 1.2), at the smallest damping
-    B_path = min(1.2, 0.5 * (B[0] + B[-1]))
+    B_path = max(B_ref, min(1.2, 2.05 * pf0))  # the paper's B = 1.2 for SET
     paths = eigenvalue_paths(b1_spin_branch(params, B_path, omega_max, N), min(m.gammas))
     paths["B"] = B_path
     return {
@@ -66,8 +80,10 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         "damping_time_s": [g / wc for g in m.gammas],
         "B": B.tolist(), "omega": w.tolist(),
         "IB0_N_per_m": (B * scales.load).tolist(), "spin_rpm": (w * wc * RPM).tolist(),
-        "secondary_pitchfork_B": _finite(m.curve_B),
-        "secondary_pitchfork_IB0_N_per_m": _finite(m.curve_B * scales.load),
+        "secondary_pitchfork_B": [c["B"] for c in curve],
+        "secondary_pitchfork_error": [c["error"] for c in curve],
+        "secondary_pitchfork_IB0_N_per_m": [None if c["B"] is None else c["B"] * scales.load for c in curve],
+        "curve_time_s": t_curve,
         "primary_pitchfork_B": _finite(m.primary_B),
         "max_real": _grid(m.max_real), "decay_rate_per_s": _grid(-m.max_real * wc),
         "damping_ratio": _grid(zeta), "log_decrement": _grid(np.where(np.isinf(m.log_decrement), np.nan,

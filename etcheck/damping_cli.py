@@ -40,7 +40,8 @@ def main(argv: list[str]) -> int:
     p.add_argument("mission", help="mission file (TOML)")
     p.add_argument("--gammas", type=_floats, default=HOPF_GAMMAS,
                    help="dimensionless Kelvin-Voigt dampings (default: the five of Fig. fig:hopf)")
-    p.add_argument("--B-max", type=float, default=3.0, help="largest dimensionless load B (default 3)")
+    p.add_argument("--B-max", type=float, default=None,
+                   help="largest dimensionless load B (default: 5 times b1's pitchfork at rest, 2.93 for SET)")
     p.add_argument("--spin-max", type=float, default=4.0, help="largest dimensionless spin omega (default 4)")
     p.add_argument("--points", default="14x12", help="grid, B points x spin points (default 14x12)")
     p.add_argument("--N", type=int, default=24, help="Chebyshev resolution (default 24; the check uses 1.5 N)")
@@ -56,7 +57,7 @@ def main(argv: list[str]) -> int:
         p.error(f"--points: expected e.g. 14x12, got {args.points!r}")
     if not (2 <= n_B <= 60 and 2 <= n_w <= 60):
         p.error("--points: each count must lie in [2, 60]")
-    if not (0 < args.B_max <= 50 and 0 < args.spin_max <= 20):
+    if not ((args.B_max is None or 0 < args.B_max <= 50) and 0 < args.spin_max <= 20):
         p.error("--B-max must lie in (0, 50] and --spin-max in (0, 20]")
     if not 16 <= args.N <= 64:
         p.error("--N must lie in [16, 64]")
@@ -84,6 +85,12 @@ def _summary(results: dict, paths: list) -> None:
           f"(equilibria {s['timing']['equilibria_s']:.1f} s, spectra {s['timing']['spectra_s']:.1f} s)")
     print(f"  largest estimated error of max Re lambda: {s['largest_error']:.1e}; unstable points under the "
           f"secondary pitchfork: {s['unstable_points']}")
+    errs = [e for e in s["secondary_pitchfork_error"] if e is not None]
+    print(f"  secondary pitchfork curve B*(omega): {len(errs)} points located at N = {s['N']} and {s['N_check']}, "
+          f"largest difference {max(errs, default=float('nan')):.1e}, {s['curve_time_s']:.1f} s")
+    p = s["spin_paths"]
+    print(f"  b1 at B = {p['B']:.4g} followed in spin to {p['values'][-1]:.3g}, gamma = {p['gamma']:g}: largest Re lambda "
+          f"{p['max_re']:.3e} ({'no Hopf crossing' if p['max_re'] < 0 else 'a mode crosses'}), {p['time_s']:.1f} s")
     for g, z in zip(s["gammas"], s["smallest_damping_ratio"]):
         print(f"  gamma = {g:g}: smallest damping ratio of b1 over the map {z if z is None else f'{z:.3e}'}")
     for path in paths:
