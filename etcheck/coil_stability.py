@@ -21,10 +21,11 @@ from typing import Any
 
 import numpy as np
 
-from .postbuckling import eigenvalue_paths
+from .postbuckling import eigenvalue_paths, liftoff
 from .rod import branches as br
 from .rod.branch_stability import HOPF_GAMMAS, b1_spin_branch, damping_map, secondary_pitchfork
 from .rod.parameters import RodParameters
+from .rod.spectrum import check_resolution
 from .scaling import Scales
 
 RPM = 60.0 / (2.0 * math.pi)
@@ -58,12 +59,11 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     m = damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref)
     t_curve = time.perf_counter()
     curve = []
+    for n in (N, check_resolution(N)):
+        b1_spin_branch(params, B_ref, omega_max, n)  # one continuation in spin serves every point of the curve
     for wi in w:
-        try:
-            pt = secondary_pitchfork(params, float(wi), N=N, B_ref=B_ref, B_max=max(20.0, 2 * B_max))
-            curve.append({"omega": float(wi), "B": pt.B, "error": pt.error})
-        except ValueError:
-            curve.append({"omega": float(wi), "B": None, "error": None})
+        pt = _pitchfork(params, float(wi), N, None, B_ref, 3.0 * B_ref)
+        curve.append({"omega": float(wi), "B": None if pt is None else pt.B, "error": None if pt is None else pt.error})
     t_curve = time.perf_counter() - t_curve
     wc = scales.frequency
     zeta = m.zeta
@@ -99,6 +99,19 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     }
 
 
+def _pitchfork(params: RodParameters, omega: float, N: int, N_check: int | None, B_ref: float, B_max: float,
+               B_limit: float = 60.0):
+    """b1's secondary pitchfork at spin omega, looking up to B_max and doubling the range
+    (continuing b1 far past B* is the expensive part); None if not found below B_limit."""
+    while True:
+        try:
+            return secondary_pitchfork(params, omega, N=N, N_check=N_check, B_ref=B_ref, B_max=B_max)
+        except ValueError:
+            if B_max >= B_limit:
+                return None
+            B_max = min(2.0 * B_max, B_limit)
+
+
 def coil_region(params: RodParameters, scales: Scales, omega_max: float, n: int = 4, N: int = 24) -> dict[str, Any]:
     """The stable region of b1 in the (load, spin) plane at the scene's tension (damping-independent).
 
@@ -111,19 +124,18 @@ def coil_region(params: RodParameters, scales: Scales, omega_max: float, n: int 
     stable region of the coil. JSON-able, with SI.
     """
     t0 = time.perf_counter()
-    lift = br.liftoff_spin(params.with_(B=0.0, omega=0.0), "b1", 1, N=N)
+    lift = liftoff(params)
     rows = []
     # b1 is reached at B_ref by continuation in spin: above b1's pitchfork at rest (which falls with spin)
     # and below its secondary pitchfork (about 3.3 times it for SET)
     B_ref = 1.5 * float(br.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
+    b1_spin_branch(params, B_ref, omega_max, N)  # one continuation in spin serves every row
     for w in np.linspace(0.0, omega_max, n):
         p = params.with_(omega=float(w))
         attached = not (math.isfinite(lift) and w >= lift)
         loads = br.class_loads(p.with_(B=0.0), "S1", N, n=1) if attached else np.array([])
-        try:
-            star = secondary_pitchfork(p, float(w), N=N, N_check=N, B_ref=B_ref).B
-        except ValueError:
-            star = math.inf
+        pt = _pitchfork(p, float(w), N, N, B_ref, 3.0 * B_ref)
+        star = pt.B if pt is not None else math.inf
         rows.append({"omega": float(w), "spin_rpm": float(w * scales.frequency * RPM),
                      "pitchfork_B": float(loads[0]) if loads.size else None,
                      "secondary_B": star if math.isfinite(star) else None})

@@ -54,7 +54,8 @@ class DiagramOptions:
     ``B_max``: end of the load range (None: 3, or 1.3 x the highest pitchfork);
     ``N``: Chebyshev resolution of the equilibria; ``connect``: follow the
     connecting branches (b12, b34, ...); ``stability``: mark each point stable
-    or unstable (rung 3, at the scene's damping); ``shape_measure``: measure_1
+    or unstable (rung 3, at the scene's damping); ``paths``: also the
+    eigenvalue paths along each branch; ``shape_measure``: measure_1
     at which the shapes are drawn (the paper's Fig.
     ``fig:tet:tether-modes-transition`` uses 0.04).
     """
@@ -66,6 +67,34 @@ class DiagramOptions:
     stability: bool = True
     shape_measure: float = 0.04
     max_points: int = 400
+    paths: bool = True
+
+
+@lru_cache(maxsize=256)
+def _liftoff_cached(P: float, R: float, Gamma: float, f: float, T: float, which: str, k: int) -> float:
+    return liftoff_spin(RodParameters(P=P, R=R, Gamma=Gamma, f=f, T=T), which=which, k=k, N=24)
+
+
+def liftoff(params: RodParameters, which: str = "b1", k: int = 1) -> float:
+    """Spin at which the k-th branch of class b1 (S1) or b2 (S2) lifts off (straight-rod pencils; memoised)."""
+    return _liftoff_cached(params.P, params.R, params.Gamma, params.f, params.T, which, k)
+
+
+def _b1_to(params: RodParameters, N: int) -> tuple[Any, Branch | None, str]:
+    """b1's start and its continuation to the operating load, or the reason why there is none."""
+    w = liftoff(params)
+    if math.isfinite(w) and params.omega >= w:
+        return None, None, (f"b1 has lifted off at omega = {w:.6g} (operating omega = {params.omega:.6g}): "
+                            "no buckled state grows from the straight tether here")
+    start = next(s for s in primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
+    if params.B <= start.load:
+        return start, None, "the operating load is below b1's pitchfork: the tether is straight"
+    if params.B > MAX_LOAD_RATIO * start.load:
+        return start, None, f"more than {MAX_LOAD_RATIO:g} times b1's pitchfork load (many coils): not assessed"
+    branch = continue_branch(params, start, stop=(0.0, params.B * (1 + 1e-9)), N=N, max_points=800)
+    if branch.values[-1] < params.B * (1 - 1e-9):
+        return start, None, f"b1 could not be followed to the operating load ({branch.reason})"
+    return start, branch, ""
 
 
 def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, float]]:
@@ -76,8 +105,7 @@ def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, float]]:
         j += 1
         which = "S1" if j % 2 else "S2"
         kk = (j + 1) // 2
-        w = (liftoff_spin(params.with_(B=0.0), which="b1" if which == "S1" else "b2", k=kk, N=24)
-             if params.omega > 0 else math.nan)
+        w = liftoff(params, "b1" if which == "S1" else "b2", kk) if params.omega > 0 else math.nan
         out.append((f"b{j}", which, kk, w))
         attached += not (math.isfinite(w) and params.omega >= w)
     return out
@@ -173,8 +201,9 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     }
     if options.stability:
         stable, growth, errs = _stability(branch, gamma)
-        out |= {"stable": stable, "max_growth": growth, "growth_error": errs,
-                "eigenvalue_paths": eigenvalue_paths(branch, gamma)}
+        out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
+        if options.paths:
+            out["eigenvalue_paths"] = eigenvalue_paths(branch, gamma)
     shapes = {}
     try:
         B, st = locate(branch, eq.measure1, options.shape_measure)
@@ -198,6 +227,11 @@ def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramO
     the two-resolution error and, with ``options.stability``, the stability
     of every point at the scene's damping.
     """
+    return _diagram(params, scales, options)[0]
+
+
+def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> tuple[dict, dict[str, Branch]]:
+    """:func:`bifurcation_diagram` and the continued primary branches by label."""
     t_all = time.perf_counter()
     labels = _labels(params, options.branches)
     attached = [(lab, which, kk, w) for lab, which, kk, w in labels if not (math.isfinite(w) and params.omega >= w)]
@@ -211,10 +245,11 @@ def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramO
         starts[lab] = next(s for s in pair if s.which == which)
     loads = [s.load for s in starts.values()]
     B_max = options.B_max or max(3.0, 1.3 * max(loads, default=0.0))
-    out_branches = []
+    out_branches, kept = [], {}
     for lab, which, _, w in attached:
         start = starts[lab]
         branch = continue_branch(params, start, stop=(0.0, B_max), N=options.N, max_points=options.max_points)
+        kept[lab] = branch
         data = _branch_data(branch, lab, scales, options, params.gamma)
         data |= {"pitchfork_B": start.load, "pitchfork_IB0_N_per_m": start.load * scales.load,
                  "symmetry": which, "liftoff_omega": w if math.isfinite(w) else None}
@@ -237,7 +272,7 @@ def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramO
         "branches": out_branches,
         "lifted_off": lifted,
         "time_s": time.perf_counter() - t_all,
-    }
+    }, kept
 
 
 #: damping multipliers of the sensitivity table (the mission's damping is often an estimate)
@@ -262,26 +297,24 @@ def _damping_sensitivity(state: eq.Equilibrium, scales: Scales) -> list[dict]:
     return rows
 
 
-def operating_state(params: RodParameters, scales: Scales, N: int = 32) -> dict:
+def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: Branch | None = None) -> dict:
     """The post-buckled tether at the operating load on b1 (rung 2) and its stability (rung 3).
 
-    For an operating B past b1's pitchfork at the operating spin and tension.
-    Returns shape (m), maximum lateral deflection (m), end forces (N) and
-    moments (N m) in the rotating frame, the least-damped eigenvalue (in 1/s
-    and Hz, with damping ratio), and the two-resolution errors. Raises
-    :class:`~etcheck.errors.SolverError` if b1 cannot be followed there.
+    For an operating B past b1's pitchfork at the operating spin and tension;
+    ``branch`` is b1 already continued past the operating load (else it is
+    continued here). Returns shape (m), maximum lateral deflection (m), end
+    forces (N) and moments (N m) in the rotating frame, the least-damped
+    eigenvalue (in 1/s and Hz, with damping ratio), and the two-resolution
+    errors. Raises :class:`~etcheck.errors.SolverError` if b1 cannot be
+    followed there.
     """
     t0 = time.perf_counter()
-    w = liftoff_spin(params.with_(B=0.0), which="b1", k=1, N=24)
-    if math.isfinite(w) and params.omega >= w:
-        return {"available": False, "reason": f"b1 has lifted off at omega = {w:.4g} (< operating omega = "
-                f"{params.omega:.4g}): no buckled state grows from the straight tether here"}
-    start = next(s for s in primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
-    if params.B <= start.load:
-        return {"available": False, "reason": "the operating load is below b1's pitchfork: the tether is straight"}
-    branch = continue_branch(params, start, stop=(0.0, params.B * (1 + 1e-9)), N=N, max_points=800)
-    if branch.values[-1] < params.B * (1 - 1e-9):
-        raise SolverError(f"rung 2: b1 could not be followed to the operating load ({branch.reason})")
+    if branch is None:
+        start, branch, why = _b1_to(params, N)
+        if branch is None:
+            if start is not None and params.B > start.load:
+                raise SolverError(f"rung 2: {why}")
+            return {"available": False, "reason": why}
     B, st = locate(branch, lambda s: s.params.B, params.B)
     check = resolution_check(branch)
     ms = eq.measures(st)
@@ -355,9 +388,9 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         return base | {"computed": False,
                        "reason": f"the operating load is {ratio:.3g} times the first critical load: the buckled tether "
                        f"has many coils, beyond rung 2's validated range (up to {MAX_LOAD_RATIO:g} times)"}
-    opts = DiagramOptions(branches=1, connect=False, stability=True, N=N,
+    opts = DiagramOptions(branches=1, connect=False, stability=True, paths=False, N=N,
                           B_max=max(1.5 * params.B, 5.0 * B_c))
-    diagram = bifurcation_diagram(params, scales, opts)
+    diagram, kept = _diagram(params, scales, opts)
     out = base | {"computed": True, "diagram": diagram}
     b1 = next((b for b in diagram["branches"] if b["label"] == "b1"), None)
     if b1 is not None:
@@ -368,7 +401,13 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         out["secondary_pitchfork_IB0_N_per_m"] = breaks[0]["IB0_N_per_m"] if breaks else None
         out["b1_first_unstable_B"] = first_unstable
         out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
-    out["operating"] = operating_state(params, scales, N) if params.B > B_c else None
+    out["operating"] = None
+    if params.B > B_c:
+        b1_branch = kept.get("b1")
+        if b1_branch is not None and b1_branch.values[-1] >= params.B:
+            out["operating"] = operating_state(params, scales, N, branch=b1_branch)
+        else:
+            out["operating"] = operating_state(params, scales, N)
     if out["operating"] and out["operating"].get("available"):
         from .coil_stability import coil_region, spin_limit
 
@@ -382,11 +421,6 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
     return out
 
 
-@lru_cache(maxsize=256)
-def _b1_liftoff(P: float, R: float, Gamma: float, f: float, T: float) -> float:
-    return liftoff_spin(RodParameters(P=P, R=R, Gamma=Gamma, f=f, T=T), which="b1", k=1, N=24)
-
-
 def buckled_point(params: RodParameters, N: int = 24) -> dict:
     """Is the tether stable on b1 at this (straight-unstable) point? Dimensionless, for sweeps.
 
@@ -397,18 +431,10 @@ def buckled_point(params: RodParameters, N: int = 24) -> dict:
     of L) and ``reason``.
     """
     out = {"stable": None, "max_deflection": None, "reason": ""}
-    lift = _b1_liftoff(params.P, params.R, params.Gamma, params.f, params.T)
-    if math.isfinite(lift) and params.omega >= lift:
-        return out | {"stable": False, "reason": f"b1 lifted off at omega = {lift:.6g}: no coiled state to settle in"}
-    start = next(s for s in primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
-    if params.B <= start.load:
-        return out | {"reason": "below b1's pitchfork"}
-    if params.B > MAX_LOAD_RATIO * start.load:
-        return out | {"reason": f"more than {MAX_LOAD_RATIO:g} times b1's pitchfork load (many coils): not assessed"}
-    branch = continue_branch(params, start, stop=(0.0, params.B * (1 + 1e-9)), N=N, max_points=800)
-    if branch.values[-1] < params.B * (1 - 1e-9):
-        return out | {"reason": f"b1 could not be followed to this load ({branch.reason})"}
+    start, branch, why = _b1_to(params, N)
+    if branch is None:
+        return out | {"stable": False if start is None else None, "reason": why}
     _, st = locate(branch, lambda s: s.params.B, params.B)
-    flag, g, _ = _spectrum_at(st, params.gamma)
+    flag, _, _ = _spectrum_at(st, params.gamma)
     return out | {"stable": flag, "max_deflection": eq.measures(st).max_deflection,
                   "reason": "" if flag is not None else "spectrum not converged"}
