@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from .jsonable import finite_or_none
 from .postbuckling import eigenvalue_paths, liftoff
 from .rod import branches as br
 from .rod.branch_stability import HOPF_GAMMAS, b1_spin_branch, damping_map, secondary_pitchfork
@@ -29,14 +30,6 @@ from .rod.spectrum import check_resolution
 from .scaling import Scales
 
 RPM = 60.0 / (2.0 * math.pi)
-
-
-def _finite(a) -> list:
-    return [None if v is None or not math.isfinite(v) else float(v) for v in np.ravel(a)]
-
-
-def _grid(a: np.ndarray) -> list:
-    return np.where(np.isfinite(a), a, None).tolist()
 
 
 def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_max: float | None = None,
@@ -84,11 +77,10 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         "secondary_pitchfork_error": [c["error"] for c in curve],
         "secondary_pitchfork_IB0_N_per_m": [None if c["B"] is None else c["B"] * scales.load for c in curve],
         "curve_time_s": t_curve,
-        "primary_pitchfork_B": _finite(m.primary_B),
-        "max_real": _grid(m.max_real), "decay_rate_per_s": _grid(-m.max_real * wc),
-        "damping_ratio": _grid(zeta), "log_decrement": _grid(np.where(np.isinf(m.log_decrement), np.nan,
-                                                                       m.log_decrement)),
-        "frequency_Hz": _grid(m.frequency * wc / (2 * math.pi)), "error": _grid(m.error),
+        "primary_pitchfork_B": finite_or_none(m.primary_B),
+        "max_real": finite_or_none(m.max_real), "decay_rate_per_s": finite_or_none(-m.max_real * wc),
+        "damping_ratio": finite_or_none(zeta), "log_decrement": finite_or_none(m.log_decrement),
+        "frequency_Hz": finite_or_none(m.frequency * wc / (2 * math.pi)), "error": finite_or_none(m.error),
         "unstable_points": int(np.count_nonzero(unstable)),
         "smallest_damping_ratio": [float(np.nanmin(zeta[i])) if np.isfinite(zeta[i]).any() else None
                                    for i in range(len(m.gammas))],

@@ -25,6 +25,7 @@ from typing import Any
 import numpy as np
 
 from .errors import SolverError
+from .jsonable import finite_or_none
 from .rod import equilibria as eq
 from .rod.branches import (
     Branch,
@@ -171,14 +172,10 @@ def eigenvalue_paths(branch, gamma: float, k: int = 6) -> dict:
     lam = np.asarray(bs.eigenvalues)
     labels = [Counter(bs.labels[:, j].tolist()).most_common(1)[0][0] for j in range(lam.shape[1])]
     return {"parameter": bs.parameter, "values": np.asarray(bs.values).tolist(), "gamma": gamma,
-            "re": _grid_list(lam.real), "im": _grid_list(lam.imag), "labels": labels,
+            "re": finite_or_none(lam.real), "im": finite_or_none(lam.imag), "labels": labels,
             "error": bs.error if math.isfinite(bs.error) else None, "N": bs.N, "N_check": bs.N_check,
             "max_re": float(np.nanmax(lam.real)) if np.isfinite(lam.real).any() else None,
             "time_s": bs.time}
-
-
-def _grid_list(a: np.ndarray) -> list:
-    return np.where(np.isfinite(a), a, None).tolist()
 
 
 def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float) -> dict:

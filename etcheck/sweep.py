@@ -43,6 +43,7 @@ from scipy.optimize import brentq
 from . import __version__
 from .axes import Axis
 from .errors import EtcheckError, MissionError
+from .jsonable import finite_or_none
 from .mission import Mission
 from .rod.damped_critical import damped_critical, first_root
 from .rod.parameters import RodParameters
@@ -475,7 +476,7 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
             text["verdict"][idx] = "pass" if good else "fail"
         else:
             text["verdict"][idx] = "no answer"
-    out = {f: _listify(v) for f, v in data.items()}
+    out = {f: finite_or_none(v) for f, v in data.items()}
     out |= {f: v.tolist() for f, v in text.items()}
     out["shape"] = list(shape)
     status = text["status"].ravel().tolist()
@@ -485,11 +486,6 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     out["max_error"] = max([e for e in np.concatenate([data["load_error"].ravel(), data["spin_error"].ravel()])
                             if np.isfinite(e)], default=None)
     return out
-
-
-def _listify(a: np.ndarray):
-    """Arrays with NaN (no value) -> None and inf (no limit) -> None-free strings are not JSON: use None."""
-    return np.where(np.isfinite(a), a, None).tolist()
 
 
 def _critical_lengths(points, results, axes, shape, base, current, field, options, cache) -> list[dict] | None:

@@ -41,7 +41,7 @@ TEXT = ("status", "region", "verdict", "model", "reason")
 UNLIMITED = ("load_margin", "spin_margin")
 
 
-def _array(results: dict, field: str) -> np.ndarray:
+def grid_array(results: dict, field: str) -> np.ndarray:
     """Grid field as a float array: NaN = no value, inf = unlimited margin."""
     g = results["grid"]
     a = np.array(g[field], dtype=object)
@@ -71,7 +71,7 @@ def to_csv(results: dict) -> bytes:
     header += [f"{FIELDS[f][0]} [{FIELDS[f][1]}]" if FIELDS[f][1] else FIELDS[f][0] for f in FIELDS]
     header += list(TEXT)
     w.writerow(header)
-    arrays = {f: _array(results, f) for f in FIELDS}
+    arrays = {f: grid_array(results, f) for f in FIELDS}
     text = {t: np.array(results["grid"][t], dtype=object) for t in TEXT}
     for idx in np.ndindex(*shape):
         row = []
@@ -105,7 +105,7 @@ def to_dataset(results: dict):
                                                    {"units": a["unit"], "long_name": a["label"]})
     data = {}
     for f, (name, unit, desc) in FIELDS.items():
-        data[name] = (dims, _array(results, f), {"units": unit or "1", "long_name": desc})
+        data[name] = (dims, grid_array(results, f), {"units": unit or "1", "long_name": desc})
     for t in TEXT:
         data[t] = (dims, np.array(results["grid"][t], dtype=str), {"long_name": t})
     ds = xr.Dataset(data, coords=coords)

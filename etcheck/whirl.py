@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 
 from .errors import SolverError
+from .jsonable import finite_or_none
 from .rod.analytic import critical_loads
 from .rod.convergence import accuracy_table
 from .rod.spectrum import spectrum
@@ -170,8 +171,8 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
         "campbell": {
             "omega": omegas.tolist(),
             "spin_rpm": (omegas * wc * RPM).tolist(),
-            "frequency_Hz": _nan_to_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
-            "growth_rate_per_s": _nan_to_none(cd.growth_rates * wc),
+            "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
+            "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
         },
         "stability_map": {
             "B": B_grid.tolist(),
@@ -201,6 +202,3 @@ def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: i
         for r in rows
     ]
 
-
-def _nan_to_none(a: np.ndarray) -> list:
-    return [[None if not math.isfinite(v) else float(v) for v in row] for row in np.asarray(a)]

@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..axes import AXES
-from ..sweep_files import _array
+from ..sweep_files import grid_array
 from .figures import _plt, _svg
 
 STABLE, UNSTABLE, BUCKLED, NOANSWER = "#d8efdd", "#f6d5d1", "#d6e4f5", "#9a9a9a"
@@ -28,7 +28,7 @@ def _operating(results: dict, k: int) -> float:
 
 
 def _log_margin(results: dict, field: str) -> np.ndarray:
-    m = _array(results, field)
+    m = grid_array(results, field)
     with np.errstate(divide="ignore", invalid="ignore"):
         out = np.log10(np.clip(m, 1e-6, 1e6))
     return out
@@ -143,7 +143,7 @@ def margin_lines(results: dict) -> str:
     fig, ax = plt.subplots(figsize=(6.4, 3.2))
     for field, label, colour in (("load_margin", "load margin (at the point's spin)", "#1f4e79"),
                                  ("spin_margin", "spin margin (at the point's load)", "#8e44ad")):
-        m = _array(results, field)
+        m = grid_array(results, field)
         m = np.where(np.isfinite(m), m, np.nan)
         if np.isfinite(m).any():
             ax.plot(x, np.clip(m, 1e-6, None), "-o", ms=2.5, color=colour, label=label)
