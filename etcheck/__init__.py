@@ -13,17 +13,17 @@ __version__ = "0.1.0"
 # Lazy public API (PEP 562): importing the unitless core (etcheck.rod,
 # etcheck.numerics) must not pull in astropy, pint or the report stack.
 _EXPORTS = {
-    "CheckResult": ".pipeline",
-    "check": ".pipeline",
-    "EtcheckError": ".errors",
-    "MissionError": ".errors",
-    "SolverError": ".errors",
-    "Mission": ".mission",
-    "load_mission": ".mission",
-    "mission_from_dict": ".mission",
-    "scale": ".scaling",
-    "scene": ".scaling",
-    "unscale": ".scaling",
+    "CheckResult": "etcheck.checks.pipeline",
+    "check": "etcheck.checks.pipeline",
+    "EtcheckError": "etcheck.errors",
+    "MissionError": "etcheck.errors",
+    "SolverError": "etcheck.errors",
+    "Mission": "etcheck.input.mission",
+    "load_mission": "etcheck.input.mission",
+    "mission_from_dict": "etcheck.input.mission",
+    "scale": "etcheck.scaling",
+    "scene": "etcheck.scaling",
+    "unscale": "etcheck.scaling",
 }
 
 
@@ -31,7 +31,7 @@ def __getattr__(name: str):
     if name in _EXPORTS:
         import importlib
 
-        return getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+        return getattr(importlib.import_module(_EXPORTS[name]), name)
     raise AttributeError(f"module 'etcheck' has no attribute {name!r}")
 
 

@@ -17,8 +17,11 @@ from dataclasses import dataclass
 
 import astropy.units as u
 
-from .mission import DEFAULT_GAMMA, Mission
-from .rod.parameters import RodParameters
+from etcheck.input.mission import DEFAULT_GAMMA, Mission
+from etcheck.rod.parameters import RodParameters
+
+#: rad/s -> revolutions per minute
+RPM = 60.0 / (2.0 * math.pi)
 
 
 @dataclass(frozen=True)

@@ -11,7 +11,7 @@ import os
 import tempfile
 from pathlib import Path
 
-from ..errors import ReportError
+from etcheck.errors import ReportError
 
 FILENAMES = {"html": "report.html", "pdf": "report.pdf", "json": "results.json"}
 DAMPING_FILENAMES = {"html": "damping.html", "pdf": "damping.pdf", "json": "damping.json"}
@@ -30,20 +30,20 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
     out: dict[str, bytes] = {}
     html = None
     if "html" in formats or "pdf" in formats:
-        from .html import render_damping_html, render_diagram_html, render_html, render_sweep_html
+        from etcheck.report.html import render_damping_html, render_diagram_html, render_html, render_sweep_html
 
         html = {"sweep": render_sweep_html, "diagram": render_diagram_html,
                 "damping": render_damping_html}.get(kind, render_html)(results)
     if "html" in formats:
         out["html"] = html.encode("utf-8")
     if "pdf" in formats:
-        from .pdf import render_pdf
+        from etcheck.report.pdf import render_pdf
 
         out["pdf"] = render_pdf(html)
     if "json" in formats:
         out["json"] = (json.dumps(results, indent=2, allow_nan=False, ensure_ascii=False, default=_json_default) + "\n").encode()
     if "csv" in formats or "nc" in formats:
-        from ..sweep_files import to_csv, to_netcdf
+        from etcheck.report.sweep_files import to_csv, to_netcdf
 
         if "csv" in formats:
             out["csv"] = to_csv(results)

@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 import math
+from collections import Counter
 
+import numpy as np
 from markupsafe import Markup, escape
 
-from .figures import figures
+from etcheck.report.figures.check import figures
+from etcheck.report.figures.diagram import damping_maps, diagram_figures, eigen_paths_plot
+from etcheck.report.figures.sweep import sweep_figures
 
 
 def sci(x, digits: int = 4) -> Markup:
@@ -46,12 +50,6 @@ def render_html(results: dict) -> str:
 
 def render_sweep_html(results: dict) -> str:
     """The self-contained HTML report of a sweep (JSON-able sweep results)."""
-    from collections import Counter
-
-    import numpy as np
-
-    from .sweep_figures import sweep_figures
-
     g = results["grid"]
     models = Counter(m for m in np.ravel(np.array(g["model"], dtype=object)) if m)
     failures = []
@@ -68,16 +66,12 @@ def render_sweep_html(results: dict) -> str:
 
 def render_diagram_html(results: dict) -> str:
     """The self-contained HTML report of a bifurcation diagram."""
-    from .diagram_figures import diagram_figures
-
     figs = {name: Markup(svg) for name, svg in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
     return _environment().get_template("diagram.html.j2").render(r=results, d=results["diagram"], figs=figs)
 
 
 def render_damping_html(results: dict) -> str:
     """The self-contained HTML report of a damping map of the coiled tether."""
-    from .diagram_figures import damping_maps, eigen_paths_plot
-
     paths = results["study"]["spin_paths"]
     figs = {"maps": Markup(damping_maps(results)),
             "paths": Markup(eigen_paths_plot(paths, "spin ω (dimensionless)",

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..errors import ReportError
+from etcheck.errors import ReportError
 
 
 def render_pdf(html: str) -> bytes:

@@ -1,0 +1,361 @@
+"""Rungs 2 and 3 for a mission: the buckled tether, in the numbers an engineer reads.
+
+Everything is solved dimensionless in :mod:`etcheck.rod.branches` (whirling
+equilibria, continuation, branch switching) and :mod:`etcheck.rod.spectrum`
+(the linearisation about a buckled state); this module chooses what to ask
+(which branches, how far, which shapes) and returns JSON-able data with the
+dimensionless values and their SI counterparts (lengths in m, loads in N/m,
+forces in N, moments in N m) from the mission's :class:`~etcheck.scaling.Scales`.
+
+Branch labels follow the paper: b(2k-1) is the branch of the k-th pitchfork
+in Fix(S1), b(2k) the one in Fix(S2), b(2k-1)(2k) the connecting branch that
+leaves b(2k-1) at its symmetry-breaking (secondary) pitchfork. A branch whose
+pitchfork has reached B = 0 (lift-off under spin) no longer starts on the
+straight tether; the labels of the branches above it keep their numbers.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+import numpy as np
+
+from etcheck.checks.coil import (
+    branch_stability,
+    coil_region,
+    damping_sensitivity,
+    eigenvalue_paths,
+    spin_limit,
+    state_stability,
+)
+from etcheck.errors import SolverError
+from etcheck.rod import equilibria as eq
+from etcheck.rod.branches import (
+    Branch,
+    connecting_branch,
+    continue_branch,
+    liftoff_spin,
+    locate,
+    primary_branches,
+    resolution_check,
+)
+from etcheck.rod.parameters import RodParameters
+from etcheck.rod.spectrum import spectrum
+from etcheck.rod.stability import THRESHOLD
+from etcheck.scaling import Scales
+
+#: arc-length samples of a drawn shape
+SHAPE_POINTS = 121
+
+
+@dataclass(frozen=True)
+class DiagramOptions:
+    """What a bifurcation diagram contains (dimensionless settings).
+
+    ``branches``: number of primary branches still attached to the straight
+    tether at the scene's spin (b1, b2, ... in order; lifted-off ones are
+    listed, not counted);
+    ``B_max``: end of the load range (None: 3, or 1.3 x the highest pitchfork);
+    ``N``: Chebyshev resolution of the equilibria; ``connect``: follow the
+    connecting branches (b12, b34, ...); ``stability``: mark each point stable
+    or unstable (rung 3, at the scene's damping); ``paths``: also the
+    eigenvalue paths along each branch; ``shape_measure``: measure_1
+    at which the shapes are drawn (the paper's Fig.
+    ``fig:tet:tether-modes-transition`` uses 0.04).
+    """
+
+    branches: int = 3
+    B_max: float | None = None
+    N: int = 32
+    connect: bool = True
+    stability: bool = True
+    shape_measure: float = 0.04
+    max_points: int = 400
+    paths: bool = True
+
+
+@lru_cache(maxsize=256)
+def _liftoff_cached(P: float, R: float, Gamma: float, f: float, T: float, which: str, k: int) -> float:
+    return liftoff_spin(RodParameters(P=P, R=R, Gamma=Gamma, f=f, T=T), which=which, k=k, N=24)
+
+
+def liftoff(params: RodParameters, which: str = "b1", k: int = 1) -> float:
+    """Spin at which the k-th branch of class b1 (S1) or b2 (S2) lifts off (straight-rod pencils; memoised)."""
+    return _liftoff_cached(params.P, params.R, params.Gamma, params.f, params.T, which, k)
+
+
+def _b1_to(params: RodParameters, N: int) -> tuple[Any, Branch | None, str]:
+    """b1's start and its continuation to the operating load, or the reason why there is none."""
+    w = liftoff(params)
+    if math.isfinite(w) and params.omega >= w:
+        return None, None, (f"b1 has lifted off at omega = {w:.6g} (operating omega = {params.omega:.6g}): "
+                            "no buckled state grows from the straight tether here")
+    start = next(s for s in primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
+    if params.B <= start.load:
+        return start, None, "the operating load is below b1's pitchfork: the tether is straight"
+    if params.B > MAX_LOAD_RATIO * start.load:
+        return start, None, f"more than {MAX_LOAD_RATIO:g} times b1's pitchfork load (many coils): not assessed"
+    branch = continue_branch(params, start, stop=(0.0, params.B * (1 + 1e-9)), N=N, max_points=800)
+    if branch.values[-1] < params.B * (1 - 1e-9):
+        return start, None, f"b1 could not be followed to the operating load ({branch.reason})"
+    return start, branch, ""
+
+
+def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, float]]:
+    """(label, symmetry, k-th pitchfork of its class, lift-off spin) of branches b1, b2, ... until n of them
+    are still attached to the straight tether at the scene's spin (lifted-off ones are listed too)."""
+    out, attached, j = [], 0, 0
+    while attached < n and j < n + 8:
+        j += 1
+        which = "S1" if j % 2 else "S2"
+        kk = (j + 1) // 2
+        w = liftoff(params, "b1" if which == "S1" else "b2", kk) if params.omega > 0 else math.nan
+        out.append((f"b{j}", which, kk, w))
+        attached += not (math.isfinite(w) and params.omega >= w)
+    return out
+
+
+def _shape(state: eq.Equilibrium, L: float) -> dict[str, Any]:
+    s = np.linspace(0.0, 1.0, SHAPE_POINTS)
+    x = state.x0(s)
+    return {"s": s.tolist(), "x": x[:, 0].tolist(), "y": x[:, 1].tolist(), "z": x[:, 2].tolist(),
+            "x_m": (x[:, 0] * L).tolist(), "y_m": (x[:, 1] * L).tolist(), "z_m": (x[:, 2] * L).tolist()}
+
+
+def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float) -> dict:
+    L = scales.length
+    t0 = time.perf_counter()
+    check = resolution_check(branch)
+    out = branch.summary() | {
+        "label": label,
+        "points": len(branch.values),
+        "IB0_N_per_m": (np.asarray(branch.values) * scales.load).tolist(),
+        "max_deflection_m": (branch.max_deflection * L).tolist(),
+        "measure1_error": check.measure1_error,
+        "deflection_error": check.deflection_error,
+        "N_check": check.N_check,
+        "special": [
+            {"kind": q.kind, "B": q.value, "IB0_N_per_m": q.value * scales.load, "measure1": q.measure1,
+             "bracket": list(q.bracket)}
+            for q in branch.special
+        ],
+    }
+    if options.stability:
+        stable, growth, errs = branch_stability(branch, gamma)
+        out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
+        if options.paths:
+            out["eigenvalue_paths"] = eigenvalue_paths(branch, gamma)
+    shapes = {}
+    try:
+        B, st = locate(branch, eq.measure1, options.shape_measure)
+        shapes[f"measure1={options.shape_measure:g}"] = _shape(st, L) | {"B": B, "measure1": eq.measure1(st)}
+    except ValueError:
+        pass
+    shapes["end"] = _shape(branch.states[-1], L) | {"B": float(branch.values[-1]),
+                                                    "measure1": float(branch.measure1[-1])}
+    out["shapes"] = shapes
+    out["check_time"] = time.perf_counter() - t0
+    return out
+
+
+def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DiagramOptions()) -> dict:
+    """Branches of whirling equilibria of the tether in the load B (rung 2), with stability (rung 3).
+
+    ``params`` fixes omega, T, R, ... (B is the continuation parameter).
+    Returns JSON-able data: per branch its label, symmetry class, pitchfork
+    load, points (B, measure_1, measure_2, max deflection; I·B0 in N/m and
+    deflection in m), special points (folds, branch points), shapes, cost,
+    the two-resolution error and, with ``options.stability``, the stability
+    of every point at the scene's damping.
+    """
+    return _diagram(params, scales, options)[0]
+
+
+def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> tuple[dict, dict[str, Branch]]:
+    """:func:`bifurcation_diagram` and the continued primary branches by label."""
+    t_all = time.perf_counter()
+    labels = _labels(params, options.branches)
+    attached = [(lab, which, kk, w) for lab, which, kk, w in labels if not (math.isfinite(w) and params.omega >= w)]
+    lifted = [{"label": lab, "liftoff_omega": w} for lab, _, _, w in labels if math.isfinite(w) and params.omega >= w]
+    # the j-th attached branch of a class starts at that class's j-th pitchfork (lifted ones are gone)
+    starts: dict[str, Any] = {}
+    count = {"S1": 0, "S2": 0}
+    for lab, which, _, _ in attached:
+        count[which] += 1
+        pair = primary_branches(params.with_(B=0.0), count[which], options.N)
+        starts[lab] = next(s for s in pair if s.which == which)
+    loads = [s.load for s in starts.values()]
+    B_max = options.B_max or max(3.0, 1.3 * max(loads, default=0.0))
+    out_branches, kept = [], {}
+    for lab, which, _, w in attached:
+        start = starts[lab]
+        branch = continue_branch(params, start, stop=(0.0, B_max), N=options.N, max_points=options.max_points)
+        kept[lab] = branch
+        data = _branch_data(branch, lab, scales, options, params.gamma)
+        data |= {"pitchfork_B": start.load, "pitchfork_IB0_N_per_m": start.load * scales.load,
+                 "symmetry": which, "liftoff_omega": w if math.isfinite(w) else None}
+        out_branches.append(data)
+        odd = int(lab[1:])
+        if options.connect and which == "S1" and any(q.kind == "break" for q in branch.special):
+            con = connecting_branch(branch, stop=(0.0, B_max), max_points=options.max_points)
+            cdata = _branch_data(con, f"b{odd}{odd + 1}", scales, options, params.gamma)
+            cdata |= {"symmetry": None, "from": lab}
+            out_branches.append(cdata)
+    if not out_branches and not lifted:
+        raise SolverError("rung 2: no branch was found")
+    return {
+        "model": "rung 2 (whirling equilibria, pseudo-arclength continuation)"
+        + (" + rung 3 (stability of each state)" if options.stability else ""),
+        "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "omega", "T", "gamma")},
+        "B_max": B_max,
+        "IB0_max_N_per_m": B_max * scales.load,
+        "N": options.N,
+        "branches": out_branches,
+        "lifted_off": lifted,
+        "time_s": time.perf_counter() - t_all,
+    }, kept
+
+
+def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: Branch | None = None) -> dict:
+    """The post-buckled tether at the operating load on b1 (rung 2) and its stability (rung 3).
+
+    For an operating B past b1's pitchfork at the operating spin and tension;
+    ``branch`` is b1 already continued past the operating load (else it is
+    continued here). Returns shape (m), maximum lateral deflection (m), end
+    forces (N) and moments (N m) in the rotating frame, the least-damped
+    eigenvalue (in 1/s and Hz, with damping ratio), and the two-resolution
+    errors. Raises :class:`~etcheck.errors.SolverError` if b1 cannot be
+    followed there.
+    """
+    t0 = time.perf_counter()
+    if branch is None:
+        start, branch, why = _b1_to(params, N)
+        if branch is None:
+            if start is not None and params.B > start.load:
+                raise SolverError(f"rung 2: {why}")
+            return {"available": False, "reason": why}
+    B, st = locate(branch, lambda s: s.params.B, params.B)
+    check = resolution_check(branch)
+    ms = eq.measures(st)
+    sp = spectrum(st.params, base=st, k=8, tol=1e-6)
+    lam = sp.eigenvalues
+    i = int(np.argmax(lam.real)) if lam.size else None
+    L, force, moment, wc = scales.length, scales.force, scales.force * scales.length, scales.frequency
+    least = None
+    if i is not None:
+        z = lam[i]
+        least = {"re": float(z.real), "im": float(z.imag), "growth_rate_per_s": float(z.real * wc),
+                 "frequency_Hz": float(abs(z.imag) * wc / (2 * math.pi)),
+                 "damping_ratio": float(-z.real / abs(z)) if abs(z) else None,
+                 "decay_time_s": float(-1.0 / (z.real * wc)) if z.real < 0 else None,
+                 "error": float(sp.errors[i])}
+    return {
+        "damping_sensitivity": damping_sensitivity(st, scales),
+        "available": True,
+        "branch": "b1",
+        "B": B,
+        "measure1": ms.measure1,
+        "max_deflection": ms.max_deflection,
+        "max_deflection_m": ms.max_deflection * L,
+        "end_shortening_m": ms.end_shortening * L,
+        "end_force_N": {"s=0": [v * force for v in ms.F0], "s=L": [v * force for v in ms.F1]},
+        "end_moment_N_m": {"s=0": [v * moment for v in ms.M0], "s=L": [v * moment for v in ms.M1]},
+        "shape": _shape(st, L),
+        "deflection_error_m": check.deflection_error * L,
+        "residual": st.residual_norm,
+        "N": N,
+        "N_check": check.N_check,
+        "stable": bool(sp.converged and lam.size and np.max(lam.real) <= THRESHOLD),
+        "spectrum_converged": bool(sp.converged),
+        "least_damped": least,
+        "points": len(branch.values),
+        "time_s": time.perf_counter() - t0,
+    }
+
+
+#: beyond this multiple of the first critical load the tether has many coils: rung 2 is not attempted
+MAX_LOAD_RATIO = 6.0
+
+
+def needs_postbuckling(B: float, B_c: float | None, required: float) -> bool:
+    """The scene needs rungs 2-3 when the operating load is past, or within the
+    required margin of, the first critical load (dimensionless loads)."""
+    return B_c is not None and B > 0 and B * required >= B_c
+
+
+def _break_error(params: RodParameters, B_star: float, N: int) -> float:
+    """Relative change of b1's first secondary pitchfork when b1 is recomputed at 1.5 N."""
+    M = N + N // 2
+    start = next(s for s in primary_branches(params.with_(B=0.0), 1, M) if s.which == "S1")
+    branch = continue_branch(params, start, stop=(0.0, 1.05 * B_star), N=M)
+    other = [q.value for q in branch.special if q.kind == "break"]
+    return abs(other[0] - B_star) / B_star if other else math.inf
+
+
+def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, required: float, N: int = 32) -> dict:
+    """Rung 2/3 answers for a scene near or past its first critical load B_c (dimensionless).
+
+    The first branch b1 at the operating spin and tension (with stability at
+    the scene's damping) up to past the operating load, its secondary
+    pitchfork (the end of its stable part), and, past B_c, the buckled state
+    at the operating load (:func:`operating_state`). JSON-able.
+    """
+    t0 = time.perf_counter()
+    ratio = params.B / B_c if B_c > 0 else math.inf
+    base = {"B_c": B_c, "load_ratio": ratio}
+    if ratio > MAX_LOAD_RATIO:
+        return base | {"computed": False,
+                       "reason": f"the operating load is {ratio:.3g} times the first critical load: the buckled tether "
+                       f"has many coils, beyond rung 2's validated range (up to {MAX_LOAD_RATIO:g} times)"}
+    opts = DiagramOptions(branches=1, connect=False, stability=True, paths=False, N=N,
+                          B_max=max(1.5 * params.B, 5.0 * B_c))
+    diagram, kept = _diagram(params, scales, opts)
+    out = base | {"computed": True, "diagram": diagram}
+    b1 = next((b for b in diagram["branches"] if b["label"] == "b1"), None)
+    if b1 is not None:
+        breaks = [q for q in b1["special"] if q["kind"] == "break"]
+        first_unstable = next((v for v, st in zip(b1["values"], b1["stable"]) if st is False), None)
+        out["secondary_pitchfork_B"] = breaks[0]["B"] if breaks else None
+        out["secondary_pitchfork_error"] = _break_error(params, breaks[0]["B"], N) if breaks else None
+        out["secondary_pitchfork_IB0_N_per_m"] = breaks[0]["IB0_N_per_m"] if breaks else None
+        out["b1_first_unstable_B"] = first_unstable
+        out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
+    out["operating"] = None
+    if params.B > B_c:
+        b1_branch = kept.get("b1")
+        if b1_branch is not None and b1_branch.values[-1] >= params.B:
+            out["operating"] = operating_state(params, scales, N, branch=b1_branch)
+        else:
+            out["operating"] = operating_state(params, scales, N)
+    if out["operating"] and out["operating"].get("available"):
+        region = coil_region(params, scales, omega_max=max(1.0, 2.0 * params.omega), liftoff_omega=liftoff(params))
+        low = spin_limit(region, params.B)
+        rpm = scales.frequency * 60.0 / (2.0 * math.pi)
+        region |= {"operating_rpm": params.omega * rpm,
+                   "lowest_stable_spin_rpm": None if low is None else low * rpm}
+        out["region"] = region
+    out["time_s"] = time.perf_counter() - t0
+    return out
+
+
+def buckled_point(params: RodParameters, N: int = 24) -> dict:
+    """Is the tether stable on b1 at this (straight-unstable) point? Dimensionless, for sweeps.
+
+    b1 exists when its pitchfork has not lifted off at this spin; it is
+    followed from its pitchfork to the point's load and the state there is
+    classified by its spectrum (rung 3, the scene's damping). Returns
+    ``stable`` (True/False, None when not assessed), ``max_deflection`` (units
+    of L) and ``reason``.
+    """
+    out = {"stable": None, "max_deflection": None, "reason": ""}
+    start, branch, why = _b1_to(params, N)
+    if branch is None:
+        return out | {"stable": False if start is None else None, "reason": why}
+    _, st = locate(branch, lambda s: s.params.B, params.B)
+    flag, _, _ = state_stability(st, params.gamma)
+    return out | {"stable": flag, "max_deflection": eq.measures(st).max_deflection,
+                  "reason": "" if flag is not None else "spectrum not converged"}

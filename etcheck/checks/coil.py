@@ -1,0 +1,182 @@
+"""Rung 3 for a mission: where the coiled (buckled) tether is stable, and how well damped.
+
+The dimensionless work is in :mod:`etcheck.rod.branch_stability`; this module
+asks the engineer's questions of the first post-buckling branch b1 and returns
+JSON-able data in both the paper's numbers and SI (I·B0 in N/m, spin in rpm,
+decay rates in 1/s, decay times in s):
+
+* the stable region of b1 in the (load, spin) plane: above b1's primary
+  pitchfork B_pf(omega) (where the coil appears) and below its secondary
+  pitchfork B*(omega) (where it loses stability, independent of damping);
+* the stability of every state of a branch (Kelvin-Tait-Chetaev: with
+  damping, classified stretch by stretch between the static special points);
+* the least-damped mode of a state and how it moves with the damping;
+* the eigenvalue paths along a branch, labelled by mode type.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections import Counter
+from typing import Any
+
+import numpy as np
+
+from etcheck.jsonable import finite_or_none
+from etcheck.rod import branches as br
+from etcheck.rod import equilibria as eq
+from etcheck.rod.branch_stability import (
+    b1_spin_branch,
+    branch_spectra,
+    damped_operator,
+    operator_eigenvalues,
+    secondary_pitchfork,
+)
+from etcheck.rod.branches import Branch
+from etcheck.rod.parameters import RodParameters
+from etcheck.rod.spectrum import spectrum
+from etcheck.rod.stability import THRESHOLD
+from etcheck.scaling import RPM, Scales
+
+
+def state_stability(state: eq.Equilibrium, gamma: float, k: int = 6):
+    """(stable or None when not converged, max Re lambda, its two-resolution error) of one state (rung 3)."""
+    sp = spectrum(state.params.with_(gamma=gamma), base=state, k=k, tol=1e-6)
+    g = float(np.max(sp.eigenvalues.real)) if sp.eigenvalues.size else math.nan
+    err = float(np.max(sp.errors)) if sp.errors.size else None
+    return (bool(g <= THRESHOLD) if sp.converged and math.isfinite(g) else None), g, err
+
+
+def branch_stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
+    """Stable flag, max Re lambda and its error at the points of a branch (rung 3).
+
+    With damping (gamma > 0) stability can change only where the static
+    operator is singular (Kelvin-Tait-Chetaev): at the special points located
+    on the branch (folds and branch points in the symmetric space, symmetry-
+    breaking pitchforks in the antisymmetric one). Each stretch between them is
+    then classified by its middle and last state (they must agree); the other
+    points carry the stretch's flag and no eigenvalue (None). Without damping
+    every state is checked (gyroscopic Krein collisions can occur anywhere).
+    """
+    n = len(branch.states)
+    stable: list = [None] * n
+    growth: list = [None] * n
+    errors: list = [None] * n
+    if gamma > 0:
+        cuts = sorted({q.raw.index for q in branch.special})
+        bounds = [0, *[c + 1 for c in cuts], n]
+        stretches = [(a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
+    else:
+        stretches = [(i, i + 1) for i in range(n)]
+    for a, b in stretches:
+        probe = sorted({(a + b) // 2, b - 1} - ({0} if b - a > 1 else set()))
+        flags = []
+        for i in probe:
+            flag, g, err = state_stability(branch.states[i], gamma)
+            growth[i] = g if math.isfinite(g) else None
+            errors[i] = err
+            flags.append(flag)
+        verdict = flags[0] if len(set(flags)) == 1 else None  # disagreement: leave unclassified
+        for i in range(a, b):
+            stable[i] = verdict
+    return stable, growth, errors
+
+
+def eigenvalue_paths(branch, gamma: float, k: int = 6) -> dict:
+    """The k least-|lambda| eigenvalue paths along a branch (rung 3), tracked through crossings and
+    labelled by mode type (bending about d1 / d2, torsion); JSON-able (dimensionless)."""
+    bs = branch_spectra(branch, gamma, k=k)
+    lam = np.asarray(bs.eigenvalues)
+    labels = [Counter(bs.labels[:, j].tolist()).most_common(1)[0][0] for j in range(lam.shape[1])]
+    return {"parameter": bs.parameter, "values": np.asarray(bs.values).tolist(), "gamma": gamma,
+            "re": finite_or_none(lam.real), "im": finite_or_none(lam.imag), "labels": labels,
+            "error": bs.error if math.isfinite(bs.error) else None, "N": bs.N, "N_check": bs.N_check,
+            "max_re": float(np.nanmax(lam.real)) if np.isfinite(lam.real).any() else None,
+            "time_s": bs.time}
+
+
+#: damping multipliers of the sensitivity table (the mission's damping is often an estimate)
+DAMPING_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
+
+
+def damping_sensitivity(state: eq.Equilibrium, scales: Scales) -> list[dict]:
+    """Least-damped mode of a state for the scene's damping times DAMPING_FACTORS (one operator, rung 3)."""
+    op = damped_operator(state.params, state, state.N)
+    wc = scales.frequency
+    rows = []
+    for k in DAMPING_FACTORS:
+        g = k * state.params.gamma
+        lam = operator_eigenvalues(op, g, 20, False)
+        z = lam[int(np.argmax(lam.real))]
+        rows.append({"factor": k, "gamma": g, "damping_time_s": g / wc, "growth_rate_per_s": float(z.real * wc),
+                     "damping_ratio": float(-z.real / abs(z)) if abs(z) else None,
+                     "decay_time_s": float(-1.0 / (z.real * wc)) if z.real < 0 else None,
+                     "stable": bool(z.real <= THRESHOLD)})
+    return rows
+
+
+def secondary_pitchfork_at(params: RodParameters, omega: float, N: int, N_check: int | None, B_ref: float, B_max: float,
+               B_limit: float = 60.0):
+    """b1's secondary pitchfork at spin omega, looking up to B_max and doubling the range
+    (continuing b1 far past B* is the expensive part); None if not found below B_limit."""
+    while True:
+        try:
+            return secondary_pitchfork(params, omega, N=N, N_check=N_check, B_ref=B_ref, B_max=B_max)
+        except ValueError:
+            if B_max >= B_limit:
+                return None
+            B_max = min(2.0 * B_max, B_limit)
+
+
+def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff_omega: float, n: int = 4,
+                N: int = 24) -> dict[str, Any]:
+    """The stable region of b1 in the (load, spin) plane at the scene's tension (damping-independent).
+
+    Its lower edge is b1's pitchfork on the straight tether (the class-S1
+    static load), its upper edge the secondary pitchfork B*(omega), each at
+    ``n`` spins from 0 to ``omega_max`` (dimensionless; b1 lifts off at
+    ``liftoff_omega``), located exactly at
+    resolution N (one resolution: a drawing of the region; the margin at the
+    operating spin is computed at two). With damping, stability changes only at
+    these static points (Kelvin-Tait-Chetaev), so the region between them is the
+    stable region of the coil. JSON-able, with SI.
+    """
+    t0 = time.perf_counter()
+    lift = liftoff_omega
+    rows = []
+    # b1 is reached at B_ref by continuation in spin: above b1's pitchfork at rest (which falls with spin)
+    # and below its secondary pitchfork (about 3.3 times it for SET)
+    B_ref = 1.5 * float(br.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
+    b1_spin_branch(params, B_ref, omega_max, N)  # one continuation in spin serves every row
+    for w in np.linspace(0.0, omega_max, n):
+        p = params.with_(omega=float(w))
+        attached = not (math.isfinite(lift) and w >= lift)
+        loads = br.class_loads(p.with_(B=0.0), "S1", N, n=1) if attached else np.array([])
+        pt = secondary_pitchfork_at(p, float(w), N, N, B_ref, 3.0 * B_ref)
+        star = pt.B if pt is not None else math.inf
+        rows.append({"omega": float(w), "spin_rpm": float(w * scales.frequency * RPM),
+                     "pitchfork_B": float(loads[0]) if loads.size else None,
+                     "secondary_B": star if math.isfinite(star) else None})
+    for r in rows:
+        for k in ("pitchfork_B", "secondary_B"):
+            r[k.replace("_B", "_IB0_N_per_m")] = None if r[k] is None else r[k] * scales.load
+    return {"rows": rows, "N": N, "liftoff_omega": lift if math.isfinite(lift) else None,
+            "liftoff_rpm": lift * scales.frequency * RPM if math.isfinite(lift) else None,
+            "time_s": time.perf_counter() - t0}
+
+
+def spin_limit(region: dict, B: float) -> float | None:
+    """Lowest spin (dimensionless) at which the coil at load B is still below its secondary
+    pitchfork, from the region's table (B*(omega) increases with spin, Sec. 8); 0 if stable
+    at rest, None if B is above B* everywhere in the table."""
+    rows = [r for r in region["rows"] if r["secondary_B"] is not None]
+    if not rows:
+        return None
+    if B < rows[0]["secondary_B"]:
+        return 0.0
+    for a, b in zip(rows[:-1], rows[1:]):
+        if a["secondary_B"] <= B < b["secondary_B"]:
+            t = (B - a["secondary_B"]) / (b["secondary_B"] - a["secondary_B"])
+            return a["omega"] + t * (b["omega"] - a["omega"])
+    return None

@@ -1,0 +1,167 @@
+"""Results -> margins and verdicts, back in physical units."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+from etcheck.checks.plan import RUNG_NAMES, Plan
+from etcheck.input.mission import Mission
+from etcheck.scaling import RPM, Scaled, Scene
+
+PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
+
+
+@dataclass(frozen=True)
+class Margin:
+    """One design margin: critical / operating, judged against the required margin.
+
+    ``critical`` and ``operating`` are in ``unit`` (SI); ``value`` is their
+    ratio (None when the operating value is zero: an unlimited margin, or when
+    the check is incomplete); ``error`` is the estimated relative numerical
+    error of ``value``; ``rung`` the model that answered.
+    """
+
+    name: str
+    unit: str
+    critical: float | None
+    operating: float
+    value: float | None
+    required: float
+    verdict: str
+    rung: int
+    error: float | None
+    why: str
+
+    @property
+    def model(self) -> str:
+        return RUNG_NAMES[self.rung]
+
+    def as_dict(self) -> dict:
+        return asdict(self) | {"model": self.model}
+
+
+def ratio_margin(
+    name: str, unit: str, critical: float, operating: float, required: float, rung: int, error: float, why: str
+) -> Margin:
+    """Margin = critical / operating (both >= 0, same unit); pass if >= required.
+
+    A margin is judged on its pessimistic side, value * (1 - error), so a
+    numerical error can never turn a fail into a pass.
+    """
+    if operating == 0:
+        return Margin(name, unit, critical, operating, None, required, PASS, rung, error, why)
+    value = critical / operating
+    verdict = PASS if value * (1.0 - error) >= required else FAIL
+    return Margin(name, unit, critical, operating, value, required, verdict, rung, error, why)
+
+
+def incomplete_margin(name: str, unit: str, operating: float, required: float, rung: int, why: str) -> Margin:
+    """A margin the chosen model cannot answer: never a pass."""
+    return Margin(name, unit, None, operating, None, required, INCOMPLETE, rung, None, why)
+
+
+def overall_verdict(margins: list[Margin]) -> str:
+    verdicts = {m.verdict for m in margins}
+    if FAIL in verdicts:
+        return FAIL
+    if INCOMPLETE in verdicts or not margins:
+        return INCOMPLETE
+    return PASS
+
+
+# The margin rules of each rung (what is compared with what).
+
+
+def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: dict, linear: dict | None) -> list[Margin]:
+    required = mission.required_margin
+    first = static["critical_loads"][0]
+    if linear is not None:
+        return linear_margins(sc, scaled, required, linear)
+    if chosen.rung == 0 and chosen.complete:
+        return [
+            ratio_margin(
+                "magnetic load |I B0|",
+                "N/m",
+                first["IB0_N_per_m"],
+                sc.load,
+                required,
+                chosen.rung,
+                first["relative_error"],
+                "first (doubly degenerate) static buckling load of the straight welded tether, eq. char_welded",
+            )
+        ]
+    return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.rung, chosen.reason)]
+
+
+def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) -> list[Margin]:
+    """Load margin at the operating spin; spin margin at the operating load (rung 1)."""
+    p = scaled.params
+    load, spin = linear["critical_load"], linear["critical_spin"]
+    window = ""
+    if linear["operating_spectrum"]["stable"]:
+        window = (
+            "; the operating point itself is stable, inside a stability window that does not reach back to zero "
+            "(gyroscopic stabilisation, which damping removes): a window is not counted as margin"
+        )
+    margins = [
+        _margin_from_critical(
+            "magnetic load |I B0| at the operating spin and tension",
+            "N/m",
+            load,
+            load["IB0_N_per_m"],
+            sc.load,
+            scaled.scales.load,
+            required,
+            "the straight tether first loses stability as I B0 grows at the operating spin, tension and damping",
+            "the straight tether is already unstable with no magnetic load at the operating spin and tension" + window,
+        )
+    ]
+    if p.omega > 0:
+        margins.append(
+            _margin_from_critical(
+                "spin rate at the operating load",
+                "rpm",
+                spin,
+                spin["rpm"],
+                sc.spin_rate * RPM,
+                scaled.scales.frequency * RPM,
+                required,
+                "the straight tether first loses stability as the spin rate grows at the operating load",
+                "the straight tether is already unstable without spin at the operating load (statically buckled)"
+                + window,
+            )
+        )
+    return margins
+
+
+def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
+    kind = point["kind"]
+    if kind == "unstable at start":
+        return ratio_margin(name, unit, 0.0, operating, required, 1, 0.0, why_unstable)
+    if kind == "none found":
+        hi = point["bracket"][1] * scale_to_si
+        return ratio_margin(
+            name, unit, hi, operating, required, 1, 0.0,
+            f"stable over the whole scanned range (up to {hi:.4g} {unit}); the margin shown is a lower bound",
+        )
+    error = (point["error"] or 0.0) / point["value"] if point["value"] else 0.0
+    return ratio_margin(name, unit, critical, operating, required, 1, error, f"{why} ({kind})")
+
+
+def buckled_margins(post: dict, sc: Scene, scaled: Scaled, required: float) -> list[Margin]:
+    """Load margin of the buckled tether on b1 up to its secondary pitchfork (rungs 2-3)."""
+    B_star = post.get("secondary_pitchfork_B")
+    op = post.get("operating")
+    if op is None or not op.get("available"):
+        return []
+    if B_star is None:
+        return [incomplete_margin("buckled tether (b1): load to its secondary pitchfork", "N/m", sc.load, required, 3,
+                                  "no secondary pitchfork found on b1 in the computed range")]
+    if not op["stable"]:
+        return [ratio_margin("buckled tether (b1): load to its secondary pitchfork", "N/m", 0.0, sc.load, required, 3,
+                             0.0, "the buckled state at the operating load is unstable (rung 3)")]
+    return [ratio_margin("buckled tether (b1): load to its secondary pitchfork", "N/m",
+                         post["secondary_pitchfork_IB0_N_per_m"], sc.load, required, 3,
+                         post["secondary_pitchfork_error"],
+                         "the buckled (coiled) tether on b1 stays stable up to its symmetry-breaking secondary "
+                         "pitchfork at the operating spin and tension (rungs 2-3)")]

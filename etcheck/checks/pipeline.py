@@ -1,0 +1,125 @@
+"""The library entry point: mission -> scene -> plan -> solve -> margins -> results.
+
+``check(mission)`` returns a :class:`CheckResult` whose ``results`` are plain
+JSON-able data; reports are rendered from those alone (see :mod:`etcheck.report`).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import asdict, dataclass, replace
+from pathlib import Path
+from typing import Any
+
+from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
+from etcheck.checks.margins import FAIL, INCOMPLETE, PASS, buckled_margins, overall_verdict, straight_margins
+from etcheck.checks.plan import plan
+from etcheck.checks.results import results_header
+from etcheck.checks.static_buckling import static_buckling, static_limits
+from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, linear_stability
+from etcheck.checks.validity import validity
+from etcheck.input.mission import Mission, load_mission, mission_from_dict
+from etcheck.scaling import Scaled, Scene, scale, scene
+
+EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1}
+N_LOADS = 5
+
+
+@dataclass(frozen=True)
+class CheckResult:
+    """What a check produced: JSON-able ``results`` and the CLI exit code."""
+
+    results: dict[str, Any]
+
+    @property
+    def verdict(self) -> str:
+        return self.results["verdict"]
+
+    @property
+    def exit_code(self) -> int:
+        return EXIT_CODES[self.verdict]
+
+
+def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_OPTIONS) -> CheckResult:
+    """Run the stability check of a mission (a Mission, a TOML path or a dict).
+
+    ``options`` sets the resolution of the rung-1 answers (tolerances, map
+    and Campbell grids, accuracy table).
+    """
+    if isinstance(mission, (str, Path)):
+        mission = load_mission(mission)
+    elif isinstance(mission, dict):
+        mission = mission_from_dict(mission)
+    started = time.perf_counter()
+    sc = scene(mission)
+    scaled = scale(sc)
+    chosen = plan(scaled.params, mission.fidelity)
+    static = static_buckling(scaled)
+    static["limits"] = static_limits(static, mission, sc)
+    linear = accuracy_rows = None
+    options = replace(options, N=mission.resolution, eig_tol=mission.tolerance)  # the mission's [check] rules
+    if chosen.rung == 1:
+        linear = linear_stability(scaled, options)
+        accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N else None
+    margins = straight_margins(mission, sc, scaled, chosen, static, linear)
+    post = _postbuckling(mission, scaled, static, linear)
+    if post and post.get("computed"):
+        margins += buckled_margins(post, sc, scaled, mission.required_margin)
+    results = {
+        **results_header(mission),
+        "scene": _scene_dict(mission, sc),
+        "scaled": asdict(scaled.params),
+        "scales": {
+            "length_m": scaled.scales.length,
+            "reference_frequency_rad_s": scaled.scales.frequency,
+            "force_N": scaled.scales.force,
+            "load_N_per_m": scaled.scales.load,
+        },
+        "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete},
+        "straight_rod": static,
+        "linear": linear,
+        "postbuckling": post,
+        "accuracy": accuracy_rows,
+        "margins": [m.as_dict() for m in margins],
+        "verdict": overall_verdict(margins),
+        "validity": validity(mission, scaled, chosen, post),
+        "elapsed_s": time.perf_counter() - started,
+    }
+    return CheckResult(results=results)
+
+
+def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict | None) -> dict | None:
+    """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load."""
+    p = scaled.params
+    if linear is not None:
+        crit = linear["critical_load"]
+        B_c = crit["value"] if crit["kind"] in ("divergence", "flutter") else (0.0 if crit["kind"] == "unstable at start" else None)
+    else:
+        B_c = static["critical_loads"][0]["B"] if p.omega == 0 and p.T == 0 else None
+    if B_c is None or not needs_postbuckling(p.B, B_c, mission.required_margin):
+        return None
+    if B_c == 0.0:
+        return {"computed": False, "B_c": 0.0, "load_ratio": None,
+                "reason": "the straight tether is unstable without any magnetic load at this spin and tension "
+                "(it whirls): no buckled branch grows from a stable straight state here"}
+    return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
+
+
+def _scene_dict(mission: Mission, sc: Scene) -> dict[str, float]:
+    return {
+        "worst_current_A": float(mission.worst_current.to_value("A")),
+        "worst_field_T": float(mission.worst_field.to_value("T")),
+        "length_m": sc.length,
+        "EI1_N_m2": sc.EI1,
+        "EI2_N_m2": sc.EI2,
+        "GJ_N_m2": sc.GJ,
+        "mass_per_length_kg_per_m": sc.mass_per_length,
+        "P": sc.P,
+        "load_N_per_m": sc.load,
+        "spin_rate_rad_s": sc.spin_rate,
+        "tension_N": sc.tension,
+        "damping_time_s": sc.damping_time,
+        "f": sc.f,
+    }
+
+

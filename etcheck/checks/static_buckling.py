@@ -1,0 +1,93 @@
+"""Rung 0 for a mission: the static buckling of the straight tether, exact and analytic.
+
+At zero spin and zero end tension the critical loads are B_k = beta_k^3 sqrt(R)/f
+with beta_k the double zeros of chi(beta) (arXiv:0810.3668, eq. (29) and Fig. 3);
+the unperturbed frequencies are those of the paper's Sec. 6.2. Dimensionless
+answers with their SI counterparts (I·B0 in N/m, frequencies in rad/s and Hz).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from etcheck.input.mission import Mission
+from etcheck.rod import analytic
+from etcheck.scaling import Scaled, Scene
+
+#: critical loads listed (and chi zeros located)
+N_LOADS = 5
+
+
+def static_buckling(scaled: Scaled) -> dict[str, Any]:
+    """Rung 0 answers for the scene: critical loads, frequencies, mode shape.
+
+    All loads are at omega = 0, T = 0 (eq. ``char_welded``); dimensionless B
+    and I B0 in N/m.
+    """
+    p, scales = scaled.params, scaled.scales
+    roots = analytic.characteristic_roots(N_LOADS)
+    loads = []
+    for r, B in zip(roots, analytic.critical_loads(p.R, p.f, N_LOADS)):
+        B = float(B)
+        loads.append(
+            {
+                "k": r.k,
+                "beta": r.beta,
+                "B": B,
+                "IB0_N_per_m": B * scales.load,
+                "multiplicity": r.kernel_dimension,
+                "chi_residual": r.residual,
+                "chi_curvature": r.curvature,
+                "relative_error": 3.0 * r.error,
+            }
+        )
+    s = np.linspace(0.0, 1.0, 101)
+    x, y = analytic.buckling_mode(1, p.R, s)
+    op_beta = analytic.beta_of_load(p.B, p.R, p.f)
+    beta_grid = np.linspace(0.0, min(max(1.25 * roots[2].beta, 1.15 * op_beta), 1.1 * roots[-1].beta), 600)
+    # zeros of chi below the operating beta (asymptotically pi/3 + 2 pi n beyond the tabulated ones)
+    exceeded = sum(r.beta <= op_beta for r in roots)
+    if op_beta > roots[-1].beta:
+        exceeded = int((op_beta - math.pi / 3) // (2 * math.pi))
+    freq = {
+        "bending_weak": analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak"),
+        "bending_stiff": analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff"),
+        "torsion": analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5),
+    }
+    wc = scales.frequency
+    return {
+        "model": "rung 0 (analytic)",
+        "critical_loads": loads,
+        "operating_beta": op_beta,
+        "loads_exceeded": exceeded,
+        "operating_B": p.B,
+        "first_mode": {"s": s.tolist(), "x": x.tolist(), "y": y.tolist()},
+        "chi_curve": {"beta": beta_grid.tolist(), "chi_scaled": analytic.chi_scaled(beta_grid).tolist()},
+        "natural_frequencies": {
+            name: [
+                {"mu": float(m), "rad_s": float(m * wc), "Hz": float(m * wc / (2 * math.pi))}
+                for m in values
+                if math.isfinite(m)
+            ]
+            for name, values in freq.items()
+        },
+    }
+
+
+def static_limits(static: dict, mission: Mission, sc: Scene) -> dict[str, Any]:
+    """Critical current at the worst field and critical length at the operating load.
+
+    Static buckling (omega = T = 0): B ∝ L^3 and the static loads do not
+    depend on P, so L_c = L (B_1 / B)^(1/3). SI; None where the operating
+    value is zero (no limit).
+    """
+    critical = static["critical_loads"][0]["IB0_N_per_m"]
+    field = mission.worst_field.to_value("T")
+    return {
+        "critical_IB0_N_per_m": critical,
+        "critical_current_A": critical / field if field else None,
+        "critical_length_m": sc.length * (critical / sc.load) ** (1 / 3) if sc.load else None,
+    }

@@ -1,0 +1,202 @@
+"""Rung 1 for a mission: buckling and whirl of the straight tether with spin,
+end tension and damping, in the numbers the report shows.
+
+Everything is solved dimensionless in :mod:`etcheck.rod.stability` and
+:mod:`etcheck.rod.spectrum`; this module chooses what to ask (the operating
+point, the critical load at the operating spin, the critical spin at the
+operating load, the Campbell diagram and the stability map of the
+(I·B0, spin rate) plane) and converts the answers to SI with the mission's
+:class:`~etcheck.scaling.Scales`. Nothing is reported from a solve that did
+not converge: that raises :class:`~etcheck.errors.SolverError`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from etcheck.errors import SolverError
+from etcheck.jsonable import finite_or_none
+from etcheck.rod.analytic import critical_loads
+from etcheck.rod.convergence import accuracy_table
+from etcheck.rod.spectrum import spectrum
+from etcheck.rod.stability import (
+    THRESHOLD,
+    campbell,
+    critical_load,
+    scan_line,
+    stability_map,
+    stable_rows,
+    static_curves,
+)
+from etcheck.scaling import RPM, Scaled
+
+
+@dataclass(frozen=True)
+class WhirlOptions:
+    """Resolution of the rung-1 answers (all dimensionless settings).
+
+    ``tol``: tolerance of critical loads and spins; ``eig_tol``: two-resolution
+    agreement required of the operating spectrum; ``N``: fixed Chebyshev
+    resolution (None: chosen to meet eig_tol); ``k``: eigenvalue pairs;
+    ``map_points``: grid of the stability map per axis; ``row_points``: spins
+    at which the damped map is cut exactly at its static points; ``campbell_points``:
+    spin values of the Campbell diagram; ``accuracy_N``: resolutions of the
+    accuracy table (empty: skip it).
+    """
+
+    tol: float = 1e-10
+    eig_tol: float = 1e-8
+    N: int | None = None
+    k: int = 10
+    map_points: int = 20
+    row_points: int = 61
+    campbell_points: int = 41
+    accuracy_N: tuple[int, ...] = (8, 12, 16, 24, 32)
+
+    def __post_init__(self) -> None:
+        if not (0 < self.tol < 1e-2 and 0 < self.eig_tol < 1e-2):
+            raise ValueError("tolerances must lie in (0, 1e-2)")
+        if self.k < 1 or min(self.map_points, self.row_points, self.campbell_points) < 4:
+            raise ValueError("k >= 1 and at least 4 map, row and Campbell points are required")
+
+
+DEFAULT_OPTIONS = WhirlOptions()
+
+
+def _critical(point, what: str) -> dict[str, Any]:
+    """A CriticalPoint as data; refuses one whose location did not converge."""
+    located = point.kind in ("divergence", "flutter")
+    if located and not point.converged:
+        raise SolverError(f"rung 1: the {what} was not located to tolerance: {point.message}")
+    return {
+        "value": point.value if math.isfinite(point.value) else None,
+        "kind": point.kind,
+        "bracket": [float(b) for b in point.bracket],
+        "error": float(point.error) if math.isfinite(point.error) else None,
+        "message": point.message,
+        "N": point.N,
+    }
+
+
+def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) -> dict[str, Any]:
+    """All rung-1 answers for the scene, dimensionless and in SI.
+
+    Returns a JSON-able dict: the operating spectrum (with two-resolution
+    errors), the critical load at the operating spin and tension
+    (B_c(omega, T, gamma)), the critical spin at the operating load
+    (omega_c(B, T, gamma)), the stable spin windows at the operating load,
+    the Campbell diagram and the stability map.
+    """
+    p, sc = scaled.params, scaled.scales
+    wc = sc.frequency
+    op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
+    if not op.converged:
+        fix = " (raise [check] resolution or leave it out)" if options.N else ""
+        raise SolverError(f"rung 1: the operating-point spectrum did not converge: {op.message}{fix}")
+
+    # the critical points are located at the resolution the operating spectrum
+    # needed (boundary layers under strong tension need more than the default)
+    N = options.N or max(24, op.N_check)
+    load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
+    # one scan along the spin from rest gives the critical spin and all stable spin windows
+    spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
+    if p.omega > 0 or spin_point.converged or spin_point.kind not in ("divergence", "flutter"):
+        spin = _critical(spin_point, "critical spin at the operating load")
+    else:  # informative only for a mission without spin: say so instead of stopping the check
+        spin = {"value": None, "kind": "not located", "bracket": [float(b) for b in spin_point.bracket],
+                "error": None, "message": spin_point.message, "N": N}
+
+    # ranges of the pictures: past the boundary and the operating point
+    B_ref = load["value"] if load["kind"] in ("divergence", "flutter") else None
+    w_ref = spin["value"] if spin["kind"] in ("divergence", "flutter") and spin["value"] else None
+    B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
+    w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
+
+    omegas = np.linspace(0.0, w_hi, options.campbell_points)
+    cd = campbell(p, omegas, k=options.k, N=N)
+    B_grid = np.linspace(0.0, B_hi, options.map_points)
+    w_grid = np.linspace(0.0, w_hi, options.map_points)
+    curve_B, curve_w = static_curves(p, B_hi, w_hi, N=N)
+    growth = rows = None
+    if p.gamma == 0:  # undamped: flutter can occur anywhere, sample a grid
+        growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
+    else:  # damped: stability changes only at static points, cut each row there exactly
+        w_rows = np.linspace(0.0, w_hi, options.row_points)
+        rows = [
+            {"omega": float(w), "spin_rpm": float(w * wc * RPM),
+             "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
+            for w, iv in zip(w_rows, stable_rows(p, w_rows, B_hi, N=N))
+        ]
+
+    lam = op.eigenvalues
+    least = int(np.argmax(lam.real))
+    return {
+        "model": "rung 1 (linear spectral)",
+        "threshold": THRESHOLD,
+        "operating_spectrum": {
+            "N": op.N,
+            "N_check": op.N_check,
+            "message": op.message,
+            "modes": [
+                {
+                    "re": float(z.real),
+                    "im": float(z.imag),
+                    "error": float(e),
+                    "frequency_Hz": float(abs(z.imag) * wc / (2 * math.pi)),
+                    "growth_rate_per_s": float(z.real * wc),
+                    "damping_ratio": float(-z.real / abs(z)) if abs(z) > 0 else None,
+                }
+                for z, e in zip(lam, op.errors)
+            ],
+            "least_damped": least,
+            "stable": bool(op.stable),
+        },
+        "critical_load": load
+        | {"IB0_N_per_m": None if load["value"] is None else load["value"] * sc.load},
+        "critical_spin": spin
+        | {
+            "rad_s": None if spin["value"] is None else spin["value"] * wc,
+            "rpm": None if spin["value"] is None else spin["value"] * wc * RPM,
+        },
+        "spin_windows": [
+            {"omega": [a, b], "rpm": [a * wc * RPM, b * wc * RPM]} for a, b in windows
+        ],
+        "spin_windows_scanned_to_rpm": scanned_to * wc * RPM,
+        "campbell": {
+            "omega": omegas.tolist(),
+            "spin_rpm": (omegas * wc * RPM).tolist(),
+            "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
+            "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
+        },
+        "stability_map": {
+            "B": B_grid.tolist(),
+            "omega": w_grid.tolist(),
+            "IB0_N_per_m": (B_grid * sc.load).tolist(),
+            "spin_rpm": (w_grid * wc * RPM).tolist(),
+            "max_growth": growth,  # undamped only: dimensionless, shape (omega, B)
+            "stable_rows": rows,
+            "static_points": {
+                "IB0_N_per_m": (curve_B * sc.load).tolist(),
+                "spin_rpm": (curve_w * wc * RPM).tolist(),
+            },
+        },
+        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * sc.load, "spin_rpm": p.omega * wc * RPM},
+    }
+
+
+def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: int = 10) -> list[dict[str, float]]:
+    """Time and error of the lowest k eigenvalue pairs and of B_c versus N.
+
+    A measurement for this scene (BLAS on one thread, best of 3), against a
+    reference at N = 96; see :func:`etcheck.rod.convergence.accuracy_table`.
+    """
+    rows = accuracy_table(scaled.params, Ns=Ns, k=k)
+    return [
+        {"N": r.N, "solve_time_s": r.solve_time, "eigenvalue_error": r.eig_error, "load_error": r.load_error}
+        for r in rows
+    ]
+

@@ -1,0 +1,57 @@
+"""``etcheck check MISSION.toml`` (or ``etcheck MISSION.toml``): the margin report of one mission."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from etcheck import __version__
+from etcheck.cli.common import EXIT_TEXT, add_output_options, formats, guarded
+
+NAME = "check"
+FORMATS = ("html", "pdf", "json")
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(NAME, help="check a mission and write its HTML, PDF and JSON margin report",
+                       description="Check an electrodynamic tether mission against magnetic buckling and whirl, "
+                       "and write HTML, PDF and JSON margin reports.",
+                       epilog=EXIT_TEXT, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("mission", help="mission file (TOML), e.g. missions/set.toml")
+    add_output_options(p, FORMATS, "OUT/<mission-name>/")
+    p.set_defaults(run=run, parser=p)
+
+
+def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
+    fmts = formats(args, parser)
+
+    def action():
+        from etcheck.checks.pipeline import check
+        from etcheck.input.mission import load_mission
+        from etcheck.report import write_reports
+
+        mission = load_mission(args.mission)
+        if sys.stderr.isatty():
+            print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
+        result = check(mission)
+        return result, write_reports(result.results, Path(args.out) / mission.slug, fmts)
+
+    out = guarded(action, "no report written")
+    if isinstance(out, int):
+        return out
+    result, paths = out
+    summary(result.results, paths)
+    return result.exit_code
+
+
+def summary(results: dict, paths: list[Path]) -> None:
+    """A few lines on stdout: verdict, margins, where the reports are."""
+    print(f"etcheck {__version__}: {results['mission']['name']}: {results['verdict'].upper()}")
+    for m in results["margins"]:
+        value = "not answered" if m["verdict"] == "incomplete" else "unlimited" if m["value"] is None else f"{m['value']:.4g}"
+        print(f"  {m['name']}: margin {value} (required {m['required']:g}) -> {m['verdict']} [{m['model']}]")
+        if m["verdict"] == "incomplete":
+            print(f"    incomplete: {m['why']}")
+    for path in paths:
+        print(f"  wrote {path}")

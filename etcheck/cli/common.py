@@ -1,0 +1,65 @@
+"""What every subcommand shares: output options, the error guard, exit codes."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Callable
+from typing import Any
+
+from etcheck.errors import EtcheckError
+
+EXIT_TEXT = """exit codes:
+  0  the run finished and every margin meets the required margin
+  1  a margin fails, the check is incomplete, or some sweep points have no answer (never a silent pass)
+  2  bad input or usage (mission file, options, report cannot be written): the message names the field
+  3  a numerical solve failed (nothing is reported from it)
+  130 interrupted (a sweep resumes when the same command is run again)
+"""
+
+
+def add_output_options(p: argparse.ArgumentParser, formats: tuple[str, ...], where: str) -> None:
+    """``--out`` and ``--format`` (checked by :func:`formats`)."""
+    p.add_argument("--out", default="reports", help=f"output folder (default: reports/); files go to {where}")
+    p.add_argument("--format", default=",".join(formats),
+                   help=f"comma-separated list of {', '.join(formats)} (default: all)")
+    p.set_defaults(known_formats=formats)
+
+
+def formats(args: argparse.Namespace, parser: argparse.ArgumentParser) -> tuple[str, ...]:
+    """The requested formats, or a usage error (exit 2) naming the bad one."""
+    items = tuple(x.strip().lower() for x in args.format.split(",") if x.strip())
+    bad = [x for x in items if x not in args.known_formats]
+    if bad or not items:
+        parser.error(f"--format: unknown format {', '.join(bad) or '(empty)'}; "
+                     f"use any of {', '.join(args.known_formats)}")
+    return items
+
+
+def guarded(action: Callable[[], Any], interrupted: str):
+    """Run ``action()``; user errors, Ctrl-C and bugs become a message and an exit code (no traceback).
+
+    Returns the action's value, or the exit code (an int) when it failed.
+    """
+    try:
+        return action()
+    except EtcheckError as exc:
+        print(f"etcheck: {'error: ' if exc.exit_code != 130 else ''}{exc}", file=sys.stderr)
+        return exc.exit_code
+    except KeyboardInterrupt:
+        print(f"etcheck: interrupted; {interrupted}", file=sys.stderr)
+        return 130
+    except Exception as exc:  # a bug, not the user's fault: say so, no traceback
+        print(f"etcheck: internal error ({type(exc).__name__}: {exc}); {interrupted}. "
+              "Please report this with the mission file.", file=sys.stderr)
+        return 3
+
+
+def run_and_summarise(action: Callable[[], tuple], summary: Callable[..., int | None],
+                      interrupted: str = "nothing written") -> int:
+    """``guarded(action)``, then ``summary(*result)``; its exit code (0 if it returns None), or the error's."""
+    out = guarded(action, interrupted)
+    if isinstance(out, int):
+        return out
+    code = summary(*out)
+    return 0 if code is None else code

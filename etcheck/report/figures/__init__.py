@@ -1,0 +1,2 @@
+"""Report figures as deterministic inline SVG, one module per report kind (:mod:`.check`,
+:mod:`.sweep`, :mod:`.diagram`); :mod:`.common` owns the matplotlib set-up."""

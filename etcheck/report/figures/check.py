@@ -1,0 +1,291 @@
+"""Report figures as deterministic inline SVG (matplotlib, imported lazily).
+
+Every function takes the JSON-able results and returns an SVG string; axes are
+labelled with units and the operating point is marked.
+"""
+
+from __future__ import annotations
+
+import math
+
+from etcheck.report.figures.common import pyplot as _plt
+from etcheck.report.figures.common import svg as _svg
+from etcheck.report.figures.diagram import branch_plot, shapes_plot
+
+
+def chi_plot(results: dict) -> str:
+    """chi(beta) e^{-sqrt3 beta} with the critical betas and the operating beta."""
+    plt = _plt()
+    sr = results["straight_rod"]
+    beta = sr["chi_curve"]["beta"]
+    chi = sr["chi_curve"]["chi_scaled"]
+    op = sr["operating_beta"]
+    fig, ax = plt.subplots(figsize=(6.4, 2.8))
+    ax.plot(beta, chi, color="#1f4e79", lw=1.4, label=r"$\chi(\beta)\,e^{-\sqrt{3}\beta}$ (eq. char_welded)")
+    for i, load in enumerate(sr["critical_loads"]):
+        if load["beta"] <= beta[-1] and (i < 3 or op > beta[-1]):
+            ax.axvline(load["beta"], color="#c0392b", ls=":", lw=1,
+                       label="double zeros $\\beta_k$ (buckling loads)" if i == 0 else None)
+            ax.annotate(f"$\\beta_{load['k']}$", (load["beta"], 0.0),
+                        xytext=(3, 28), textcoords="offset points", fontsize=7, color="#c0392b")
+    top = max(chi) * 1.05
+    if op <= beta[-1]:
+        ax.axvline(op, color="#27ae60", lw=2, label=f"operating $\\beta$ = {op:.4g}")
+    else:
+        ax.annotate(f"operating $\\beta$ = {op:.4g} (off scale) →", (beta[-1], 0.85 * top),
+                    ha="right", fontsize=8, color="#27ae60", fontweight="bold")
+        ax.plot([], [], color="#27ae60", lw=2, label=f"operating $\\beta$ = {op:.4g} (off scale)")
+    ax.set_xlim(0, beta[-1])
+    ax.set_ylim(-0.05 * top, top)
+    ax.set_xlabel(r"$\beta = (f B)^{1/3} / R^{1/6}$  (dimensionless)")
+    ax.set_ylabel(r"scaled $\chi$ (dimensionless)")
+    ax.legend(loc="upper left", fontsize=7, framealpha=0.9)
+    ax.set_title("Characteristic function of the straight welded tether (ω = 0, T = 0)", fontsize=9)
+    return _svg(fig)
+
+
+def mode_plot(results: dict) -> str:
+    """First static buckling mode: deflections x(s), y(s) along the tether [m]."""
+    plt = _plt()
+    sr = results["straight_rod"]
+    length = results["scene"]["length_m"]
+    s = [v * length for v in sr["first_mode"]["s"]]
+    x, y = sr["first_mode"]["x"], sr["first_mode"]["y"]
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(6.6, 2.6), gridspec_kw={"width_ratios": [2.2, 1]})
+    ax1.plot(s, x, color="#1f4e79", label="x (along $d_1$, weak-axis bending)")
+    ax1.plot(s, y, color="#e67e22", ls="--", label="y (along $d_2$)")
+    ax1.set_xlabel("arclength s [m]")
+    ax1.set_ylabel("deflection / max (–)")
+    ax1.legend(fontsize=7, loc="lower center")
+    ax1.set_title("First buckling mode (one of a double pair)", fontsize=9)
+    ax2.plot(x, y, color="#7d3c98")
+    ax2.plot([0], [0], "ko", ms=3, label="welded ends")
+    ax2.set_aspect("equal", adjustable="datalim")
+    ax2.set_xlabel("x / max (–)")
+    ax2.set_ylabel("y / max (–)")
+    ax2.legend(fontsize=7, loc="upper right")
+    ax2.set_title("End view (coil)", fontsize=9)
+    fig.tight_layout()
+    return _svg(fig)
+
+
+def _first_crossing(x, g, threshold):
+    """First x where g rises above threshold (linear interpolation); 0 if
+    unstable at x[0], inf if never."""
+    if g[0] > threshold:
+        return 0.0
+    for i in range(1, len(x)):
+        if g[i] > threshold:
+            t = (threshold - g[i - 1]) / (g[i] - g[i - 1])
+            return x[i - 1] + t * (x[i] - x[i - 1])
+    return math.inf
+
+
+def campbell_plot(results: dict) -> str:
+    """Campbell diagram (frequency vs spin) and growth rates vs spin, SI units."""
+    import numpy as np
+
+    plt = _plt()
+    lin = results["linear"]
+    cd = lin["campbell"]
+    rpm = np.array(cd["spin_rpm"])
+    freq = np.array(cd["frequency_Hz"], dtype=float)
+    grow = np.array(cd["growth_rate_per_s"], dtype=float)
+    thr = lin["threshold"] * results["scales"]["reference_frequency_rad_s"]
+    op = lin["operating"]["spin_rpm"]
+    crit = lin["critical_spin"]
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.6, 5.4), sharex=True, gridspec_kw={"height_ratios": [1.5, 1]})
+    X = np.repeat(rpm[:, None], freq.shape[1], axis=1)
+    unstable = grow > thr
+    ax1.scatter(X[~unstable], freq[~unstable], s=6, color="#1f4e79", label="stable mode")
+    ax1.scatter(X[unstable], freq[unstable], s=9, color="#c0392b", marker="x", label="growing mode (Re λ > 0)")
+    ax2.scatter(X[~unstable], grow[~unstable], s=6, color="#1f4e79")
+    ax2.scatter(X[unstable], grow[unstable], s=9, color="#c0392b", marker="x")
+    _shade_unstable_spin(ax1, lin, rpm, "unstable spin range")
+    _shade_unstable_spin(ax2, lin, rpm)
+    for ax in (ax1, ax2):
+        ax.axvline(op, color="#27ae60", lw=2, label=f"operating spin {op:.3g} rpm" if ax is ax1 else None)
+        if crit["rpm"] is not None and crit["kind"] in ("divergence", "flutter"):
+            ax.axvline(crit["rpm"], color="#c0392b", ls="--", lw=1.2,
+                       label=f"critical spin {crit['rpm']:.4g} rpm ({crit['kind']})" if ax is ax1 else None)
+    ax2.axhline(0, color="k", lw=0.8)
+    ax1.set_ylabel("frequency |Im λ| [Hz]")
+    ax2.set_ylabel("growth rate Re λ [1/s]")
+    ax2.set_xlabel("spin rate [rpm]")
+    ax1.set_title(f"Campbell diagram of the straight tether at the operating load "
+                  f"(I·B0 = {lin['operating']['IB0_N_per_m']:.3g} N/m, rotating frame)", fontsize=9)
+    ax1.legend(fontsize=7, loc="upper left", framealpha=0.9)
+    ax1.set_xlim(rpm[0], rpm[-1])
+    fig.tight_layout()
+    return _svg(fig)
+
+
+def _shade_unstable_spin(ax, lin, rpm, label=None):
+    """Shade the spin ranges where the straight tether is unstable at the operating load."""
+    gaps, start = [], rpm[0]
+    for w in lin["spin_windows"]:
+        a, b = w["rpm"]
+        if a > start:
+            gaps.append((start, a))
+        start = b
+    if start < rpm[-1]:
+        gaps.append((start, rpm[-1]))
+    for i, (a, b) in enumerate(gaps):
+        ax.axvspan(a, b, color="#c0392b", alpha=0.08, lw=0, label=label if i == 0 else None)
+
+
+def stability_map_plot(results: dict) -> str:
+    """Stability of the straight tether in the (I·B0, spin rate) plane."""
+    import numpy as np
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
+    plt = _plt()
+    lin = results["linear"]
+    sm = lin["stability_map"]
+    load = np.array(sm["IB0_N_per_m"])
+    rpm = np.array(sm["spin_rpm"])
+    required = results["mission"]["check"]["required_margin"]
+    fig, ax = plt.subplots(figsize=(6.6, 4.4))
+    ax.set_facecolor("#f6d5d1")
+    if sm["stable_rows"]:
+        b_row, rows_rpm, cols, w_col = _shade_rows(ax, sm["stable_rows"], load)
+        boundary = Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (exact, cut at static points)")
+    else:
+        b_row, rows_rpm, cols, w_col = _shade_grid(ax, load, rpm, np.array(sm["max_growth"]), lin["threshold"])
+        boundary = Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (grid)")
+    sp = sm["static_points"]
+    ax.plot(sp["IB0_N_per_m"], sp["spin_rpm"], ".", color="#444444", ms=1.6)
+    # required-margin curves: I·B0 = critical(spin) / m and spin = critical(I·B0) / m
+    ok = np.isfinite(b_row)
+    ax.plot(b_row[ok] / required, rows_rpm[ok], color="#1f4e79", ls="--", lw=1.2)
+    ok = np.isfinite(w_col)
+    ax.plot(cols[ok], w_col[ok] / required, color="#7d3c98", ls=":", lw=1.4)
+    op = lin["operating"]
+    ax.plot(op["IB0_N_per_m"], op["spin_rpm"], marker="*", color="#27ae60", ms=14, mec="k", zorder=5)
+    cl, cs = lin["critical_load"], lin["critical_spin"]
+    if cl["IB0_N_per_m"] is not None and cl["kind"] in ("divergence", "flutter"):
+        ax.plot(cl["IB0_N_per_m"], op["spin_rpm"], marker="o", color="#c0392b", ms=6, zorder=5)
+    if cs["rpm"] is not None and cs["kind"] in ("divergence", "flutter"):
+        ax.plot(op["IB0_N_per_m"], cs["rpm"], marker="s", color="#c0392b", ms=6, zorder=5)
+    handles = [
+        Patch(color="#d5efdc", label="stable straight tether"),
+        Patch(color="#f6d5d1", label="unstable (buckled or whirling)"),
+        boundary,
+        Line2D([], [], marker=".", color="#444444", ls="", label="static (divergence) curves"),
+        Line2D([], [], color="#1f4e79", ls="--", label=f"load margin = {required:g}"),
+        Line2D([], [], color="#7d3c98", ls=":", lw=1.4, label=f"spin margin = {required:g}"),
+        Line2D([], [], marker="*", color="#27ae60", mec="k", ms=12, ls="", label="operating point"),
+        Line2D([], [], marker="o", color="#c0392b", ls="", label="critical load at operating spin"),
+        Line2D([], [], marker="s", color="#c0392b", ls="", label="critical spin at operating load"),
+    ]
+    ax.legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.92)
+    ax.set_xlabel("magnetic load I·B0 [N/m]")
+    ax.set_ylabel("spin rate [rpm]")
+    ax.set_xlim(load[0], load[-1])
+    ax.set_ylim(rpm[0], rpm[-1])
+    ax.set_title(f"Safe operating region of the straight tether (T = {results['scene']['tension_N']:.3g} N, "
+                 f"γ = {results['scaled']['gamma']:.3g})", fontsize=9)
+    return _svg(fig)
+
+
+def _shade_rows(ax, rows, load):
+    """Damped map: exact stable intervals per spin row, drawn as bands."""
+    import numpy as np
+
+    rpm = np.array([r["spin_rpm"] for r in rows])
+    h = (rpm[1] - rpm[0]) if rpm.size > 1 else 1.0
+    edge_x, edge_y = [], []
+    b_row = np.full(rpm.size, np.inf)
+    for i, r in enumerate(rows):
+        y0, y1 = max(rpm[i] - h / 2, rpm[0]), min(rpm[i] + h / 2, rpm[-1])
+        for a, b in r["IB0_N_per_m"]:
+            ax.fill_between([a, b], y0, y1, color="#d5efdc", lw=0)
+        first = r["IB0_N_per_m"][0] if r["IB0_N_per_m"] else None
+        b_row[i] = first[1] if first and first[0] == 0.0 else 0.0
+        if first and first[0] == 0.0 and first[1] < load[-1]:
+            edge_x.append(first[1])
+            edge_y.append(rpm[i])
+    ax.plot(edge_x, edge_y, color="#1b1b1b", lw=1.4)
+    # first spin row at which each load is no longer stable
+    cols = np.linspace(load[0], load[-1], 200)
+    w_col = np.full(cols.size, np.inf)
+    for j, x in enumerate(cols):
+        for i, r in enumerate(rows):
+            if not any(a <= x <= b for a, b in r["IB0_N_per_m"]):
+                w_col[j] = rpm[i]
+                break
+    return b_row, rpm, cols, w_col
+
+
+def _shade_grid(ax, load, rpm, g, thr):
+    """Undamped map: sampled growth rate, boundary interpolated between samples."""
+    import numpy as np
+    from matplotlib.colors import ListedColormap
+
+    top = max(float(np.max(g)), thr) + 1.0
+    ax.contourf(load, rpm, g, levels=[float(np.min(g)) - 1.0, thr, top], cmap=ListedColormap(["#d5efdc", "#f6d5d1"]))
+    ax.contour(load, rpm, g - thr, levels=[0.0], colors="#1b1b1b", linewidths=1.4)
+    b_row = np.array([_first_crossing(load, row, thr) for row in g])
+    w_col = np.array([_first_crossing(rpm, col, thr) for col in g.T])
+    return b_row, rpm, load, w_col
+
+
+def postbuckling_plots(results: dict) -> dict[str, str]:
+    """b1 in physical units with the operating point, and the buckled shape at the operating load."""
+    post = results["postbuckling"]
+    d = post["diagram"]
+    op = post.get("operating")
+    out = {"b1": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]", "maximum lateral deflection [m]",
+                             "first post-buckling branch b1 at the operating spin and tension",
+                             "pitchfork_IB0_N_per_m", mark=_operating_mark(results, op))}
+    if post.get("region"):
+        out["region"] = coil_region_plot(results)
+    if op and op.get("available"):
+        out["shape"] = shapes_plot([(f"b1 at I·B0 = {results['scene']['load_N_per_m']:.3g} N/m", op["shape"])],
+                                   results["scales"]["length_m"])
+    return out
+
+
+def coil_region_plot(results: dict) -> str:
+    """Stable region of the coiled tether (b1) in the (spin rate, I·B0) plane at the mission's tension."""
+    plt = _plt()
+    reg = results["postbuckling"]["region"]
+    rows = reg["rows"]
+    rpm = [r["spin_rpm"] for r in rows]
+    low = [r["pitchfork_IB0_N_per_m"] or 0.0 for r in rows]
+    top = [r["secondary_IB0_N_per_m"] if r["secondary_IB0_N_per_m"] is not None else math.nan for r in rows]
+    fig, ax = plt.subplots(figsize=(6.4, 3.2))
+    ax.fill_between(rpm, 0.0, low, color="#d8efdd", label="straight tether stable")
+    ax.fill_between(rpm, low, top, color="#d6e4f5", label="coiled tether (b1) stable")
+    ax.plot(rpm, low, "-o", color="#555", ms=3, label="b1 leaves the straight tether (pitchfork)")
+    ax.plot(rpm, top, "-s", color="k", ms=3, lw=2, label="secondary pitchfork of b1 (coil loses stability)")
+    if reg.get("liftoff_rpm") is not None and reg["liftoff_rpm"] <= rpm[-1]:
+        ax.axvline(reg["liftoff_rpm"], color="#888", ls=":", label="b1 lift-off (straight tether whirls above)")
+    ax.plot([reg["operating_rpm"]], [results["scene"]["load_N_per_m"]], marker="*", ms=13, color="#27ae60",
+            mec="k", ls="none", label="operating point")
+    ax.set_ylim(0, 1.15 * max([v for v in top if math.isfinite(v)] + [results["scene"]["load_N_per_m"]]))
+    ax.set_xlabel("spin rate [rpm]")
+    ax.set_ylabel("I·B0 [N/m]")
+    ax.set_title(f"where the coiled tether is stable (N = {reg['N']}, damping-independent)", fontsize=9)
+    ax.legend(fontsize=7, loc="upper left")
+    return _svg(fig)
+
+
+def _operating_mark(results: dict, op: dict | None):
+    load = results["scene"]["load_N_per_m"]
+    if op and op.get("available"):
+        return (load, op["max_deflection_m"], "operating point (buckled)")
+    return (load, 0.0, "operating point (straight)")
+
+
+def figures(results: dict) -> dict[str, str]:
+    """All figures the report shows, keyed by name."""
+    out = {"chi": chi_plot(results), "mode": mode_plot(results)}
+    if results.get("linear"):
+        out["campbell"] = campbell_plot(results)
+        out["map"] = stability_map_plot(results)
+    if (results.get("postbuckling") or {}).get("computed"):
+        out |= postbuckling_plots(results)
+    return out
+

@@ -1,0 +1,205 @@
+"""Figures of bifurcation diagrams and buckled shapes as inline SVG.
+
+Stable parts of a branch are thick and solid, unstable parts thin and dashed
+(when stability was computed); branch labels sit at the branch ends; special
+points are marked (BP: branch point on the straight tether, ■: secondary
+pitchfork, ▲: fold).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from etcheck.report.figures.common import pyplot as _plt
+from etcheck.report.figures.common import svg as _svg
+
+COLOURS = ["#1f4e79", "#c0392b", "#27ae60", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#2c3e50"]
+MARKERS = {"break": ("s", "secondary pitchfork"), "fold": ("^", "fold"), "bp": ("D", "branch point")}
+
+
+def _segments(x, y, stable):
+    """Split a polyline where the stability flag changes (flags None: unknown)."""
+    if stable is None:
+        yield np.asarray(x), np.asarray(y), None
+        return
+    start = 0
+    for i in range(1, len(x) + 1):
+        if i == len(x) or stable[i] != stable[start]:
+            j = min(i + 1, len(x))  # overlap one point so the curve is continuous
+            yield np.asarray(x[start:j]), np.asarray(y[start:j]), stable[start]
+            start = i
+
+
+def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: str,
+                pitchfork_key: str | None = None, mark: tuple | None = None) -> str:
+    """Branches of a diagram; ``mark`` = (x, y, label) draws the operating point."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    seen = set()
+    for n, b in enumerate(d["branches"]):
+        c = COLOURS[n % len(COLOURS)]
+        x, y = b[xkey], b[ykey]
+        mirror = ykey == "measure2" and b.get("symmetry") is None  # connecting branches come in mirror pairs
+        for xs, ys, st in _segments(x, y, b.get("stable")):
+            style = {"lw": 2.2, "ls": "-"} if st in (True, None) else {"lw": 0.9, "ls": "--"}
+            ax.plot(xs, ys, color=c, **style)
+            if mirror:
+                ax.plot(xs, -ys, color=c, alpha=0.6, **style)
+        ax.annotate(b["label"], (x[-1], y[-1]), xytext=(3, 0), textcoords="offset points", color=c, fontsize=8,
+                    fontweight="bold")
+        for q in b["special"]:
+            marker, name = MARKERS.get(q["kind"], ("o", q["kind"]))
+            xv = q["B"] if xkey == "values" else q["IB0_N_per_m"] if xkey == "IB0_N_per_m" else None
+            if xv is None:
+                continue
+            i = int(np.argmin(np.abs(np.asarray(x) - xv)))
+            ax.plot([xv], [y[i]], marker=marker, color="k", ms=5, ls="none",
+                    label=name if name not in seen else None)
+            seen.add(name)
+        if pitchfork_key and b.get(pitchfork_key) is not None:
+            ax.plot([b[pitchfork_key]], [0.0], marker="o", color=c, ms=4, ls="none")
+    if mark is not None:
+        ax.plot([mark[0]], [mark[1]], marker="*", ms=13, color="#27ae60", mec="k", ls="none", zorder=7, label=mark[2])
+    if any(b.get("stable") is not None for b in d["branches"]):
+        ax.plot([], [], color="k", lw=2.2, label="stable")
+        ax.plot([], [], color="k", lw=0.9, ls="--", label="unstable")
+    ax.axhline(0.0, color="#888", lw=0.8)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7, loc="best")
+    return _svg(fig)
+
+
+def shapes_plot(shapes: list[tuple[str, dict]], length_m: float | None = None) -> str:
+    """3-D view and the e1-e3 and e2-e3 projections of the given shapes.
+
+    ``shapes``: (label, shape dict with s, x, y, z dimensionless, and x_m...);
+    in metres when ``length_m`` is given.
+    """
+    plt = _plt()
+    fig = plt.figure(figsize=(7.2, 3.0))
+    ax3 = fig.add_subplot(1, 3, 1, projection="3d")
+    ax1 = fig.add_subplot(1, 3, 2)
+    ax2 = fig.add_subplot(1, 3, 3)
+    unit = "m" if length_m else "L"
+    suffix = "_m" if length_m else ""
+    for n, (label, sh) in enumerate(shapes):
+        c = COLOURS[n % len(COLOURS)]
+        x, y, z = (np.asarray(sh[k + suffix]) for k in ("x", "y", "z"))
+        ax3.plot(x, y, z, color=c, lw=1.5, label=label)
+        ax1.plot(x, z, color=c, lw=1.5, label=label)
+        ax2.plot(y, z, color=c, lw=1.5, label=label)
+    ax3.set_xlabel(f"e1 [{unit}]", fontsize=7)
+    ax3.set_ylabel(f"e2 [{unit}]", fontsize=7)
+    ax3.set_zlabel(f"e3 [{unit}]", fontsize=7)
+    ax3.tick_params(labelsize=6)
+    for ax, name in ((ax1, "e1"), (ax2, "e2")):
+        ax.set_xlabel(f"{name} [{unit}]")
+        ax.set_ylabel(f"e3 [{unit}]")
+        ax.set_title(f"{name}–e3 projection", fontsize=8)
+    ax1.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    return _svg(fig)
+
+
+def eigen_paths_plot(paths: dict, xlabel: str, title: str) -> str:
+    """Real and imaginary parts of the tracked eigenvalue paths, coloured by mode type."""
+    plt = _plt()
+    colour = {"bend-d1": "#1f4e79", "bend-d2": "#c0392b", "torsion": "#27ae60"}
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(7.2, 2.9))
+    x = np.asarray(paths["values"], dtype=float)
+    re = np.array(paths["re"], dtype=float)
+    im = np.array(paths["im"], dtype=float)
+    seen = set()
+    for j, lab in enumerate(paths["labels"]):
+        c = colour.get(lab, "#555")
+        name = {"bend-d1": "bending about d1", "bend-d2": "bending about d2", "torsion": "torsion"}.get(lab, lab)
+        a1.plot(x, re[:, j], color=c, lw=1.2, label=name if lab not in seen else None)
+        a2.plot(x, im[:, j], color=c, lw=1.2)
+        seen.add(lab)
+    a1.axhline(0.0, color="k", lw=0.8)
+    a1.set_ylabel("Re λ (growth rate, units of ω_c)")
+    a2.set_ylabel("Im λ (frequency, units of ω_c)")
+    for ax in (a1, a2):
+        ax.set_xlabel(xlabel)
+    a1.legend(fontsize=7)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    return _svg(fig)
+
+
+def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
+    figs = {
+        "measure1": branch_plot(d, "values", "measure1", "B (dimensionless load)",
+                                r"measure$_1 = \int_0^1 |x^0(s)|\,ds$",
+                                "bifurcation diagram (cf. Fig. fig:tet:bif-measure1)", "pitchfork_B"),
+        "measure2": branch_plot(d, "values", "measure2", "B (dimensionless load)",
+                                r"measure$_2 = \int_0^1 x^0 y^0\,ds$",
+                                "connecting branches come in mirror pairs (cf. Fig. fig:tet:bif-measure2)",
+                                "pitchfork_B"),
+        "physical": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]",
+                                "maximum lateral deflection [m]", "the same branches in physical units",
+                                "pitchfork_IB0_N_per_m"),
+    }
+    for b in d["branches"]:
+        if b.get("eigenvalue_paths") and b["label"] in ("b1", "b12"):
+            figs[f"paths_{b['label']}"] = eigen_paths_plot(
+                b["eigenvalue_paths"], "B (dimensionless load)",
+                f"lowest eigenvalues along {b['label']} (γ = {b['eigenvalue_paths']['gamma']:.4g})")
+    key = next((k for b in d["branches"] for k in b["shapes"] if k.startswith("measure1=")), None)
+    chosen = [(f"{b['label']} (B = {b['shapes'][key]['B']:.4g})", b["shapes"][key])
+              for b in d["branches"] if key in b["shapes"]]
+    if chosen:
+        figs["shapes"] = shapes_plot(chosen, length_m)
+    return figs
+
+
+def damping_maps(r: dict) -> str:
+    """Damping ratio of b1's least-damped mode over (B, omega), one panel per damping (cf. Fig. fig:hopf)."""
+    plt = _plt()
+    from matplotlib.colors import LogNorm
+
+    s = r["study"]
+    B, w = np.asarray(s["B"]), np.asarray(s["omega"])
+    zeta = np.array(s["damping_ratio"], dtype=float)
+    n = len(s["gammas"])
+    cols = min(3, n)
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(2.5 * cols + 0.8, 2.3 * rows + 0.3), squeeze=False,
+                             sharex=True, sharey=True)
+    finite = zeta[np.isfinite(zeta) & (zeta > 0)]
+    norm = LogNorm(vmin=max(finite.min(), 1e-5), vmax=finite.max()) if finite.size else None
+    star = np.array([np.nan if v is None else v for v in s["secondary_pitchfork_B"]], dtype=float)
+    prim = np.array([np.nan if v is None else v for v in s["primary_pitchfork_B"]], dtype=float)
+    mesh = None
+    for k, ax in enumerate(axes.ravel()):
+        if k >= n:
+            ax.set_visible(False)
+            continue
+        z = np.ma.masked_invalid(np.where(zeta[k] > 0, zeta[k], np.nan))
+        if z.count():
+            mesh = ax.pcolormesh(B, w, z, norm=norm, cmap="viridis", shading="nearest")
+        bad = np.nan_to_num(np.array(s["max_real"], dtype=float)[k], nan=-1.0) > 0
+        if bad.any():
+            W, BB = np.meshgrid(w, B, indexing="ij")
+            ax.plot(BB[bad], W[bad], "x", color="#c0392b", ms=4)
+        ax.plot(star, w, color="k", lw=2, label="secondary pitchfork B*(ω)")
+        ax.plot(prim, w, color="#888", lw=1.2, ls="--", label="b1 pitchfork (straight tether)")
+        op = r["operating"]
+        if B[0] <= op["B"] <= B[-1] and w[0] <= op["omega"] <= w[-1]:
+            ax.plot([op["B"]], [op["omega"]], marker="*", color="#27ae60", mec="k", ms=10, ls="none",
+                    label="mission operating point")
+        ax.set_title(f"γ = {s['gammas'][k]:g} (γ_v = {s['damping_time_s'][k]:.3g} s)", fontsize=8)
+        ax.set_xlim(0, B[-1])
+        ax.set_ylim(w[0], w[-1])
+        if k % cols == 0:
+            ax.set_ylabel("spin ω (dimensionless)")
+        if k >= n - cols:
+            ax.set_xlabel("load B (dimensionless)")
+    handles, labels = axes.ravel()[0].get_legend_handles_labels()
+    fig.legend(handles, labels, fontsize=7, loc="lower center", ncol=3, bbox_to_anchor=(0.45, -0.04))
+    if mesh is not None:
+        fig.colorbar(mesh, ax=axes.ravel().tolist(), label="damping ratio ζ of the least-damped mode", shrink=0.9)
+    return _svg(fig)

@@ -1,0 +1,177 @@
+"""Figures of a sweep report as inline SVG: margin maps, critical length, 1-D margins.
+
+Each function takes the JSON-able sweep results; axes carry units, the
+mission's operating point is marked, failed points are drawn (never
+interpolated over).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from etcheck.input.sweep_axes import AXES
+from etcheck.report.figures.common import pyplot as _plt
+from etcheck.report.figures.common import svg as _svg
+from etcheck.report.sweep_files import grid_array
+
+STABLE, UNSTABLE, BUCKLED, NOANSWER = "#d8efdd", "#f6d5d1", "#d6e4f5", "#9a9a9a"
+
+
+def _axis(results: dict, k: int) -> tuple[np.ndarray, str, bool]:
+    a = results["axes"][k]
+    return np.asarray(a["display_values"]), f"{a['label']} [{a['unit']}]", a["spacing"] == "log"
+
+
+def _operating(results: dict, k: int) -> float:
+    """The mission's value of the k-th swept quantity, in display units."""
+    a = results["axes"][k]
+    return results["operating"][a["name"]] * AXES[a["name"]][3]
+
+
+def _log_margin(results: dict, field: str) -> np.ndarray:
+    m = grid_array(results, field)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = np.log10(np.clip(m, 1e-6, 1e6))
+    return out
+
+
+def margin_map(results: dict, field: str, title: str) -> str:
+    """Regions and margin contours over the two swept quantities."""
+    plt = _plt()
+    x, xlabel, xlog = _axis(results, 0)
+    y, ylabel, ylog = _axis(results, 1)
+    g = results["grid"]
+    region = np.array(g["region"], dtype=object)
+    status = np.array(g["status"], dtype=object)
+    req = results["required_margin"]
+    fig, ax = plt.subplots(figsize=(6.6, 4.3))
+    code = np.select([region == "straight-stable", region == "buckled-stable", region == "straight-unstable"],
+                     [2.0, 1.0, 0.0], np.nan)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    ax.contourf(X, Y, code, levels=[-0.5, 0.5, 1.5, 2.5], colors=[UNSTABLE, BUCKLED, STABLE])
+    lm = _log_margin(results, field)
+    levels = [lv for lv in (-1, np.log10(0.5), 0, np.log10(req), 1, 2, 3) if np.nanmin(lm) < lv < np.nanmax(lm)]
+    if levels:
+        cs = ax.contour(X, Y, lm, levels=sorted(set(levels)), colors="#555555", linewidths=0.8)
+        ax.clabel(cs, fmt=lambda v: f"{10 ** v:.3g}", fontsize=7)
+    cl = results.get("critical_length")
+    exact = bool(cl) and field == "load_margin" and any(r["length_m"] is not None for r in cl)
+    if np.nanmin(lm) < 0 < np.nanmax(lm) and not exact:
+        ax.contour(X, Y, lm, levels=[0], colors="k", linewidths=2.0)
+    if np.nanmin(lm) < np.log10(req) < np.nanmax(lm):
+        ax.contour(X, Y, lm, levels=[np.log10(req)], colors="#1f4e79", linewidths=1.6, linestyles="--")
+    bad = status != "ok"
+    if bad.any():
+        ax.scatter(X[bad], Y[bad], marker="x", color="#8e1b10", s=22, zorder=5, label="no answer (failed / outside range)")
+    if exact:
+        a, b = zip(*[(r["length_m"], r["other_display"]) for r in cl if r["length_m"] is not None])
+        ax.plot(a, b, "-o", ms=2.5, lw=2.0, color="k", zorder=6,
+                label="stability boundary: critical length located exactly (Brent)")
+    _mark_operating(ax, results, x, y)
+    for name, colour in (("straight-stable", "#14632c"), ("buckled-stable", "#1f4e79"),
+                         ("straight-unstable", "#8e1b10")):
+        idx = np.argwhere(region == name)
+        if len(idx):
+            i, j = idx[len(idx) // 2]
+            ax.text(x[i], y[j], name, color=colour, fontsize=8, ha="center", va="center", fontweight="bold",
+                    bbox={"facecolor": "white", "alpha": 0.6, "edgecolor": "none", "pad": 1})
+    if not exact:
+        ax.plot([], [], color="k", lw=2, label="stability boundary (margin 1)")
+    ax.plot([], [], color="#1f4e79", lw=1.6, ls="--", label=f"required margin {req:g}")
+    ax.plot([], [], color="#555555", lw=0.8, label="margin contours (labelled)")
+    if xlog:
+        ax.set_xscale("log")
+    if ylog:
+        ax.set_yscale("log")
+    ax.set_xlim(x[0], x[-1])
+    ax.set_ylim(y[0], y[-1])
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, framealpha=0.85)
+    return _svg(fig)
+
+
+def _mark_operating(ax, results, x, y=None) -> None:
+    ox = _operating(results, 0)
+    if y is None:
+        ax.axvline(ox, color="#27ae60", lw=1.5, label="mission operating point")
+        return
+    oy = _operating(results, 1)
+    inside = x[0] <= ox <= x[-1] and y[0] <= oy <= y[-1]
+    if inside:
+        ax.plot([ox], [oy], marker="*", ms=13, color="#27ae60", mec="k", zorder=7, label="mission operating point")
+    else:
+        ax.plot([], [], " ", label=f"operating point off the map ({ox:.4g}, {oy:.4g})")
+
+
+def critical_length_plot(results: dict) -> str:
+    """Critical length against the other swept quantity, with the mission's length."""
+    plt = _plt()
+    rows = results["critical_length"]
+    a = results["axes"][1]
+    fig, ax = plt.subplots(figsize=(6.4, 3.0))
+    pts = [(r["other_display"], r["length_m"]) for r in rows if r["length_m"] is not None]
+    if pts:
+        ox, oy = zip(*pts)
+        ax.plot(ox, oy, "-o", ms=3, color="#1f4e79", label="critical length (straight tether loses stability)")
+    below = [r["other_display"] for r in rows if r["status"] == "below range"]
+    if below:
+        ax.plot(below, [results["axes"][0]["start"]] * len(below), "v", color="#8e1b10", ms=4,
+                label="unstable already at the shortest length swept")
+    beyond = [r["other_display"] for r in rows if r["status"] == "beyond range"]
+    if beyond:
+        ax.plot(beyond, [results["axes"][0]["stop"]] * len(beyond), "^", color="#14632c", ms=4,
+                label="stable up to the longest length swept")
+    op = results["operating"]
+    ax.plot([_operating(results, 1)], [op["length"]], marker="*", ms=12, color="#27ae60", mec="k",
+            label="mission operating point", zorder=5)
+    ax.set_yscale("log")
+    if a["spacing"] == "log":
+        ax.set_xscale("log")
+    ax.set_xlabel(f"{a['label']} [{a['unit']}]")
+    ax.set_ylabel("critical length [m]")
+    ax.legend(fontsize=7)
+    return _svg(fig)
+
+
+def margin_lines(results: dict) -> str:
+    """1-D sweep: load and spin margins against the swept quantity."""
+    plt = _plt()
+    x, xlabel, xlog = _axis(results, 0)
+    req = results["required_margin"]
+    status = np.array(results["grid"]["status"], dtype=object)
+    fig, ax = plt.subplots(figsize=(6.4, 3.2))
+    for field, label, colour in (("load_margin", "load margin (at the point's spin)", "#1f4e79"),
+                                 ("spin_margin", "spin margin (at the point's load)", "#8e44ad")):
+        m = grid_array(results, field)
+        m = np.where(np.isfinite(m), m, np.nan)
+        if np.isfinite(m).any():
+            ax.plot(x, np.clip(m, 1e-6, None), "-o", ms=2.5, color=colour, label=label)
+    ax.axhline(1.0, color="k", lw=1.6, label="stability boundary (margin 1)")
+    ax.axhline(req, color="#1f4e79", lw=1.2, ls="--", label=f"required margin {req:g}")
+    bad = status != "ok"
+    if bad.any():
+        for xb in x[bad]:
+            ax.axvline(xb, color=NOANSWER, lw=3, alpha=0.5)
+        ax.plot([], [], color=NOANSWER, lw=3, label="no answer (failed / outside range)")
+    _mark_operating(ax, results, x)
+    ax.set_yscale("log")
+    if xlog:
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel("margin = critical / operating [-]")
+    ax.legend(fontsize=7)
+    return _svg(fig)
+
+
+def sweep_figures(results: dict) -> dict[str, str]:
+    if len(results["axes"]) == 1:
+        return {"lines": margin_lines(results)}
+    figs = {
+        "load_map": margin_map(results, "load_margin", "load margin: critical I·B0 at the point's spin / I·B0"),
+        "spin_map": margin_map(results, "spin_margin", "spin margin: critical spin at the point's load / spin"),
+    }
+    if results.get("critical_length"):
+        figs["critical_length"] = critical_length_plot(results)
+    return figs

@@ -1,0 +1,1 @@
+"""Studies beyond one check: what-if sweeps, bifurcation diagrams, damping maps, accuracy."""

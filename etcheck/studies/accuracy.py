@@ -1,0 +1,71 @@
+"""The speed/accuracy trade of the solvers for one mission's scene, measured (not a test).
+
+Rung 1: time of one solve and error of the lowest eigenvalue pairs and of the
+first static load versus the Chebyshev resolution N (reference N = 96), and the
+automatic two-resolution solve as the check runs it. Rung 2: time and error of
+tracing b1 from its pitchfork to 4 times that load versus N (reference N = 48).
+BLAS on one thread.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+from etcheck.checks.straight import accuracy
+from etcheck.numerics.eigen import single_blas_thread
+from etcheck.rod import branches as br
+from etcheck.rod.parameters import RodParameters
+from etcheck.rod.spectrum import spectrum
+from etcheck.scaling import Scaled
+
+
+@dataclass(frozen=True)
+class AutomaticSolve:
+    """The check's automatic stability solve: best time of 3 [s], resolutions, convergence, largest error."""
+
+    time_s: float
+    N: int
+    N_check: int
+    converged: bool
+    max_error: float
+
+
+def rung1_accuracy(scaled: Scaled, Ns: tuple[int, ...], pairs: int) -> tuple[list[dict[str, float]], AutomaticSolve]:
+    """Rows of (N, time per solve, eigenvalue error, B_c error) and the automatic solve."""
+    rows = accuracy(scaled, Ns, k=pairs)
+    best = math.inf
+    for _ in range(3):
+        t0 = time.perf_counter()
+        auto = spectrum(scaled.params, k=pairs)
+        best = min(best, time.perf_counter() - t0)
+    return rows, AutomaticSolve(best, auto.N, auto.N_check, bool(auto.converged),
+                                max(auto.errors, default=math.nan))
+
+
+@dataclass(frozen=True)
+class BranchTrace:
+    """b1 from its pitchfork to 4 times that load at resolution N (dimensionless measures)."""
+
+    N: int
+    time_s: float
+    points: int
+    measure1_end: float
+    secondary_pitchfork_B: float
+
+
+@single_blas_thread
+def trace_b1(params: RodParameters, N: int) -> BranchTrace:
+    """Continue b1 at the scene's spin and tension from its pitchfork to 4 B_1 at resolution N."""
+    t0 = time.perf_counter()
+    start = next(s for s in br.primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
+    b1 = br.continue_branch(params, start, stop=(0.0, 4.0 * start.load), N=N)
+    brk = next((q.value for q in b1.special if q.kind == "break"), math.nan)
+    return BranchTrace(N, time.perf_counter() - t0, len(b1.values), float(b1.measure1[-1]), brk)
+
+
+def rung2_accuracy(params: RodParameters, Ns: tuple[int, ...] = (20, 24, 32, 40),
+                   N_ref: int = 48) -> tuple[BranchTrace, list[BranchTrace]]:
+    """The reference trace and one trace per N (compare their measures and pitchforks)."""
+    return trace_b1(params, N_ref), [trace_b1(params, N) for N in Ns]

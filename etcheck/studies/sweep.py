@@ -1,0 +1,542 @@
+"""Parametric what-if: the straight-tether check over a grid of one or two mission quantities.
+
+``sweep(mission, axes)`` varies any one or two of tether length, spin rate,
+current, axial field and end tension (:mod:`etcheck.input.sweep_axes`), scales every grid
+point from the mission (length moves every dimensionless number at once:
+B ∝ L³, P ∝ L⁻², ω̄ ∝ L², T̄ ∝ L², gamma ∝ L⁻²; stiffnesses, mass per
+length, damping time and the other inputs stay) and answers each with the
+lowest rung that is exact for it:
+
+* rung 0 (chi roots) for the critical load at zero spin and tension;
+* rung 1 static pencils with damping (the Kelvin-Tait-Chetaev structure,
+  :mod:`etcheck.rod.damped_critical`): critical load at the point's spin,
+  critical spin at the point's load, one QZ per resolution;
+* rung 1 spectral scan without damping (flutter windows are possible).
+
+Each point is an independent task keyed by its dimensionless parameters, the
+solver settings and the etcheck version. Results go to a cache folder as they
+arrive (one file per point, written by rename, so a kill loses at most the
+points in flight), and a rerun takes them from there: an interrupted sweep
+resumes and gives the same data. Points run on local worker processes by
+default, or on a dask.distributed cluster (``scheduler=ADDRESS``). When length
+is swept, the critical length is located exactly (Brent's method on the
+point solver) for every value of the other axis.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import time
+from collections.abc import Callable, Iterable
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import asdict, dataclass, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from etcheck import __version__
+from etcheck.checks.buckled import buckled_point
+from etcheck.checks.results import results_header
+from etcheck.errors import EtcheckError, MissionError
+from etcheck.input.mission import Mission
+from etcheck.input.sweep_axes import Axis, check_axes
+from etcheck.jsonable import finite_or_none
+from etcheck.rod.damped_critical import damped_critical, first_root
+from etcheck.rod.parameters import RodParameters
+from etcheck.rod.spectrum import spectrum
+from etcheck.rod.stability import critical_load, critical_spin
+from etcheck.scaling import RPM, Scene, scale, scene, with_length
+
+SWEEP_SCHEMA = 1
+#: Rod theory assumes a slender rod: P = I1 / (A L^2) << 1.
+P_MAX = 0.1
+STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE = "ok", "failed", "outside validated range"
+REGION_STABLE, REGION_UNSTABLE, REGION_FAILED = "straight-stable", "straight-unstable", "failed"
+REGION_BUCKLED = "buckled-stable"
+
+
+class SweepInterrupted(EtcheckError):
+    """The sweep was interrupted; what finished is in the cache."""
+
+    exit_code = 130
+
+
+@dataclass(frozen=True)
+class SweepOptions:
+    """How to run a sweep.
+
+    ``tol``: relative two-resolution agreement required of every critical
+    value; ``workers``: local processes (None: every core; 1: in this
+    process); ``scheduler``: address of a dask.distributed scheduler (then
+    ``workers`` is ignored); ``cache``: folder of per-point results (None:
+    no cache); ``chunk``: points per task; ``connect_timeout``: seconds to
+    wait for the dask scheduler; ``buckled``: at straight-unstable points,
+    follow the first post-buckling branch b1 to the point and label it
+    buckled-stable when the coiled state is stable (rungs 2-3; about a
+    second per such point).
+    """
+
+    tol: float = 1e-8
+    workers: int | None = None
+    scheduler: str | None = None
+    cache: Path | None = None
+    chunk: int = 8
+    connect_timeout: float = 10.0
+    buckled: bool = False
+
+
+# --------------------------------------------------------------------------- points
+
+
+def point_scene(base: Scene, current: float, field: float, values: dict[str, float]) -> Scene:
+    """The mission's worst-case scene with the swept quantities replaced (SI floats).
+
+    ``current`` [A] and ``field`` [T] are the mission's worst-case values;
+    ``values`` maps axis names to SI values.
+    """
+    s = base
+    if "length" in values:
+        s = with_length(s, values["length"])
+    I_ = values.get("current", current)
+    B0 = values.get("axial_field", field)
+    changes: dict[str, float] = {"load": abs(I_) * abs(B0)}
+    if "spin_rate" in values:
+        changes["spin_rate"] = values["spin_rate"]
+    if "end_tension" in values:
+        changes["tension"] = values["end_tension"]
+    return replace(s, **changes)
+
+
+def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: bool = False) -> dict[str, Any]:
+    """The straight-tether critical values at one point (dimensionless, JSON-able).
+
+    Returns ``status`` (ok, failed, outside validated range), ``reason``,
+    ``model``, ``B_c`` (critical load at the point's spin and tension; 0 if
+    unstable without load), ``omega_c`` (critical spin at the point's load; 0
+    if statically buckled), ``omega_rest`` (critical spin without load, damped
+    only), their relative errors, ``stable`` and the resolution ``N``.
+    ``spin=False`` skips the critical spin (damped only). ``buckled=True``
+    adds ``buckled_stable`` (and ``buckled_deflection``, units of L) at
+    straight-unstable points: is the coiled state on b1 stable there (rungs 2-3).
+    """
+    out: dict[str, Any] = {"status": STATUS_OK, "reason": "", "model": "", "B_c": None, "B_c_error": None,
+                           "omega_c": None, "omega_c_error": None, "omega_rest": None, "stable": None, "N": None}
+    if params.P > P_MAX:
+        return out | {"status": STATUS_OUTSIDE,
+                      "reason": f"P = {params.P:.3g} > {P_MAX}: the tether is too short for rod theory (P << 1)"}
+    try:
+        if params.gamma > 0:
+            d = damped_critical(params, tol, spin=spin)
+            out |= {"model": d.critical_load.model if params.omega == 0 and params.T == 0 else "rung 1 (static pencil)",
+                    "B_c": d.critical_load.value, "B_c_error": d.critical_load.error,
+                    "omega_c": d.critical_spin.value, "omega_c_error": d.critical_spin.error,
+                    "omega_rest": d.spin_at_rest.value, "stable": d.stable,
+                    "N": max(d.critical_load.N, d.critical_spin.N)}
+            if not d.converged:
+                out |= {"status": STATUS_FAILED, "reason": d.message}
+        else:
+            out |= _undamped(params, tol)
+    except (np.linalg.LinAlgError, ValueError, ArithmeticError) as exc:
+        out |= {"status": STATUS_FAILED, "reason": f"solver error: {type(exc).__name__}: {exc}"}
+    for key in ("B_c", "omega_c", "omega_rest", "B_c_error", "omega_c_error"):
+        v = out[key]
+        if v is not None and not math.isfinite(v):
+            if math.isnan(v) and out["status"] == STATUS_OK and (spin or not key.startswith("omega_c")):
+                out |= {"status": STATUS_FAILED, "reason": f"{key} is not a number"}
+            out[key] = None if math.isnan(v) else v
+    if out["status"] != STATUS_OK:
+        out["stable"] = None
+    elif buckled and out["stable"] is False and params.gamma > 0:
+        try:
+            b = buckled_point(params)
+        except (ArithmeticError, ValueError, EtcheckError, np.linalg.LinAlgError) as exc:
+            b = {"stable": None, "max_deflection": None, "reason": f"rung 2 failed: {exc}"}
+        out |= {"buckled_stable": b["stable"], "buckled_deflection": b["max_deflection"], "buckled_reason": b["reason"]}
+    return out
+
+
+def _undamped(params: RodParameters, tol: float) -> dict[str, Any]:
+    """Without damping flutter is possible: the spectral scans of rung 1."""
+    load = critical_load(params.with_(B=0.0), tol=min(tol, 1e-10))
+    spin = critical_spin(params.with_(omega=0.0), tol=min(tol, 1e-10))
+    op = spectrum(params, k=10, tol=max(tol, 1e-8))
+    out = {"model": "rung 1 (spectral scan, undamped)", "N": int(op.N)}
+    for name, c in (("B_c", load), ("omega_c", spin)):
+        if c.kind == "unstable at start":
+            out |= {name: 0.0, f"{name}_error": 0.0}
+        elif c.kind == "none found":
+            out |= {name: math.inf, f"{name}_error": 0.0}
+        else:
+            out |= {name: c.value, f"{name}_error": c.error / abs(c.value) if c.value else c.error}
+    converged = op.converged and all(c.converged or c.kind in ("unstable at start", "none found")
+                                     for c in (load, spin))
+    out["stable"] = bool(op.stable)
+    if not converged:
+        out |= {"status": STATUS_FAILED, "reason": f"rung 1 scan did not converge: {op.message}; {load.message}"}
+    return out
+
+
+def point_key(params: RodParameters, tol: float, kind: str = "point") -> str:
+    """Cache key: dimensionless parameters (exact floats), settings and version."""
+    text = json.dumps({"kind": kind, "params": {k: repr(v) for k, v in asdict(params).items()}, "tol": repr(tol),
+                       "version": __version__}, sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+# --------------------------------------------------------------------------- critical length
+
+
+def critical_length(base: Scene, current: float, field: float, values: dict[str, float], lo: float, hi: float,
+                    tol: float) -> dict[str, Any]:
+    """Shortest length in [lo, hi] m at which the straight tether is no longer stable.
+
+    ``lo`` must be a stable and ``hi`` an unstable length (from the grid).
+    Brent's method with relative tolerance ``tol`` on h(L) = log t*(L), t*
+    the first root of the static pencil along the ray from zero load and
+    spin to the point's (B, omega^2) (damped: exact, Kelvin-Tait-Chetaev),
+    or on the load margin minus one from the spectral scan (undamped).
+    """
+
+    def h(L: float) -> float:
+        p = scale(point_scene(base, current, field, values | {"length": L})).params
+        if p.B == 0 and p.omega == 0:
+            return 1.0
+        if p.gamma > 0:  # exact: with damping, stable iff the ray root t* exceeds 1
+            t = first_root(p, "ray", tol)
+            if not t.converged:
+                raise _NoAnswer(f"at L = {L:.6g} m: ray root not converged at N = {t.N} (error {t.error:.1e})")
+            return math.log(t.value)
+        r = solve_point(p, tol, spin=False)
+        if r["status"] != STATUS_OK:
+            raise _NoAnswer(f"at L = {L:.6g} m: {r['reason']}")
+        if p.B > 0:
+            return (r["B_c"] / p.B if r["B_c"] is not None else math.inf) - 1.0
+        return (r["omega_c"] / p.omega if r["omega_c"] is not None else math.inf) - 1.0
+
+    t0 = time.perf_counter()
+    try:
+        L, res = brentq(h, lo, hi, xtol=1e-12, rtol=max(tol, 4 * np.finfo(float).eps), full_output=True)
+    except _NoAnswer as exc:
+        return {"status": STATUS_FAILED, "reason": str(exc), "length_m": None, "time_s": time.perf_counter() - t0}
+    return {"status": STATUS_OK if res.converged else STATUS_FAILED, "reason": res.flag, "length_m": float(L),
+            "evaluations": int(res.function_calls), "time_s": time.perf_counter() - t0}
+
+
+class _NoAnswer(Exception):
+    pass
+
+
+# --------------------------------------------------------------------------- tasks and executors
+
+
+def _worker_init(parent: int) -> None:
+    """Local worker: one BLAS thread; exit when the sweep process dies (kill -9 leaves no orphans)."""
+    import threading
+
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1)
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, daemon=True).start()
+
+
+def _solve_chunk(items: list[tuple[str, dict, float, bool]]) -> list[tuple[str, dict]]:
+    """Worker entry: solve a list of (key, params dict, tol, buckled); adds wall time."""
+    from threadpoolctl import threadpool_limits
+
+    out = []
+    with threadpool_limits(limits=1):
+        for key, pdict, tol, buckled in items:
+            t0 = time.perf_counter()
+            r = solve_point(RodParameters(**pdict), tol, buckled=buckled)
+            out.append((key, r | {"time_s": time.perf_counter() - t0}))
+    return out
+
+
+def _solve_lengths(items: list[tuple[str, tuple]]) -> list[tuple[str, dict]]:
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1):
+        return [(key, critical_length(*args)) for key, args in items]
+
+
+class Cache:
+    """One JSON file per result, named by its key; written by rename (kill-safe)."""
+
+    def __init__(self, folder: Path | None):
+        self.folder = Path(folder) if folder is not None else None
+        if self.folder is not None:
+            try:
+                self.folder.mkdir(parents=True, exist_ok=True)
+            except OSError as exc:
+                raise MissionError("command line", "--cache", f"cannot create {self.folder}: {exc.strerror}") from None
+
+    def get(self, key: str) -> dict | None:
+        if self.folder is None:
+            return None
+        try:
+            return json.loads((self.folder / f"{key}.json").read_text())
+        except (OSError, ValueError):
+            return None
+
+    def put(self, key: str, value: dict) -> None:
+        if self.folder is None:
+            return
+        path = self.folder / f"{key}.json"
+        tmp = path.with_name(f".{key}.{os.getpid()}.tmp")
+        tmp.write_text(json.dumps(value, allow_nan=False))
+        os.replace(tmp, path)
+
+
+def _run(fn: Callable, chunks: list[list], options: SweepOptions, on_result: Callable[[str, dict], None]) -> None:
+    """Run fn over chunks (serial, local processes or dask) and hand every result to on_result."""
+    if not chunks:
+        return
+    if options.scheduler:
+        _run_dask(fn, chunks, options.scheduler, options.connect_timeout, on_result)
+        return
+    workers = options.workers or len(os.sched_getaffinity(0))
+    if workers <= 1:
+        for chunk in chunks:
+            for key, r in fn(chunk):
+                on_result(key, r)
+        return
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(chunks)), initializer=_worker_init,
+                               initargs=(os.getpid(),))
+    try:
+        futures = [pool.submit(fn, c) for c in chunks]
+        for fut in as_completed(futures):
+            for key, r in fut.result():
+                on_result(key, r)
+    except BaseException:
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown()
+
+
+def _run_dask(fn: Callable, chunks: list[list], address: str, timeout: float, on_result) -> None:
+    try:
+        from distributed import Client
+        from distributed import as_completed as dask_completed
+    except ImportError:
+        raise MissionError("command line", "--scheduler", "dask.distributed is not installed",
+                           'pip install "etcheck[distributed]"') from None
+    try:
+        client = Client(address, timeout=f"{timeout}s")
+    except (OSError, TimeoutError) as exc:
+        raise MissionError("command line", "--scheduler", f"cannot reach the dask scheduler at {address}: {exc}",
+                           "start one (dask scheduler) or leave --scheduler out to run locally") from None
+    try:
+        futures = client.map(fn, chunks, pure=False)
+        for fut in dask_completed(futures):
+            for key, r in fut.result():
+                on_result(key, r)
+    finally:
+        client.close()
+
+
+def _chunks(items: list, size: int) -> list[list]:
+    return [items[i:i + size] for i in range(0, len(items), max(1, size))]
+
+
+# --------------------------------------------------------------------------- the sweep
+
+
+def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = SweepOptions(),
+          progress: Callable[[int, int, int], None] | None = None) -> dict[str, Any]:
+    """Run the sweep; returns JSON-able results (dimensionless and SI).
+
+    ``progress(done, total, from_cache)`` is called as points finish.
+    Length, if swept, is put first (neighbouring tasks share their operators).
+    """
+    started = time.perf_counter()
+    axes = tuple(sorted(axes, key=lambda a: a.name != "length"))
+    base = scene(mission)
+    current = float(mission.worst_current.to_value("A"))
+    field = float(mission.worst_field.to_value("T"))
+    grids = [a.values for a in axes]
+    shape = tuple(len(g) for g in grids)
+    cache = Cache(options.cache)
+
+    points = []
+    for idx in np.ndindex(*shape):
+        values = {a.name: float(g[i]) for a, g, i in zip(axes, grids, idx)}
+        sc = point_scene(base, current, field, values)
+        scaled = scale(sc)
+        kind = "point+buckled" if options.buckled else "point"
+        points.append((idx, values, sc, scaled, point_key(scaled.params, options.tol, kind)))
+
+    results: dict[str, dict] = {}
+    todo, queued = [], set()
+    for _, _, _, scaled, key in points:
+        hit = cache.get(key)
+        if hit is not None:
+            results[key] = hit
+        elif key not in queued:
+            queued.add(key)
+            todo.append((key, asdict(scaled.params), options.tol, options.buckled))
+    total, cached = len({p[4] for p in points}), len(results)
+
+    def arrived(key: str, r: dict) -> None:
+        cache.put(key, r)
+        results[key] = r
+        if progress:
+            progress(len(results), total, cached)
+
+    if progress:
+        progress(len(results), total, cached)
+    t_solve = time.perf_counter()
+    try:
+        _run(_solve_chunk, _chunks(todo, options.chunk), options, arrived)
+        grid = _assemble(points, results, axes, shape, mission)
+        lengths = _critical_lengths(points, results, axes, shape, base, current, field, options, cache)
+    except KeyboardInterrupt:
+        raise SweepInterrupted(f"sweep interrupted: {len(results)} of {total} points are saved"
+                               + (f" in {cache.folder}; run the same command again to resume" if cache.folder else
+                                  " (no cache folder: nothing kept)")) from None
+    solve_time = time.perf_counter() - t_solve
+    solved = [r for k, r in results.items() if k in queued]
+    cpu = sum(r.get("time_s", 0.0) for r in solved)
+    return {
+        **results_header(mission, SWEEP_SCHEMA),
+        "axes": [a.as_dict() for a in axes],
+        "tolerance": options.tol,
+        "buckled_assessed": options.buckled,
+        "required_margin": mission.required_margin,
+        "operating": _operating(base, current, field),
+        "grid": grid,
+        "critical_length": lengths,
+        "cost": {
+            "points": total,
+            "solved": len(todo),
+            "from_cache": cached,
+            "workers": "dask " + options.scheduler if options.scheduler else
+            (options.workers or len(os.sched_getaffinity(0))),
+            "wall_s": time.perf_counter() - started,
+            "solve_wall_s": solve_time,
+            "cpu_s_solved_points": cpu,
+            "points_per_s_per_core": len(todo) / cpu if cpu > 0 else None,
+            "max_resolution": max((r.get("N") or 0 for r in results.values()), default=0),
+        },
+    }
+
+
+def _operating(base: Scene, current: float, field: float) -> dict[str, float]:
+    return {"length": base.length, "spin_rate": base.spin_rate, "current": current, "axial_field": field,
+            "end_tension": base.tension, "load_N_per_m": base.load, "spin_rpm": base.spin_rate * RPM}
+
+
+def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
+    """Per-point SI data as arrays of the grid shape (lists, JSON-able)."""
+    required = mission.required_margin
+    fields = ("load_N_per_m", "critical_load_N_per_m", "load_margin", "load_error", "spin_rpm", "critical_spin_rpm",
+              "spin_margin", "spin_error", "critical_spin_at_rest_rpm", "B", "omega", "T", "gamma", "P", "N",
+              "buckled_deflection_m")
+    data: dict[str, np.ndarray] = {f: np.full(shape, np.nan) for f in fields}
+    text = {f: np.full(shape, "", dtype=object) for f in ("status", "region", "model", "reason", "verdict")}
+    for idx, _, sc, scaled, key in points:
+        r, p, scales = results[key], scaled.params, scaled.scales
+        wc, load_scale = scales.frequency, scales.load
+        d = {"load_N_per_m": sc.load, "spin_rpm": sc.spin_rate * RPM, "B": p.B, "omega": p.omega, "T": p.T,
+             "gamma": p.gamma, "P": p.P, "N": r.get("N") or np.nan}
+        ok = r["status"] == STATUS_OK
+        if ok:
+            Bc, wcrit, wrest = r["B_c"], r["omega_c"], r["omega_rest"]
+            d |= {"critical_load_N_per_m": Bc * load_scale, "critical_spin_rpm": wcrit * wc * RPM,
+                  "load_error": r["B_c_error"], "spin_error": r["omega_c_error"],
+                  "critical_spin_at_rest_rpm": np.nan if wrest is None else wrest * wc * RPM,
+                  "load_margin": Bc / p.B if p.B > 0 else np.inf,
+                  "spin_margin": wcrit / p.omega if p.omega > 0 else np.inf}
+            if r.get("buckled_deflection") is not None:
+                d["buckled_deflection_m"] = r["buckled_deflection"] * scales.length
+        for f, v in d.items():
+            data[f][idx] = v
+        text["status"][idx] = r["status"]
+        text["reason"][idx] = r["reason"] or r.get("buckled_reason", "")
+        text["model"][idx] = r["model"]
+        text["region"][idx] = (REGION_FAILED if not ok else REGION_STABLE if r["stable"] else
+                               REGION_BUCKLED if r.get("buckled_stable") else REGION_UNSTABLE)
+        if ok:
+            good = r["stable"] and d["load_margin"] >= required and d["spin_margin"] >= required
+            text["verdict"][idx] = "pass" if good else "fail"
+        else:
+            text["verdict"][idx] = "no answer"
+    out = {f: finite_or_none(v) for f, v in data.items()}
+    out |= {f: v.tolist() for f, v in text.items()}
+    out["shape"] = list(shape)
+    status = text["status"].ravel().tolist()
+    out["counts"] = {s: status.count(s) for s in (STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE)}
+    region = text["region"].ravel().tolist()
+    out["regions"] = {s: region.count(s) for s in (REGION_STABLE, REGION_BUCKLED, REGION_UNSTABLE, REGION_FAILED)}
+    out["max_error"] = max([e for e in np.concatenate([data["load_error"].ravel(), data["spin_error"].ravel()])
+                            if np.isfinite(e)], default=None)
+    return out
+
+
+def _critical_lengths(points, results, axes, shape, base, current, field, options, cache) -> list[dict] | None:
+    """Exact critical length for each value of the other axis (length swept only)."""
+    if axes[0].name != "length":
+        return None
+    other = axes[1] if len(axes) > 1 else None
+    by_idx = {idx: (values, results[key]) for idx, values, _, _, key in points}
+    tasks, rows = [], []
+    for j in range(shape[1] if other else 1):
+        col = [by_idx[(i, j) if other else (i,)] for i in range(shape[0])]
+        row = {"other": None if other is None else col[0][0][other.name], "status": "", "reason": "",
+               "length_m": None}
+        if other is not None:
+            row["other_display"] = row["other"] * other.to_display
+        first_bad = next((i for i, (_, r) in enumerate(col) if r["status"] != STATUS_OK or not r["stable"]), None)
+        if first_bad is None:
+            row |= {"status": "beyond range", "reason": f"stable up to the longest length swept ({axes[0].stop:.6g} m)"}
+        elif first_bad == 0:
+            row |= {"status": "below range", "reason": f"not stable at the shortest length swept ({axes[0].start:.6g} m)"}
+        elif col[first_bad][1]["status"] != STATUS_OK:
+            row |= {"status": STATUS_FAILED, "reason": "the first unstable-looking point did not converge: "
+                    + col[first_bad][1]["reason"]}
+        else:
+            values = {k: v for k, v in col[0][0].items() if k != "length"}
+            lo, hi = col[first_bad - 1][0]["length"], col[first_bad][0]["length"]
+            args = (base, current, field, values, lo, hi, options.tol)
+            key = hashlib.sha256(json.dumps(["critical_length", repr(args), options.tol, __version__]).encode()).hexdigest()
+            hit = cache.get(key)
+            if hit is None:
+                tasks.append((key, args))
+            row["key"] = key
+            row["bracket_m"] = [lo, hi]
+            if hit is not None:
+                row |= hit
+        rows.append(row)
+    found: dict[str, dict] = {}
+
+    def arrived(key, r):
+        cache.put(key, r)
+        found[key] = r
+
+    _run(_solve_lengths, _chunks(tasks, 1), options, arrived)
+    for row in rows:
+        key = row.pop("key", None)
+        if key in found:
+            row |= found[key]
+    return rows
+
+
+def load_axes_or_table(mission: Mission, axes: Iterable[Axis]) -> tuple[Axis, ...]:
+    """Command-line axes if given, else the mission's [sweep] table."""
+    axes = tuple(axes)
+    if axes:
+        return check_axes(axes, "command line")
+    if mission.sweep:
+        return mission.sweep
+    raise MissionError(mission.file, "sweep", "no sweep axes given",
+                       "pass e.g. --length 50m:5km:40:log --spin 0rpm:2rpm:40, or add a [sweep] table to the mission")

@@ -1,0 +1,215 @@
+"""Rungs 2-3 for users: bifurcation diagrams (etcheck diagram), lift-off, and the
+post-buckling section of the check report when the scene needs it."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from helpers import set_like
+
+from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram, needs_postbuckling
+from etcheck.checks.pipeline import check
+from etcheck.cli.main import main
+from etcheck.input.mission import load_mission, mission_from_dict
+from etcheck.rod.analytic import critical_loads
+from etcheck.rod.stability import divergence_loads
+from etcheck.scaling import scale, scene
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def set_scaled():
+    return scale(scene(load_mission(ROOT / "missions" / "set.toml")))
+
+
+def _diagram(scaled, omega, **kw):
+    return bifurcation_diagram(scaled.params.with_(omega=omega), scaled.scales, DiagramOptions(**kw))
+
+
+def test_static_pair_b12_and_stability(set_scaled):
+    d = _diagram(set_scaled, 0.0, branches=2, B_max=2.2)
+    by = {b["label"]: b for b in d["branches"]}
+    assert set(by) == {"b1", "b12", "b2"}
+    B1 = critical_loads(set_scaled.params.R, set_scaled.params.f, 1)[0]
+    for name in ("b1", "b2"):  # the degenerate pair starts at the analytic load
+        assert by[name]["pitchfork_B"] == pytest.approx(B1, rel=1e-6)
+    # shapes at measure1 = 0.04 (paper Fig. fig:tet:tether-modes-transition)
+    assert by["b1"]["shapes"]["measure1=0.04"]["B"] == pytest.approx(0.595, rel=5e-3)
+    assert by["b12"]["shapes"]["measure1=0.04"]["B"] == pytest.approx(0.605, rel=5e-3)
+    # b1 stable up to its secondary pitchfork (Sec. 7.1: B = 1.942), unstable after; b12 unstable
+    brk = [q["B"] for q in by["b1"]["special"] if q["kind"] == "break"]
+    assert brk and brk[0] == pytest.approx(1.942, abs=5e-4)
+    for B, st in zip(by["b1"]["values"][1:], by["b1"]["stable"][1:]):
+        assert st is (B < brk[0])
+    assert not any(by["b12"]["stable"][2:-2])
+    # the connecting branch has measure2 != 0, the primary ones measure2 = 0
+    assert max(abs(v) for v in by["b12"]["measure2"]) > 1e-3
+    assert max(abs(v) for v in by["b1"]["measure2"]) < 1e-10
+    # physical units: deflection in metres = dimensionless x L
+    L = set_scaled.scales.length
+    assert np.allclose(by["b1"]["max_deflection_m"], np.asarray(by["b1"]["max_deflection"]) * L)
+    json.dumps(d, allow_nan=False)
+
+
+def test_spin_splits_the_pair_at_the_divergence_loads(set_scaled):
+    d = _diagram(set_scaled, 0.25, branches=2, B_max=0.8, stability=False, connect=False)
+    loads = {b["label"]: b["pitchfork_B"] for b in d["branches"]}
+    div = divergence_loads(set_scaled.params.with_(omega=0.25), n=2)
+    assert loads["b1"] == pytest.approx(div[0], rel=1e-8)
+    assert loads["b2"] == pytest.approx(div[1], rel=1e-8)
+    assert loads["b2"] - loads["b1"] > 1e-2
+
+
+def test_b1_lifted_off_at_075(set_scaled):
+    d = _diagram(set_scaled, 0.75, branches=1, B_max=0.6, stability=False, connect=False)
+    assert [x["label"] for x in d["lifted_off"]] == ["b1"]
+    assert d["lifted_off"][0]["liftoff_omega"] < 0.75
+    (b2,) = d["branches"]
+    assert b2["label"] == "b2"
+    # with b1 gone, b2's pitchfork is the first divergence load of the spinning straight tether
+    assert b2["pitchfork_B"] == pytest.approx(divergence_loads(set_scaled.params.with_(omega=0.75), n=1)[0], rel=1e-8)
+
+
+def test_diagram_command_writes_reports(tmp_path):
+    code = main(["diagram", "missions/set.toml", "--spin", "0.25", "--branches", "1", "--B-max", "0.9",
+                 "--no-stability", "--out", str(tmp_path)])
+    assert code == 0
+    folder = tmp_path / "set" / "diagram-w0.25"
+    data = json.loads((folder / "diagram.json").read_text())
+    assert data["diagram"]["branches"][0]["label"] == "b1"
+    html = (folder / "diagram.html").read_text()
+    assert "b1" in html and "maximum lateral deflection [m]" in html
+    assert (folder / "diagram.pdf").stat().st_size > 0
+
+
+@pytest.mark.parametrize("args", [["--spin", "5 s"], ["--R", "2"], ["--branches", "0"], ["--spin", "-1"]])
+def test_diagram_bad_input_exits_2(args, tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        code = main(["diagram", "missions/set.toml", "--out", str(tmp_path), *args])
+        raise SystemExit(code)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "Traceback" not in err and ("--spin" in err or "--R" in err or "--branches" in err)
+
+
+# --- the check report gains a post-buckling section only when needed ---------------------------------
+
+
+def test_needs_postbuckling_rule():
+    assert needs_postbuckling(0.6, 0.5853, 2.0)
+    assert needs_postbuckling(0.3, 0.5853, 2.0)  # within the required margin
+    assert not needs_postbuckling(0.2, 0.5853, 2.0)
+    assert not needs_postbuckling(0.0, 0.5853, 2.0)
+
+
+def test_far_from_critical_has_no_postbuckling_section():
+    res = check(ROOT / "missions" / "set-static.toml").results
+    assert res["postbuckling"] is None
+    from etcheck.report import render
+
+    assert b"buckled tether (rungs" not in render(res, ("html",))["html"]
+
+
+@pytest.fixture(scope="module")
+def coiled():
+    return check(ROOT / "missions" / "set-600m.toml").results
+
+
+def test_past_critical_reports_the_buckled_state(coiled):
+    res = coiled
+    post = res["postbuckling"]
+    assert post["computed"] and post["load_ratio"] > 1
+    op = post["operating"]
+    assert op["available"] and op["stable"]
+    assert op["max_deflection_m"] == pytest.approx(op["max_deflection"] * res["scales"]["length_m"])
+    assert op["deflection_error_m"] < 1e-3
+    p = scale(scene(load_mission(ROOT / "missions" / "set-600m.toml"))).params
+    shape = op["shape"]
+    assert shape["s"][0] == 0.0
+    margins = {m["name"]: m for m in res["margins"]}
+    buckled = margins["buckled tether (b1): load to its secondary pitchfork"]
+    assert buckled["verdict"] == "pass" and buckled["value"] == pytest.approx(1.9424625 / p.B, rel=1e-6)
+    assert res["verdict"] == "fail"  # the straight tether does buckle: the load margin of rung 0 fails
+    from etcheck.report import render
+
+    html = render(res, ("html",))["html"].decode()
+    assert "The buckled tether (rungs 2–3)" in html and "maximum lateral deflection at the operating load" in html
+
+
+def test_operating_state_is_resolution_independent():
+    from etcheck.checks.buckled import operating_state
+
+    sc = scale(scene(load_mission(ROOT / "missions" / "set-600m.toml")))
+    a = operating_state(sc.params, sc.scales, N=32)
+    b = operating_state(sc.params, sc.scales, N=44)
+    assert a["max_deflection_m"] == pytest.approx(b["max_deflection_m"], rel=1e-8)
+    assert np.allclose(a["end_moment_N_m"]["s=0"], b["end_moment_N_m"]["s=0"], rtol=1e-7, atol=1e-12)
+    assert a["max_deflection_m"] > 0.1 * sc.scales.length  # really buckled, not the straight state
+
+
+def test_within_margin_but_straight():
+    m = mission_from_dict(set_like(length="480 m", rotary_inertia_ratio=1e-3 * (100 / 480) ** 2))
+    res = check(m).results
+    post = res["postbuckling"]
+    assert post["computed"] and post["load_ratio"] < 1 and post["operating"] is None
+    assert post["diagram"]["branches"][0]["pitchfork_B"] == pytest.approx(post["B_c"], rel=1e-8)
+
+
+def test_many_coils_are_not_attempted():
+    res = check(ROOT / "missions" / "pmg.toml").results
+    post = res["postbuckling"]
+    assert post is not None and post["computed"] is False and "many coils" in post["reason"]
+    assert math.isfinite(post["load_ratio"])
+
+
+# --- rung 3 for users: the damping map (cf. Fig. fig:hopf) ------------------------------------------
+
+
+def test_damping_map_command(tmp_path):
+    code = main(["damping-map", "missions/set.toml", "--points", "3x2", "--B-max", "2.4", "--spin-max", "0.5",
+                 "--gammas", "0.01,0.04375", "--out", str(tmp_path)])
+    assert code == 0
+    folder = tmp_path / "set" / "damping-map"
+    s = json.loads((folder / "damping.json").read_text())["study"]
+    assert s["unstable_points"] == 0
+    # the secondary pitchfork at rest is the paper's 1.942, and spin pushes it up (Sec. 8)
+    assert s["secondary_pitchfork_B"][0] == pytest.approx(1.942, abs=5e-4)
+    assert s["secondary_pitchfork_B"][1] > s["secondary_pitchfork_B"][0]
+    zeta = np.array(s["damping_ratio"], dtype=float)
+    ok = np.isfinite(zeta)
+    assert ok.any() and (zeta[ok] > 0).all()
+    assert np.nanmin(zeta[1]) > np.nanmin(zeta[0])  # more damping, larger damping ratio
+    assert s["spin_paths"]["max_re"] < 0  # b1 followed in spin: no mode crosses (no Hopf)
+    assert (folder / "damping.html").stat().st_size > 0 and (folder / "damping.pdf").stat().st_size > 0
+
+
+@pytest.mark.parametrize("args", [["--gammas", "0,1"], ["--points", "3"], ["--B-max", "-1"]])
+def test_damping_map_bad_input_exits_2(args, tmp_path):
+    with pytest.raises(SystemExit) as exc:
+        main(["damping-map", "missions/set.toml", "--out", str(tmp_path), *args])
+    assert exc.value.code == 2
+
+
+def test_design_answer_for_a_coiled_tether(coiled):
+    """Region, margins in N/m and rpm, and damping sensitivity in the check of a tether past BP1."""
+    res = coiled
+    post = res["postbuckling"]
+    reg = post["region"]
+    rows = reg["rows"]
+    assert rows[0]["secondary_B"] == pytest.approx(1.94246, rel=1e-4)
+    assert all(b["secondary_B"] > a["secondary_B"] for a, b in zip(rows[:-1], rows[1:]))  # spin raises B* (Sec. 8)
+    assert reg["lowest_stable_spin_rpm"] == 0.0  # B = 0.795 < B*(0): stable down to rest
+    sens = post["operating"]["damping_sensitivity"]
+    assert [d["factor"] for d in sens] == [0.25, 0.5, 1.0, 2.0, 4.0]
+    ratios = [d["damping_ratio"] for d in sens]
+    assert all(d["stable"] for d in sens) and ratios == sorted(ratios)
+    assert sens[2]["damping_ratio"] == pytest.approx(post["operating"]["least_damped"]["damping_ratio"], rel=1e-6)
+    from etcheck.report import render
+
+    html = render(res, ("html",))["html"].decode()
+    assert "where the coiled tether is stable" in html and "How the damping moves the answer" in html

@@ -1,0 +1,80 @@
+"""Report rendering: escaping, atomic writes, content an engineer needs."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from helpers import set_like
+
+from etcheck import check
+from etcheck.errors import ReportError
+from etcheck.report import render, write_reports
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="module")
+def set_results():
+    return check(ROOT / "missions" / "set-static.toml").results
+
+
+def test_html_escapes_mission_text():
+    evil = '<script>alert("x")</script>'
+    results = check(set_like(name=evil, description=evil + " & <b>bold</b>")).results
+    html = render(results, ("html",))["html"].decode()
+    assert "<script>" not in html
+    assert "&lt;script&gt;" in html
+    assert "<b>bold</b>" not in html
+
+
+def test_html_has_the_engineering_content(set_results):
+    html = render(set_results, ("html",))["html"].decode()
+    for text in ("PASS", "SHA-256", set_results["mission"]["sha256"], "Validity and accuracy",
+                 "rung 0 (analytic)", "0.0111", "<svg", "operating"):
+        assert text in html, text
+    # both figures inline, no external resources
+    assert html.count("<svg") >= 2
+    assert "src=\"http" not in html and "href=\"http" not in html
+
+
+def test_json_is_strict_and_round_trips(set_results):
+    data = render(set_results, ("json",))["json"]
+    loaded = json.loads(data)
+    assert loaded["schema_version"] == 1
+    assert loaded["straight_rod"]["critical_loads"][0]["B"] == pytest.approx(
+        set_results["straight_rod"]["critical_loads"][0]["B"], rel=0, abs=0
+    )
+
+
+def test_svg_is_deterministic(set_results):
+    a = render(set_results, ("html",))["html"]
+    b = render(set_results, ("html",))["html"]
+    assert a == b
+
+
+def test_pdf_is_a_pdf(set_results):
+    pdf = render(set_results, ("pdf",))["pdf"]
+    assert pdf.startswith(b"%PDF-") and len(pdf) > 10_000
+
+
+def test_failed_render_writes_nothing(set_results, tmp_path, monkeypatch):
+    import etcheck.report.pdf as pdf
+
+    def broken(html):
+        raise ReportError("PDF engine missing")
+
+    monkeypatch.setattr(pdf, "render_pdf", broken)
+    with pytest.raises(ReportError):
+        write_reports(set_results, tmp_path / "set", ("html", "pdf", "json"))
+    assert not (tmp_path / "set").exists() or not any((tmp_path / "set").iterdir())
+
+
+def test_rewrite_replaces_atomically(set_results, tmp_path):
+    paths = write_reports(set_results, tmp_path / "set", ("json",))
+    first = paths[0].read_bytes()
+    write_reports(set_results, tmp_path / "set", ("json",))
+    assert paths[0].read_bytes() == first
+    leftovers = [p for p in (tmp_path / "set").iterdir() if p.name.endswith(".tmp")]
+    assert leftovers == []

@@ -1,0 +1,151 @@
+"""The layout holds: the unitless core (etcheck.rod, etcheck.numerics) never imports astropy,
+pint, matplotlib or jinja2, ``import etcheck`` stays free of matplotlib, the import graph
+of the package has no cycle and every layer imports only the layers below it."""
+
+from __future__ import annotations
+
+import json
+import os
+import pkgutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "etcheck"
+FORBIDDEN = ("astropy", "pint", "matplotlib", "jinja2")
+
+
+def core_modules() -> list[str]:
+    names = []
+    for sub in ("rod", "numerics"):
+        names.append(f"etcheck.{sub}")
+        for info in pkgutil.iter_modules([str(PACKAGE / sub)]):
+            names.append(f"etcheck.{sub}.{info.name}")
+    return names
+
+
+def loaded_after(code: str) -> list[str]:
+    """Run ``code`` in a fresh interpreter; return the forbidden top-level packages it loaded."""
+    probe = (
+        code
+        + "\nimport json, sys\n"
+        + f"print(json.dumps(sorted({{m.split('.')[0] for m in sys.modules}} & set({list(FORBIDDEN)!r}))))\n"
+    )
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(ROOT) + os.pathsep + env.get("PYTHONPATH", "")
+    proc = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120, cwd=ROOT, env=env)
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def test_core_modules_found():
+    names = core_modules()
+    assert "etcheck.rod.analytic" in names
+    assert "etcheck.numerics.chebyshev" in names
+
+
+def test_core_modules_alone_are_pure():
+    """The core modules' own imports: the parent package is stubbed so that only
+    etcheck.rod.* and etcheck.numerics.* (and what they import) are loaded."""
+    stub = (
+        "import sys, types\n"
+        "pkg = types.ModuleType('etcheck')\n"
+        f"pkg.__path__ = [{str(PACKAGE)!r}]\n"
+        "sys.modules['etcheck'] = pkg\n"
+    )
+    imports = "".join(f"import {name}\n" for name in core_modules())
+    assert loaded_after(stub + imports) == []
+
+
+def test_importing_core_does_not_load_units_or_plotting():
+    """`import etcheck.rod.analytic` etc. as a user writes it (parent package included)."""
+    imports = "".join(f"import {name}\n" for name in core_modules())
+    loaded = loaded_after(imports)
+    assert loaded == [], (
+        f"importing the core loads {loaded}: importing a subpackage runs etcheck/__init__.py first, "
+        "so the public API there must be imported lazily (PEP 562 __getattr__)"
+    )
+
+
+@pytest.mark.parametrize("name", ["etcheck"])
+def test_import_etcheck_does_not_load_plotting(name):
+    loaded = loaded_after(f"import {name}")
+    assert "matplotlib" not in loaded
+    assert "jinja2" not in loaded
+
+
+#: what each layer may import (besides itself, etcheck/__init__, etcheck.errors and etcheck.jsonable);
+#: the data flow is input -> scaling -> check -> studies -> report -> cli, with rod/numerics underneath
+LAYERS = {
+    "numerics": set(),
+    "rod": {"numerics"},
+    "orbit": {"input"},
+    "input": {"rod", "orbit"},
+    "scaling": {"input", "rod"},
+    "checks": {"input", "scaling", "rod", "numerics", "orbit"},
+    "studies": {"input", "scaling", "checks", "rod", "numerics", "orbit"},
+    "report": {"input", "scaling", "checks", "studies", "orbit"},
+    "cli": {"input", "scaling", "checks", "studies", "report", "rod", "numerics", "orbit"},
+}
+SHARED = {"__init__", "errors", "jsonable", "__main__"}
+
+
+def _import_graph() -> dict[str, set[str]]:
+    """etcheck module -> etcheck modules it imports (anywhere in the file), from the source."""
+    import ast
+
+    graph: dict[str, set[str]] = {}
+    modules = {}
+    for path in PACKAGE.rglob("*.py"):
+        rel = path.relative_to(ROOT).with_suffix("")
+        parts = list(rel.parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        modules[".".join(parts)] = path
+    for name, path in modules.items():
+        deps = set()
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("etcheck"):
+                subs = {f"{node.module}.{a.name}" for a in node.names if f"{node.module}.{a.name}" in modules}
+                deps |= subs if len(subs) == len(node.names) else subs | {node.module}
+            elif isinstance(node, ast.Import):
+                deps |= {a.name for a in node.names if a.name.startswith("etcheck")}
+        graph[name] = {d for d in deps if d in modules and d != name and d != "etcheck"}
+    return graph
+
+
+def test_import_graph_has_no_cycle():
+    graph = _import_graph()
+    state: dict[str, int] = {}
+    stack: list[str] = []
+
+    def visit(n):
+        state[n] = 1
+        stack.append(n)
+        for m in sorted(graph[n]):
+            if state.get(m) == 1:
+                raise AssertionError("import cycle: " + " -> ".join(stack[stack.index(m):] + [m]))
+            if m not in state:
+                visit(m)
+        stack.pop()
+        state[n] = 2
+
+    for n in sorted(graph):
+        if n not in state:
+            visit(n)
+
+
+def test_layers_import_only_layers_below():
+    bad = []
+    for name, deps in _import_graph().items():
+        layer = name.split(".")[1] if "." in name else None
+        if layer is None or layer in SHARED:
+            continue
+        for d in deps:
+            other = d.split(".")[1]
+            if other != layer and other not in SHARED and other not in LAYERS[layer]:
+                bad.append(f"{name} imports {d}")
+    assert not bad, "\n".join(sorted(bad))
