@@ -1,15 +1,15 @@
-"""Rung 0: closed-form results for the straight welded rod (paper Sec. 6.1, 6.2).
+"""Rung 0: closed-form results for the straight welded rod (Secs. VI A, VI B of arXiv:0810.3668).
 
 Everything here is dimensionless. Loads are given in the f-scaling of
-eq. ``eq:nondim``: the paper's Sec. 6 is written with f = 1 and the conversion
+eq. (36): the paper's Sec. VI is written with f = 1 and the conversion
 is B_f = B_1 / f, omega_f = omega_1 / sqrt(f), lambda_f = lambda_1 / sqrt(f)
-(PHYSICS.md, errata).
+(docs/errata.md, #6).
 
 Static buckling (omega = T = 0). With u = x, v = y and w = u + i v / sqrt(R)
-the linear static problem (eq. ``lin_eqs`` at lambda = 0) becomes the single
+the linear static problem (eq. (87) at lambda = 0) becomes the single
 complex equation w'''' + i k w' = 0, k = f B / sqrt(R) = beta**3, clamped at
 both ends. Its determinant D(beta) has simple zeros and chi(beta) of
-eq. ``char_welded`` is proportional to |D|**2, so every zero of chi is a double
+eq. (91) is proportional to |D|**2, so every zero of chi is a double
 zero: the kernel is two-dimensional (w and i w) and the pitchfork is doubly
 degenerate for every R.
 """
@@ -29,7 +29,7 @@ _H = 1e-30
 
 
 def chi_scaled(beta):
-    """chi(beta) * exp(-sqrt(3) beta), eq. ``char_welded``; dimensionless.
+    """chi(beta) * exp(-sqrt(3) beta), eq. (91); dimensionless.
 
     Written with decaying exponentials only, so it neither overflows nor loses
     its zeros for large beta (tested to beta = 1000). Accepts real or complex
@@ -56,7 +56,7 @@ def chi_scaled(beta):
 
 
 def chi(beta):
-    """chi(beta) of eq. ``char_welded`` (unscaled; overflows past beta ~ 400)."""
+    """chi(beta) of eq. (91) (unscaled; overflows past beta ~ 400)."""
     b = np.asarray(beta, dtype=float)
     return chi_scaled(b) * np.exp(SQRT3 * b)
 
@@ -97,7 +97,7 @@ def determinant(beta: float) -> complex:
 
 @dataclass(frozen=True)
 class CharacteristicRoot:
-    """A double zero beta_k of chi (eq. ``char_welded``), dimensionless.
+    """A double zero beta_k of chi (eq. (91)), dimensionless.
 
     ``residual`` is |chi_scaled(beta)| (zero), ``curvature`` is
     chi_scaled''(beta) > 0 (a touching zero, no sign change), and
@@ -151,8 +151,8 @@ def characteristic_roots(n: int = 5) -> tuple[CharacteristicRoot, ...]:
 def critical_loads(R: float, f: float, n: int = 5) -> np.ndarray:
     """Static magnetic buckling loads B_k = beta_k**3 sqrt(R) / f, k = 1..n.
 
-    Dimensionless (eq. ``eq:nondim``); omega = T = 0. Each is a doubly
-    degenerate pitchfork of the straight rod (Sec. 6.1).
+    Dimensionless (eq. (36)); omega = T = 0. Each is a doubly
+    degenerate pitchfork of the straight rod (Sec. VI A).
     """
     betas = np.array([r.beta for r in characteristic_roots(n)])
     return betas**3 * math.sqrt(R) / f
@@ -184,11 +184,11 @@ def buckling_mode(k: int, R: float, s: np.ndarray) -> tuple[np.ndarray, np.ndarr
     return x / scale, y / scale
 
 
-# --- unperturbed spectrum (T = gamma = omega = B = 0), Sec. 6.2 -------------------
+# --- unperturbed spectrum (T = gamma = omega = B = 0), Sec. VI B -----------------
 
 
 def _clamped_beam_function(mu: float, P: float, stiffness: float) -> float:
-    """Frequency equation of a clamped-clamped Rayleigh beam, Sec. 6.2, f = 1.
+    """Frequency equation of a clamped-clamped Rayleigh beam, Sec. VI B, f = 1.
 
     (a^2 - b^2) sin a sinh b - 2 a b (1 - cos a cosh b) = 0, divided by cosh b
     so it stays bounded; ``stiffness`` is R for the x (weak) equation and 1 for y.
@@ -204,7 +204,7 @@ def _clamped_beam_function(mu: float, P: float, stiffness: float) -> float:
 def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "weak") -> np.ndarray:
     """First n bending frequencies mu (lambda = +- i mu) of the straight rod.
 
-    Dimensionless, f-scaling; Sec. 6.2 transcendental equations with rotary
+    Dimensionless, f-scaling; Sec. VI B transcendental equations with rotary
     inertia P. ``axis="weak"`` is the x equation (stiffness R, first
     frequency sqrt(R) as P -> 0), ``"stiff"`` the y equation (stiffness 1).
     """
@@ -229,7 +229,7 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
 def torsion_frequencies(P: float, Gamma: float, f: float, n: int = 5) -> np.ndarray:
     """Torsional frequencies mu_n = n pi sqrt(Gamma / (2 P f)), n = 1..n.
 
-    Dimensionless, f-scaling (Sec. 6.2, converted per PHYSICS.md errata).
+    Dimensionless, f-scaling (Sec. VI B, converted as in docs/errata.md, #6).
     Infinite for P = 0 (no rotary inertia).
     """
     if P == 0:

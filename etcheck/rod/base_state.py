@@ -1,8 +1,7 @@
 """O(1) base states (whirling relative equilibria) of the rod, dimensionless.
 
-A base state is a solution of the stationary O(1) problem of Sec. 5.1
-(``stat:forces1``-``stat:constitutive`` with ``eq:et:stat:BC23``-
-``eq:et:stat:BC34``), i.e. of eqs. ``eq:lmomentum``-``eq:constitutive`` with
+A base state is a solution of the stationary O(1) problem of Sec. V A of arXiv:0810.3668
+(eqs. (49)-(57) with (58)-(69)), i.e. of eqs. (37)-(41) with
 the time derivatives set to zero, in the frame rotating with omega e3.
 The linearisation (:mod:`etcheck.rod.linear`) needs it only through point
 evaluations at arbitrary arc lengths s in [0, 1]:
@@ -13,13 +12,13 @@ evaluations at arbitrary arc lengths s in [0, 1]:
 * ``F0(s)``      contact force, shape (n, 3), e-frame components;
 * ``M0(s)``      contact moment, shape (n, 3), e-frame components;
 * ``kappa0(s)``  Darboux vector, shape (n, 3), *body* components
-                 (``kappa_j = kappa . d_j``, eq. ``eq:twist2``).
+                 (``kappa_j = kappa . d_j``, eq. (40)).
 
 :class:`BaseState` is the protocol; :class:`CallableBaseState` wraps five
 callables (a future nonlinear equilibrium solver can provide them, e.g. as
 Chebyshev interpolants); :func:`straight` is the trivial solution
-``trivial_sol`` with the erratum F0 = +T e3 (tension positive, consistent with
-``eq:et:BC25``).
+of eq. (86) with the erratum F0 = +T e3 (tension positive, consistent with
+eq. (25); docs/errata.md, #5).
 """
 
 from __future__ import annotations
@@ -54,7 +53,7 @@ class BaseState(Protocol):
 
 @dataclass(frozen=True)
 class StraightBaseState:
-    """Straight, untwisted rod x0 = s e3, D0 = I, F0 = +T e3, M0 = 0 (``trivial_sol``).
+    """Straight, untwisted rod x0 = s e3, D0 = I, F0 = +T e3, M0 = 0 (eq. (86), sign of F corrected).
 
     A relative equilibrium for every B, omega, gamma, P, R, Gamma (the Lorentz
     force d3 x e3 and the centrifugal force both vanish on the axis).
@@ -114,7 +113,7 @@ class CallableBaseState:
 
 
 def straight(params: RodParameters) -> StraightBaseState:
-    """The trivial straight state of ``trivial_sol`` (F0 = +T e3, erratum applied)."""
+    """The trivial straight state of eq. (86) (F0 = +T e3, erratum applied)."""
     return StraightBaseState(T=float(params.T))
 
 

@@ -1,19 +1,18 @@
 """Rung 3: stability of buckled, whirling relative equilibria (dimensionless).
 
-The O(delta) linearisation of paper Sec. 5.2 (``per:lmomentum``,
-``per:amomentum``, ``per:constitutive``, ``per:tangent``, boundary conditions
-``per:et:bc1``-``per:et:bc6``; Appendix A with the errata of PHYSICS.md) about
+The O(delta) linearisation of Sec. V B of arXiv:0810.3668 (eqs. (71)-(75),
+boundary conditions (76)-(81); Appendix A with the errata of docs/errata.md) about
 a non-trivial base state is :func:`etcheck.rod.linear.linear_operator` with an
 :class:`~etcheck.rod.equilibria.Equilibrium` as the base; this module follows
 its least-|lambda| eigenvalues along branches, locates the secondary
-(symmetry-breaking) pitchfork of b1 as a curve B*(omega) (Sec. 7.1, 8), looks
-for Hopf points (Sec. 7.2, Fig. ``fig:hopf``) and maps the damping margin.
+(symmetry-breaking) pitchfork of b1 as a curve B*(omega) (Secs. VII A, VIII), looks
+for Hopf points (Sec. VII B, Fig. 19) and maps the damping margin.
 
 **Structure (checked, not assumed; :func:`structure_check`).** In the
 rotating frame the discretised linearisation is
 A0 + lambda A1 + lambda^2 A2 with A1 = G + gamma D: every term linear in
 lambda is either gyroscopic (Coriolis, rotary-inertia gyroscopic coupling) or
-Kelvin-Voigt damping (the factor (1 + gamma lambda) of ``per:constitutive``),
+Kelvin-Voigt damping (the factor (1 + gamma lambda) of eq. (74)),
 so A1 is affine in gamma, and dropping A1 leaves the non-gyroscopic undamped
 problem K q + M q'' = 0 whose eigenvalues mu = lambda^2 are real when K is
 symmetric (M > 0). Then (Kelvin-Tait-Chetaev, complete damping) the number of
@@ -30,7 +29,7 @@ equilibrium re-solved (Newton) at resolution M and the spectrum recomputed at
 M about it.
 
 Mode labels. A mode's elastic energy is split into the parts stored in the
-perturbed body curvatures kappa_j = a' . d_j0 (``per:constitutive``):
+perturbed body curvatures kappa_j = a' . d_j0 (eq. (74)):
 E_j = int K_j |kappa_j|^2 ds (Clenshaw-Curtis), K = (1, R, Gamma (1+R)/2)/f.
 The label is the largest part: "bend-d1" (bending about d1, the stiff
 bending stiffness EI1), "bend-d2" (about d2, EI2) or "torsion".
@@ -80,7 +79,7 @@ __all__ = [
     "damping_map",
 ]
 
-#: The damping values of Fig. ``fig:hopf`` (Sec. 7.2), outside to inside.
+#: The damping values of Fig. 19 (Sec. VII B), outside to inside.
 HOPF_GAMMAS = (0.01, 0.013, 0.016, 0.02, 0.022)
 #: Two-resolution acceptance of a mode in :func:`damping_map` (relative, absolute below 0.1).
 MAP_ACCEPT = 1e-2
@@ -116,7 +115,7 @@ class DampedOperator:
 
     A(lambda) = A0 + lambda (A1g + gamma A1d) + lambda^2 A2, shapes
     (12(N+1), 12(N+1)): A1g gyroscopic (Coriolis, rotary inertia), A1d the
-    Kelvin-Voigt part of ``per:constitutive``. Base-state dependent only, so
+    Kelvin-Voigt part of eq. (74). Base-state dependent only, so
     one build serves every gamma.
     """
 
@@ -154,7 +153,7 @@ def operator_eigenvalues(op: DampedOperator, gamma: float, nev: int, vectors: bo
 def mode_energies(base, Y: np.ndarray, N: int, params: RodParameters) -> np.ndarray:
     """Fractions of the elastic energy of modes Y (columns, length 12(N+1)) stored
     in the perturbed body curvatures kappa_j = a' . d_j0, j = 1, 2, 3
-    (bending about d1, about d2, torsion; ``per:constitutive``). Shape (n_modes, 3),
+    (bending about d1, about d2, torsion; eq. (74)). Shape (n_modes, 3),
     rows sum to 1. Dimensionless."""
     col = collocation(N)
     Y = np.atleast_2d(np.asarray(Y).T).T
@@ -279,8 +278,8 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
 
     ``branch``: a :class:`~etcheck.rod.branches.Branch` (or any sequence of
     :class:`~etcheck.rod.equilibria.Equilibrium` with a common N, parameter
-    taken from the branch or "B"). Linearisation ``per:lmomentum``-
-    ``per:tangent`` about each state at N (default: the state's N) and
+    taken from the branch or "B"). Linearisation eqs. (71)-(75)
+    about each state at N (default: the state's N) and
     M = check_resolution(N); every ``state_stride``-th point (and the last)
     is re-solved at M for the base-state error (0 disables). See
     :class:`BranchSpectra` for the fields. Dimensionless.
@@ -392,7 +391,7 @@ class PitchforkPoint:
 
 @dataclass(frozen=True)
 class PitchforkCurve:
-    """The curve B*(omega) of secondary pitchforks of b1 (Sec. 7.1, 8; Fig. ``fig:hopf``)."""
+    """The curve B*(omega) of secondary pitchforks of b1 (Secs. VII A, VIII; Fig. 19)."""
 
     points: tuple
 
@@ -445,7 +444,7 @@ class _Single:
 
 def b1_spin_branch(params: RodParameters, B_ref: float, omega_max: float, N: int = 32):
     """b1 at fixed B = B_ref continued in omega from 0 to omega_max inside Fix(S1)
-    (Figs. ``fig:tet:helix_stab-b1_B35_gamma05_w-real``/``-imag`` use B_ref = 1.2):
+    (Figs. 17 and 18 use B_ref = 1.2):
     BP1 -> (B_ref, 0) in B, then in omega. A :class:`~etcheck.rod.branches.Branch`
     (parameter "omega"); cached per (P, R, Gamma, f, T, B_ref, N). Dimensionless."""
     key = (params.P, params.R, params.Gamma, params.f, params.T, B_ref, N)
@@ -476,9 +475,9 @@ def _spin_state(params: RodParameters, B_ref: float, omega: float, N: int) -> eq
 
 @single_blas_thread
 def b1_state(params: RodParameters, B: float, omega: float, N: int = 32, B_ref: float = 1.2) -> eq.Equilibrium:
-    """The b1 equilibrium (Fix(S1), Sec. 7) at (B, omega), reached by continuation:
+    """The b1 equilibrium (Fix(S1), Sec. VII) at (B, omega), reached by continuation:
     BP1 -> (B_ref, 0) in B, -> (B_ref, omega) in omega, then Newton at (B, omega)
-    from there if B != B_ref (no fold of b1 in B lies between, Sec. 7.2).
+    from there if B != B_ref (no fold of b1 in B lies between, Sec. VII B).
     Dimensionless; raises SolverError if Newton fails."""
     st = _spin_state(params, B_ref, omega, N)
     if B == B_ref:
@@ -503,7 +502,7 @@ def _b1_in_B(params: RodParameters, omega: float, N: int, B_ref: float, B_max: f
 
 def secondary_pitchfork(params: RodParameters, omega: float, N: int = 32, N_check: int | None = None,
                         B_ref: float = 1.2, B_max: float = 20.0) -> PitchforkPoint:
-    """Secondary (symmetry-breaking) pitchfork of b1 at spin omega (Sec. 7.1, 8).
+    """Secondary (symmetry-breaking) pitchfork of b1 at spin omega (Secs. VII A, VIII).
 
     b1 is continued inside Fix(S1) in B from (B_ref, omega); the first
     zero of the Jacobian restricted to the -1 eigenspace of S1 (kind
@@ -695,7 +694,7 @@ class StructureCheck:
 @single_blas_thread
 def structure_check(state, N: int | None = None, k: int = 8, gammas=(0.01, 0.04375)) -> StructureCheck:
     """Check the structure M q'' + (G + gamma D) q' + K q = 0 of the linearisation
-    about ``state`` (``per:lmomentum``-``per:tangent``): see :class:`StructureCheck`.
+    about ``state`` (eqs. (71)-(75)): see :class:`StructureCheck`.
     Dimensionless."""
     N0 = state.N if N is None else int(N)
     op = damped_operator(state.params, state, N0)
@@ -781,8 +780,8 @@ def _least_damped(lam: np.ndarray, lam_M: np.ndarray, gamma: float):
 def damping_map(params: RodParameters, B_grid, omega_grid, gammas=HOPF_GAMMAS, N: int = 24, k: int = 6,
                 B_ref: float = 1.2, margin: float = 1e-3, B_above: float = 1.0) -> DampingMap:
     """Decay rate, damping ratio and logarithmic decrement of the least-damped
-    mode of b1 over the grid B_grid x omega_grid, for each gamma (Sec. 7.2,
-    Fig. ``fig:hopf``; dimensionless, rates in units of omega_c).
+    mode of b1 over the grid B_grid x omega_grid, for each gamma (Sec. VII B,
+    Fig. 19; dimensionless, rates in units of omega_c).
 
     For each omega, b1 is reached at (B_ref, omega) (:func:`b1_state`) and
     continued in B up to its secondary pitchfork (located: the curve) and down

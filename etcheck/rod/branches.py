@@ -1,8 +1,8 @@
 """Branches of whirling relative equilibria: start, continue, switch (dimensionless).
 
 Rod-specific layer over :mod:`etcheck.numerics.continuation` and
-:mod:`etcheck.rod.equilibria` (paper Sec. 5.1 and 7; PHYSICS.md "Symmetry of
-the welded problem").
+:mod:`etcheck.rod.equilibria` (Secs. V A and VII of arXiv:0810.3668; docs/model.md, section 7, "Symmetry
+of the welded problem").
 
 Symmetry. The welded problem is equivariant under the involutions
 
@@ -277,7 +277,7 @@ class Branch:
 
     ``values``: the continuation parameter ``parameter`` at each point;
     ``measure1``, ``measure2``, ``max_deflection``: measures (paper captions of
-    Figs. ``fig:tet:bif-measure1``/``-measure2``); ``states``: the
+    Figs. 5 and 6); ``states``: the
     :class:`~etcheck.rod.equilibria.Equilibrium` at each point; ``special``:
     folds and branch points located on it; ``time``: wall seconds; ``N``:
     resolution; ``which``: symmetry class it was restricted to (None: full
@@ -384,7 +384,7 @@ def primary_branches(params: RodParameters, k: int = 1, N: int = 40) -> tuple[Br
     higher branch); each with its
     exact load at resolution N (restricted pencil), restricted kernel and full
     kernel direction. At omega = T = 0 both loads equal beta_k^3 sqrt(R)/f
-    (``char_welded``); spin or tension (R != 1) splits them.
+    (eq. (91)); spin or tension (R != 1) splits them.
     """
     out = []
     for which in ("S1", "S2"):
@@ -645,7 +645,7 @@ def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 
     class-restricted pencil (exact lambda = 0 problem) is followed from its
     omega = 0 value (the k-th root) as omega grows; where it reaches B = 0 the
     branch no longer bifurcates from the straight rod (it has merged with its
-    mirror image at -B and lifted off, Sec. 7.2). The value is the root of the
+    mirror image at -B and lifted off, Sec. VII B). The value is the root of the
     restricted omega^2 pencil at B = 0 inside the last bracket. Returns nan if
     it does not happen below ``omega_max``.
     """

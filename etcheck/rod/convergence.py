@@ -2,9 +2,9 @@
 
 :func:`accuracy_table` times one single-resolution solve per N (BLAS pinned to
 one thread) and compares against a high-resolution reference: the lowest k
-eigenvalue pairs of ``per:sol1``-``per:sol4`` and the first static load of
+eigenvalue pairs of eqs. (82)-(85) of arXiv:0810.3668 and the first static load of
 the straight rod (the first real root B > 0 of the lambda = 0 pencil,
-``char_welded`` generalised to omega, T != 0).
+eq. (91) generalised to omega, T != 0).
 """
 
 from __future__ import annotations

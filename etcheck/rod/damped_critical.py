@@ -1,12 +1,12 @@
 """Critical load and critical spin of the *damped* straight rod from static pencils alone.
 
-Dimensionless (paper scalings, eq. ``eq:nondim``). With Kelvin-Voigt damping
+Dimensionless (scalings of eq. (36) of arXiv:0810.3668). With Kelvin-Voigt damping
 gamma > 0 the linearisation about the straight rod has the form
 M q'' + (G + gamma D) q' + K q = 0 with M > 0, G skew (Coriolis), D > 0
 (complete: it is the bending/torsion stiffness) and K symmetric; by the
 Kelvin-Tait-Chetaev theorem the number of unstable eigenvalues equals the
-number of negative eigenvalues of K (PHYSICS.md, "The paper's Hopf results
-are in doubt"). K is the lambda = 0 operator A0, affine in B, omega^2 and T
+number of negative eigenvalues of K (docs/model.md, section 8,
+"Why the paper's Hopf results are in doubt"). K is the lambda = 0 operator A0, affine in B, omega^2 and T
 (:class:`~etcheck.rod.stability.StraightFamily`), so along any of those axes
 stability changes only where A0 is singular: at the real roots of a linear
 pencil. With K positive definite at B = omega = 0 (T above the first

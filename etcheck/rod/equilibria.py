@@ -1,20 +1,20 @@
 """Whirling relative equilibria: the O(1) boundary-value problem and its Newton solver.
 
-Everything here is dimensionless (eq. ``eq:nondim``, f-scaling).
+Everything here is dimensionless (eq. (36) of arXiv:0810.3668, f-scaling).
 
-Equations (paper Sec. 5.1, ``stat:forces1``-``stat:constitutive`` written in
-vector form in the frame rotating with omega e3, i.e. ``eq:lmomentum``-
-``eq:constitutive`` with the time derivatives set to zero; erratum
+Equations (Sec. V A, eqs. (49)-(57) written in vector form in the frame
+rotating with omega e3, i.e. eqs. (37)-(41) with the time derivatives set
+to zero; erratum
 M_3^0 = Gamma (1 + R)/(2 f) kappa_3^0 applied)::
 
-    x'  = d3                                                  (stat:tangent)
-    D K kappa - M = 0,  kappa = axial(D^T D') (body)          (stat:twist, stat:constitutive)
-    F' + B d3 x e3 - omega^2 e3 x (e3 x x) = 0                (stat:forces1-3)
-    M' + d3 x F - sum_i c_i (omega e3 . d_i)(d_i x omega e3) = 0   (stat:moments1-3)
+    x'  = d3                                                  (55)
+    D K kappa - M = 0,  kappa = axial(D^T D') (body)          (56), (57)
+    F' + B d3 x e3 - omega^2 e3 x (e3 x x) = 0                (49)-(51)
+    M' + d3 x F - sum_i c_i (omega e3 . d_i)(d_i x omega e3) = 0   (52)-(54)
 
 with K = diag(1, R, Gamma (1+R)/2)/f, c = (P R, P, 0), and the welded boundary
-conditions ``eq:et:stat:BC23``-``eq:et:stat:BC34`` (F(0).e3 = +T, tension
-positive, the erratum of ``trivial_sol``); ``eq:et:stat:orthonorm`` holds by
+conditions (58)-(69) (F(0).e3 = +T, tension positive, the erratum of
+eq. (86); docs/errata.md, #5); (70) holds by
 construction because D(s) is kept in SO(3).
 
 Formulation (chosen, and why). The unknown fields are x(s), D(s) in SO(3),
@@ -29,7 +29,7 @@ are ordered exactly like the rows and columns of the linear operator
 
 the same (xi, a, phi, m) in which :func:`etcheck.rod.linear.linear_operator`
 is written. Reasons: (i) one set of perturbation variables serves Newton,
-continuation, branch detection and (rung 3) stability, as DESIGN.md asks;
+continuation, branch detection and (rung 3) stability (docs/model.md, section 5.2);
 (ii) the rotation-vector update keeps D exactly orthonormal with 12 unknowns
 per node (no constraint rows, no redundant director components as in the
 paper's 18-ODE AUTO formulation); (iii) spectral accuracy: the SET branches
@@ -167,7 +167,7 @@ class Equilibrium:
         return self._interp(s, self.M)
 
     def kappa0(self, s) -> np.ndarray:
-        """Body curvature kappa_j = kappa . d_j from axial(D^T D') (``eq:twist2``)."""
+        """Body curvature kappa_j = kappa . d_j from axial(D^T D') (eq. (40))."""
         col = collocation(self.N)
         Dp = np.einsum("jk,kab->jab", col.D, self.D)
         return _axial(self._interp(s, self.D), self._interp(s, Dp))
@@ -190,7 +190,7 @@ def _axial(Dt: np.ndarray, Dp: np.ndarray) -> np.ndarray:
 
 
 def straight_state(params: RodParameters, N: int) -> Equilibrium:
-    """The straight rod x = s e3, D = I, F = +T e3, M = 0 (``trivial_sol``, erratum F = +T e3)."""
+    """The straight rod x = s e3, D = I, F = +T e3, M = 0 (eq. (86), erratum F = +T e3)."""
     s = collocation(int(N)).s
     x = np.zeros((s.size, 3))
     x[:, 2] = s
@@ -206,7 +206,7 @@ def residual(params: RodParameters, state: Equilibrium) -> np.ndarray:
     Rows as in :func:`etcheck.rod.linear.linear_operator`: ODE group e
     (x', constitutive, F', M' rows, e-frame components) at first-kind point
     t_k is row e N + k; then the 12 welded boundary rows
-    (``eq:et:stat:BC23``-``eq:et:stat:BC34``).
+    (eqs. (58)-(69)).
     """
     N = state.N
     col = collocation(N)
@@ -450,7 +450,7 @@ class Measures:
 
     measure1 = int_0^1 |x^0(s)| ds and measure2 = int_0^1 x^0 y^0 ds with x^0,
     y^0 the e1, e2 components of the centreline (captions of Figs.
-    ``fig:tet:bif-measure1``, ``fig:tet:bif-measure2``); max_deflection =
+    5 and 6); max_deflection =
     max_s sqrt(x^2 + y^2); end_shortening = x3(0) (the sliding end moves in by
     that much); F0, F1, M0, M1 the contact force and moment at s = 0 and s = 1
     (e-frame, units f EI1/L^2 and f EI1/L).

@@ -1,28 +1,27 @@
 """The O(delta) linearisation about a whirling base state, discretised (dimensionless).
 
-Continuous problem (paper Sec. 5.2 and 6, eqs. ``per:lmomentum``,
-``per:amomentum``, ``per:twist``, ``per:constitutive``, ``per:tangent`` with
-``per:sol1``-``per:sol4``; derived afresh from ``eq:lmomentum``-
-``eq:constitutive`` rather than copied from Appendix A, which has errata).
+Continuous problem (Secs. V B and VI of arXiv:0810.3668, eqs. (71)-(75)
+with (82)-(85); derived afresh from eqs. (37)-(41) rather than copied from
+Appendix A, which has errata: docs/errata.md).
 All perturbations are **e-frame** vectors (rotating frame, omega = omega e3):
 x = x0 + delta xi e^{lambda t}, d_i = d_i0 + delta (a x d_i0) e^{lambda t},
 F = F0 + delta phi e^{lambda t}, M = M0 + delta m e^{lambda t}::
 
-    xi'  = a x d3_0                                                   (per:tangent)
+    xi'  = a x d3_0                                                   (75)
     phi' = -B (a x d3_0) x e3 + lambda^2 xi + 2 lambda omega e3 x xi
-           + omega^2 e3 x (e3 x xi)                                   (per:lmomentum)
+           + omega^2 e3 x (e3 x xi)                                   (71)
     m'   = -(a x d3_0) x F0 - d3_0 x phi
            + sum_i c_i [ lambda^2 d_i0 x (a x d_i0)
                          + 2 lambda d_i0 x (omega e3 x (a x d_i0))
                          + (omega e3 . (a x d_i0)) (d_i0 x omega e3)
-                         + (omega e3 . d_i0) ((a x d_i0) x omega e3) ]  (per:amomentum)
-    (1 + gamma lambda) D0 K D0^T a' = m + M0 x a            (per:twist + per:constitutive)
+                         + (omega e3 . d_i0) ((a x d_i0) x omega e3) ]  (72)
+    (1 + gamma lambda) D0 K D0^T a' = m + M0 x a            (73) + (74)
 
 with c_1 = P R, c_2 = P, c_3 = 0 and K = diag(1, R, Gamma (1+R)/2) / f (body
 stiffnesses; the perturbed body curvature is a' . d_j0 and the perturbed body
 moment (m + M0 x a) . d_j0). The constitutive row is kept polynomial in
 lambda (no division by 1 + gamma lambda). Boundary conditions
-(``per:et:bc1``-``per:et:bc6``, linearised ``eq:et:BC23``-``eq:et:BC34``):
+(eqs. (76)-(81), linearised (23)-(34)):
 
     s = 0:  xi . e1 = xi . e2 = 0,  phi . e3 = 0,
             (a x d3_0).e1 = (a x d3_0).e2 = (a x d1_0).e2 = 0   (a = 0 when D0(0) = I)
@@ -120,7 +119,7 @@ def field_slice(name: str, N: int) -> slice:
 
 
 def stiffness_diag(params: RodParameters) -> np.ndarray:
-    """Body stiffnesses K = (1, R, Gamma (1+R)/2) / f of ``eq:constitutive``."""
+    """Body stiffnesses K = (1, R, Gamma (1+R)/2) / f of eq. (41)."""
     return np.array([1.0, params.R, params.Gamma * (1.0 + params.R) / 2.0]) / params.f
 
 
@@ -140,7 +139,7 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
     Returns ``(E0, E1, G0, G1, G2)``, each of shape (n, 12, 12) at the points s,
     with E(lambda) = E0 + lambda E1 and G(lambda) = G0 + lambda G1 +
     lambda^2 G2, rows/columns in ``VARIABLES`` order (dimensionless;
-    ``per:lmomentum``, ``per:amomentum``, ``per:constitutive``, ``per:tangent``).
+    eqs. (71), (72), (74), (75)).
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
     n = s.size
@@ -168,10 +167,10 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
     def dot(u, v):
         return np.einsum("ni,ni->n", u, v)[:, None]
 
-    # xi' = a x d3_0                                            (per:tangent)
+    # xi' = a x d3_0                                            (75)
     G0[:, XI, ALPHA] = _linear_map(lambda a: cross(a, d3), n)
 
-    # (1 + gamma lambda) D0 K D0^T a' = m + M0 x a              (per:constitutive)
+    # (1 + gamma lambda) D0 K D0^T a' = m + M0 x a              (74)
     DKD = np.einsum("nai,i,nbi->nab", D0, K, D0)
     E0[:, ALPHA, ALPHA] = DKD
     E1[:, ALPHA, ALPHA] = params.gamma * DKD
@@ -184,7 +183,7 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
     G1[:, PHI, XI] = _linear_map(lambda x: 2.0 * cross(wv, x), n)
     G0[:, PHI, XI] = _linear_map(lambda x: cross(wv, cross(wv, x)), n)
 
-    # m' = -(a x d3_0) x F0 - d3_0 x phi + sum_i c_i [...]       (per:amomentum)
+    # m' = -(a x d3_0) x F0 - d3_0 x phi + sum_i c_i [...]       (72)
     def m_static(a):
         out = -cross(cross(a, d3), F0)
         for ci, di in zip(c, d):
@@ -227,7 +226,7 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
 
 
 def boundary_rows(base: BaseState, N: int) -> np.ndarray:
-    """The 12 linearised welded boundary conditions (``per:et:bc1``-``per:et:bc6``)."""
+    """The 12 linearised welded boundary conditions (eqs. (76)-(81))."""
     rows = np.zeros((12, NFIELDS * (N + 1)))
     Dends = base.D0(np.array([0.0, 1.0]))
 
@@ -261,8 +260,7 @@ def linear_operator(params: RodParameters, base: BaseState, N: int):
     A(lambda) = A0 + lambda A1 + lambda^2 A2 is the rectangular Chebyshev
     collocation (N+1 Lobatto points, ODE rows at N first-kind points, 12
     boundary rows appended) of the dimensionless O(delta) problem
-    ``per:lmomentum``, ``per:amomentum``, ``per:constitutive``,
-    ``per:tangent``, ``per:et:bc1``-``per:et:bc6`` about ``base``; see the
+    eqs. (71)-(75) with the boundary conditions (76)-(81) about ``base``; see the
     module docstring for the variable and row ordering. A1 vanishes unless
     omega != 0 or gamma != 0; the boundary rows are all in A0.
     """

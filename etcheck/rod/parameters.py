@@ -1,4 +1,4 @@
-"""The dimensionless parameters of the whirling welded rod (eq. ``eq:nondim``)."""
+"""The dimensionless parameters of the whirling welded rod (eqs. (36), (42) of arXiv:0810.3668)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass, replace
 
 #: First clamped-clamped bending root to the fourth power, 4.730040744862704**4:
-#: the paper's reference-frequency constant f (eq. ``eq:nondim``).
+#: the paper's reference-frequency constant f (eq. (36)).
 F_CLAMPED = 4.730040744862704**4
 
 
@@ -17,7 +17,7 @@ class RodParameters:
     P      rotary inertia I1/(A L^2)
     R      anisotropy EI2/EI1 (0 < R <= 1, d1 is the stiff axis)
     Gamma  torsion/bending 2G/E = 2 GJ/(EI1 + EI2)
-    f      scaling constant of eq. ``eq:nondim`` (paper's Sec. 6 uses f = 1)
+    f      scaling constant of eq. (36) (the paper's Sec. VI uses f = 1)
     B      magnetic load B0 I L^3/(f EI1)
     omega  spin rate omega/omega_c
     T      end tension T L^2/(f EI1), positive in tension

@@ -1,8 +1,8 @@
 """Spectrum of the linearised whirling rod, with error estimates (dimensionless).
 
 Solves the quadratic eigenproblem (A0 + lambda A1 + lambda^2 A2) Y = 0 of
-:func:`etcheck.rod.linear.linear_operator` (paper Sec. 6, ``per:sol1``-
-``per:sol4`` inserted in ``per:lmomentum``-``per:tangent``) for the
+:func:`etcheck.rod.linear.linear_operator` (Sec. VI of
+arXiv:0810.3668, eqs. (82)-(85) inserted in (71)-(75)) for the
 eigenvalues of least modulus. Unstable if any Re lambda > 0.
 
 **Eigen-strategy: shift-invert ARPACK on the full 12(N+1) system.** Measured
@@ -154,7 +154,7 @@ def prefers_dense(params: RodParameters, nev: int) -> bool:
     eigenvalues nearest the shift (then ARPACK converges slowly or not at all
     on its (near-)degenerate members and dense QZ is used instead).
 
-    Estimated from the unperturbed bending and torsion frequencies (Sec. 6.2,
+    Estimated from the unperturbed bending and torsion frequencies (Sec. VI B,
     rung 0) plus the spin: dense when 1/gamma < 1.5 x the (nev/2)-th of them.
     """
     if params.gamma <= 0:
@@ -278,7 +278,7 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
              N_max: int = 128) -> Spectrum:
     """The k least-|lambda| eigenvalue pairs with two-resolution error estimates.
 
-    Dimensionless eigenvalues lambda of ``per:sol1``-``per:sol4`` (growth rate
+    Dimensionless eigenvalues lambda of eqs. (82)-(85) (growth rate
     Re lambda, angular frequency Im lambda, in units of omega_c). ``base=None``
     is the straight rod :func:`etcheck.rod.base_state.straight`. With
     ``N=None`` the resolution climbs ``LADDER`` (up to N_max) until every

@@ -1,16 +1,16 @@
 """Stability of the straight whirling rod along parameter lines (dimensionless).
 
-Everything here linearises about the straight state ``trivial_sol`` (erratum
+Everything here linearises about the straight state of eq. (86) of arXiv:0810.3668 (erratum
 F0 = +T e3) with :func:`etcheck.rod.linear.linear_operator` and decides
 stability from the least-|lambda| eigenvalues (unstable iff some
-Re lambda > ``THRESHOLD``; Sec. 6 of the paper, ``per:sol1``-``per:sol4``).
+Re lambda > ``THRESHOLD``; Sec. VI of the paper, eqs. (82)-(85)).
 
 Structure used (not assumed; each conclusion is checked numerically):
 
 * **Static (divergence) points.** At lambda = 0 the operator A0 is affine in
   B and in T and affine in omega^2 (the straight base state does not depend
   on B or omega). So the parameter values where A0 is singular, i.e. the
-  static bifurcations / divergence points of ``char_welded`` generalised to
+  static bifurcations / divergence points of eq. (91) generalised to
   omega, T != 0, are the real eigenvalues of a *linear* pencil, solved
   directly (QR elimination of the lambda-free unknowns phi, m, then QZ) at two
   resolutions. No scanning.
@@ -20,7 +20,7 @@ Structure used (not assumed; each conclusion is checked numerically):
   change is located by bisection on the predicate max Re lambda > THRESHOLD
   and reported as "flutter" (a complex pair crossing: undamped, a Krein
   collision on the imaginary axis; with damping gamma > 0 none is expected by
-  the Kelvin-Tait-Chetaev theorem, see PHYSICS.md, but the solver would find
+  the Kelvin-Tait-Chetaev theorem, see docs/model.md, section 8, but the solver would find
   one). The bisection predicate has threshold ``THRESHOLD`` = 1e-9 on
   Re lambda: undamped collisions give Re lambda ~ sqrt(distance), so the
   located point is limited by ``tol`` only; a linear (damped) crossing would
@@ -192,7 +192,7 @@ def divergence_loads(params: RodParameters, n: int = 5, N: int | None = None) ->
     Static bifurcations of the straight rod at the given omega, T (gamma is
     irrelevant at lambda = 0), from the linear eigenproblem in B at lambda = 0
     (A0 affine in B). At omega = T = 0 these are beta_k^3 sqrt(R) / f with
-    beta_k the (double) zeros of chi (``char_welded``).
+    beta_k the (double) zeros of chi (eq. (91)).
     """
     if N is None:
         N = max(32, 6 * n)
