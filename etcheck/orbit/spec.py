@@ -34,14 +34,10 @@ from dataclasses import dataclass
 import astropy.units as u
 
 from etcheck.errors import MissionError
+from etcheck.input.units import QuantityProblem, to_quantity
 from etcheck.orbit import frames
 from etcheck.orbit.elements import KeplerianElements, TleError, TwoLineElements
 from etcheck.orbit.field import DEFAULT_MODEL, IGRF_MODELS, igrf_validity
-
-try:  # the unit edge moves to etcheck.input.units in the package restructure
-    from etcheck.input.units import QuantityProblem, to_quantity
-except ImportError:  # pragma: no cover - before the restructure
-    from etcheck.units import QuantityProblem, to_quantity
 
 #: Lowest perigee accepted: below it the atmosphere decays the orbit in days.
 MIN_ALTITUDE = 150e3
