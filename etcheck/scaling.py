@@ -1,4 +1,4 @@
-"""Mission <-> dimensionless problem: the scalings of eq. ``eq:nondim``.
+"""Mission <-> dimensionless problem: the scalings of arXiv:0810.3668 eq. (36).
 
 ``scene(mission)`` reduces a mission to one worst-case operating point in SI
 floats; ``scale(scene)`` gives the dimensionless :class:`RodParameters` plus the
@@ -48,7 +48,7 @@ class Scene:
 
 @dataclass(frozen=True)
 class Scales:
-    """What turns dimensionless numbers back into SI (eq. ``eq:nondim``)."""
+    """What turns dimensionless numbers back into SI (arXiv:0810.3668 eq. (36))."""
 
     length: float  # L [m]
     EI1: float  # [N m^2]
@@ -111,7 +111,7 @@ def scene(mission: Mission) -> Scene:
 
 
 def scale(s: Scene) -> Scaled:
-    """Scene (SI) -> dimensionless parameters (eq. ``eq:nondim``) and scales."""
+    """Scene (SI) -> dimensionless parameters (arXiv:0810.3668 eq. (36)) and scales."""
     scales = Scales(length=s.length, EI1=s.EI1, mass_per_length=s.mass_per_length, f=s.f)
     wc = scales.frequency
     params = RodParameters(

@@ -65,7 +65,7 @@ class DiagramOptions:
     or unstable (rung 3, at the scene's damping); ``paths``: also the
     eigenvalue paths along each branch; ``shape_measure``: measure_1
     at which the shapes are drawn (the paper's Fig.
-    ``fig:tet:tether-modes-transition`` uses 0.04).
+    Fig. 7 uses 0.04).
     """
 
     branches: int = 3

@@ -129,18 +129,23 @@ def secondary_pitchfork_at(params: RodParameters, omega: float, N: int, N_check:
             B_max = min(2.0 * B_max, B_limit)
 
 
-def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff_omega: float, n: int = 4,
-                N: int = 24) -> dict[str, Any]:
+def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff_omega: float, n: int = 6,
+                N: int = 24, n_edge: int = 41) -> dict[str, Any]:
     """The stable region of b1 in the (load, spin) plane at the scene's tension (damping-independent).
 
     Its lower edge is b1's pitchfork on the straight tether (the class-S1
-    static load), its upper edge the secondary pitchfork B*(omega), each at
-    ``n`` spins from 0 to ``omega_max`` (dimensionless; b1 lifts off at
-    ``liftoff_omega``), located exactly at
-    resolution N (one resolution: a drawing of the region; the margin at the
-    operating spin is computed at two). With damping, stability changes only at
-    these static points (Kelvin-Tait-Chetaev), so the region between them is the
-    stable region of the coil. JSON-able, with SI.
+    static load), its upper edge the secondary pitchfork B*(omega). The lower
+    edge is cheap (one linear eigenproblem per spin) and is located exactly at
+    ``n_edge`` spins from 0 to ``omega_max`` (dimensionless; b1 lifts off at
+    ``liftoff_omega``). The upper edge costs a continuation of b1 per spin: it
+    is located exactly at ``n`` spins (the ``rows``) and drawn between them by
+    the monotone cubic (PCHIP) interpolant through those points (B*(omega) is
+    smooth and increasing); its interpolation error is estimated by leaving
+    each interior point out and comparing the interpolant of the others with
+    it. One resolution N (a drawing of the region; the margin at the
+    operating spin is computed at two). With damping, stability changes only
+    at these static points (Kelvin-Tait-Chetaev), so the region between them
+    is the stable region of the coil. JSON-able, with SI.
     """
     t0 = time.perf_counter()
     lift = liftoff_omega
@@ -149,34 +154,83 @@ def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff
     # and below its secondary pitchfork (about 3.3 times it for SET)
     B_ref = 1.5 * float(br.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
     b1_spin_branch(params, B_ref, omega_max, N)  # one continuation in spin serves every row
+
+    def pitchfork(w: float) -> float | None:
+        if math.isfinite(lift) and w >= lift:
+            return None
+        loads = br.class_loads(params.with_(B=0.0, omega=float(w)), "S1", N, n=1)
+        return float(loads[0]) if loads.size else None
+
     for w in np.linspace(0.0, omega_max, n):
         p = params.with_(omega=float(w))
-        attached = not (math.isfinite(lift) and w >= lift)
-        loads = br.class_loads(p.with_(B=0.0), "S1", N, n=1) if attached else np.array([])
         pt = secondary_pitchfork_at(p, float(w), N, N, B_ref, 3.0 * B_ref)
         star = pt.B if pt is not None else math.inf
         rows.append({"omega": float(w), "spin_rpm": float(w * scales.frequency * RPM),
-                     "pitchfork_B": float(loads[0]) if loads.size else None,
+                     "pitchfork_B": pitchfork(float(w)),
                      "secondary_B": star if math.isfinite(star) else None})
     for r in rows:
         for k in ("pitchfork_B", "secondary_B"):
             r[k.replace("_B", "_IB0_N_per_m")] = None if r[k] is None else r[k] * scales.load
+    edge_w = np.linspace(0.0, omega_max, n_edge)
+    if math.isfinite(lift) and 0.0 < lift < omega_max:
+        edge_w = np.sort(np.append(edge_w[edge_w < lift], lift))
+    edge = [pitchfork(float(w)) for w in edge_w]
+    edge = [0.0 if (e is None and math.isfinite(lift) and w >= lift) else e for w, e in zip(edge_w, edge)]
+    curve, interp_error = secondary_curve(rows, n_edge)
+    rpm = scales.frequency * RPM
     return {"rows": rows, "N": N, "liftoff_omega": lift if math.isfinite(lift) else None,
-            "liftoff_rpm": lift * scales.frequency * RPM if math.isfinite(lift) else None,
+            "liftoff_rpm": lift * rpm if math.isfinite(lift) else None,
+            "pitchfork_curve": {"omega": edge_w.tolist(), "spin_rpm": (edge_w * rpm).tolist(),
+                                "B": edge, "IB0_N_per_m": [None if e is None else e * scales.load for e in edge]},
+            "secondary_curve": {"omega": curve[0], "spin_rpm": [w * rpm for w in curve[0]], "B": curve[1],
+                                "IB0_N_per_m": [b * scales.load for b in curve[1]],
+                                "interpolation": "PCHIP through the rows",
+                                "interpolation_error_B": interp_error,
+                                "interpolation_error_IB0_N_per_m": None if interp_error is None
+                                else interp_error * scales.load},
             "time_s": time.perf_counter() - t0}
+
+
+def _pchip(rows: list[dict]):
+    from scipy.interpolate import PchipInterpolator
+
+    pts = [(r["omega"], r["secondary_B"]) for r in rows if r["secondary_B"] is not None]
+    if len(pts) < 2:
+        return None, pts
+    w, b = np.array(pts).T
+    return PchipInterpolator(w, b), pts
+
+
+def secondary_curve(rows: list[dict], n: int = 41) -> tuple[tuple[list, list], float | None]:
+    """B*(omega) drawn through the exactly located rows (PCHIP: monotone, no overshoot) at ``n``
+    spins, and its leave-one-out interpolation error (max over interior rows; None with < 4 rows)."""
+    f, pts = _pchip(rows)
+    if f is None:
+        return ([p[0] for p in pts], [p[1] for p in pts]), None
+    w = np.linspace(pts[0][0], pts[-1][0], n)
+    err = None
+    if len(pts) >= 4:
+        from scipy.interpolate import PchipInterpolator
+
+        wa, ba = np.array(pts).T
+        err = max(abs(float(PchipInterpolator(np.delete(wa, i), np.delete(ba, i))(wa[i])) - ba[i])
+                  for i in range(1, len(pts) - 1))
+    return (w.tolist(), [float(v) for v in f(w)]), err
 
 
 def spin_limit(region: dict, B: float) -> float | None:
     """Lowest spin (dimensionless) at which the coil at load B is still below its secondary
-    pitchfork, from the region's table (B*(omega) increases with spin, Sec. 8); 0 if stable
+    pitchfork, on the region's PCHIP curve through its table (B*(omega) increases with spin, Sec. VIII); 0 if stable
     at rest, None if B is above B* everywhere in the table."""
     rows = [r for r in region["rows"] if r["secondary_B"] is not None]
     if not rows:
         return None
     if B < rows[0]["secondary_B"]:
         return 0.0
+    f, _ = _pchip(rows)
     for a, b in zip(rows[:-1], rows[1:]):
-        if a["secondary_B"] <= B < b["secondary_B"]:
-            t = (B - a["secondary_B"]) / (b["secondary_B"] - a["secondary_B"])
-            return a["omega"] + t * (b["omega"] - a["omega"])
+        if a["secondary_B"] <= B < b["secondary_B"]:  # on the drawn (PCHIP) curve: monotone between the rows
+            from scipy.optimize import brentq
+
+            return float(brentq(lambda w: float(f(w)) - B, a["omega"], b["omega"], xtol=1e-12))
     return None

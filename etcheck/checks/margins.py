@@ -87,7 +87,7 @@ def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, 
                 required,
                 chosen.rung,
                 first["relative_error"],
-                "first (doubly degenerate) static buckling load of the straight welded tether, eq. char_welded",
+                "first (doubly degenerate) static buckling load of the straight welded tether, arXiv:0810.3668 eq. (91)",
             )
         ]
     return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.rung, chosen.reason)]
@@ -98,7 +98,7 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) -> 
     p = scaled.params
     load, spin = linear["critical_load"], linear["critical_spin"]
     window = ""
-    if linear["operating_spectrum"]["stable"]:
+    if linear["operating_stable"]:
         window = (
             "; the operating point itself is stable, inside a stability window that does not reach back to zero "
             "(gyroscopic stabilisation, which damping removes): a window is not counted as margin"

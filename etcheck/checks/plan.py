@@ -1,4 +1,4 @@
-"""Scene -> which model rung answers it, and why (DESIGN.md, model ladder)."""
+"""Scene -> which model rung answers it, and why (the model ladder of the README)."""
 
 from __future__ import annotations
 
@@ -34,7 +34,7 @@ def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
     move static loads). Spin or end tension needs rung 1.
     """
     static = params.omega == 0 and params.T == 0
-    if static and fidelity in ("auto", "analytic"):
+    if static and fidelity in ("auto", "draft", "analytic"):
         return Plan(0, "no spin and no end tension: the static buckling loads of chi(beta) are exact")
     if static:
         return Plan(1, "fidelity = linear requested (rung 0 would be exact here)")

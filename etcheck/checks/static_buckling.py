@@ -1,8 +1,8 @@
 """Rung 0 for a mission: the static buckling of the straight tether, exact and analytic.
 
 At zero spin and zero end tension the critical loads are B_k = beta_k^3 sqrt(R)/f
-with beta_k the double zeros of chi(beta) (arXiv:0810.3668, eq. (29) and Fig. 3);
-the unperturbed frequencies are those of the paper's Sec. 6.2. Dimensionless
+with beta_k the double zeros of chi(beta) (arXiv:0810.3668, eq. (91) and Fig. 4);
+the unperturbed frequencies are those of the paper's Sec. VI B. Dimensionless
 answers with their SI counterparts (I·B0 in N/m, frequencies in rad/s and Hz).
 """
 
@@ -24,7 +24,7 @@ N_LOADS = 5
 def static_buckling(scaled: Scaled) -> dict[str, Any]:
     """Rung 0 answers for the scene: critical loads, frequencies, mode shape.
 
-    All loads are at omega = 0, T = 0 (eq. ``char_welded``); dimensionless B
+    All loads are at omega = 0, T = 0 (eq. (91)); dimensionless B
     and I B0 in N/m.
     """
     p, scales = scaled.params, scaled.scales

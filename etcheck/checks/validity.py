@@ -21,7 +21,7 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: dict | None =
     p = scaled.params
     items = [
         "Model: inextensible, unshearable, intrinsically straight Kirchhoff rod, welded (clamped) at both ends, "
-        "uniform field along the undeformed axis (Valverde & van der Heijden).",
+        "uniform field along the undeformed axis (Valverde & van der Heijden, arXiv:0810.3668).",
         _after_buckling(post),
         "The load is the worst case |I| x |B0| over the given ranges; field components across the tether "
         "(which drive the intended drag) are not part of this check.",
@@ -33,7 +33,7 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: dict | None =
         )
     if chosen.rung == 1:
         items += [
-            "Rung 1 linearises the full O(delta) equations (Sec. 5.2) about the straight tether and solves the "
+            "Rung 1 linearises the full O(delta) equations (Sec. V B) about the straight tether and solves the "
             "damped gyroscopic eigenproblem by Chebyshev collocation; every eigenvalue and critical value is "
             "computed at two resolutions and their agreement is its error estimate (table below).",
             "Stability is judged on the lowest 12 eigenvalue pairs (Re lambda > 1e-9 counts as growing); higher "

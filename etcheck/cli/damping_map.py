@@ -1,6 +1,6 @@
 """``etcheck damping-map MISSION.toml``: where the coiled tether is stable and how well damped (rung 3).
 
-The tether's version of the paper's Fig. 11 (arXiv:0810.3668): over the plane of load
+The tether's version of the paper's Fig. 19 (arXiv:0810.3668): over the plane of load
 B and spin omega, the damping ratio of the least-damped mode of the first
 post-buckling branch b1 for several damping values, under b1's secondary
 pitchfork curve. Writes OUT/<mission>/damping-map/{damping.html, damping.pdf,
@@ -34,7 +34,7 @@ def add_parser(sub) -> None:
     p = sub.add_parser(
         NAME, help="stability and damping of the coiled tether over load and spin",
         description="Damping margin of the coiled tether (b1) over load and spin for several dampings "
-        "(cf. the paper's Fig. 11, arXiv:0810.3668).",
+        "(cf. arXiv:0810.3668 Fig. 19).",
         epilog="exit codes: 0 written, 2 bad input, 3 a solve failed",
     )
     p.add_argument("mission", help="mission file (TOML)")

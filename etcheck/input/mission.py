@@ -26,10 +26,10 @@ from etcheck.input.units import QuantityProblem, to_quantity
 from etcheck.rod.parameters import F_CLAMPED
 
 #: Dimensionless damping gamma assumed when a mission gives no damping_time:
-#: the paper's estimate for a real tether in working conditions (Sec. 7.2).
+#: the paper's estimate for a real tether in working conditions (Sec. VII B).
 DEFAULT_GAMMA = 0.04375
 
-FIDELITIES = ("auto", "analytic", "linear")
+FIDELITIES = ("auto", "draft", "analytic", "linear")
 
 # table -> field -> (kind or "number"/"text"/..., required)
 SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
@@ -354,7 +354,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     if damping is None:
         notes.append(
             f"no damping_time given: dimensionless damping gamma = {DEFAULT_GAMMA} assumed "
-            "(the paper's estimate for a real tether, Sec. 7.2)"
+            "(the paper's estimate for a real tether, Sec. VII B)"
         )
 
     return Mission(

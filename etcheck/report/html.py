@@ -29,6 +29,32 @@ def sci(x, digits: int = 4) -> Markup:
     return Markup(f"{escape(mant)}×10<sup>{int(exp)}</sup>")
 
 
+#: components smaller than this times the largest of their vector are round-off and print as 0
+ROUNDOFF = 1e-12
+
+
+def vec(values, digits: int = 4, unit: str = "") -> Markup:
+    """A vector for a table cell: components below the round-off of the vector's own scale
+    (ROUNDOFF times its largest component) print as 0, e.g. 1.4e-19 N next to 0.0075 N."""
+    finite = [abs(v) for v in values if v is not None and math.isfinite(v)]
+    scale = max(finite, default=0.0)
+    parts = [sci(0.0 if (v is not None and math.isfinite(v) and abs(v) <= ROUNDOFF * scale) else v, digits)
+             for v in values]
+    text = Markup("(") + Markup(", ").join(parts) + Markup(")")
+    return text + (Markup(" ") + escape(unit) if unit else Markup(""))
+
+
+class FigureNumbers:
+    """``fignum()`` in a template: the next figure number (one counter per rendered document)."""
+
+    def __init__(self) -> None:
+        self.n = 0
+
+    def __call__(self) -> int:
+        self.n += 1
+        return self.n
+
+
 def _environment():
     from jinja2 import Environment, PackageLoader, select_autoescape
 
@@ -39,13 +65,18 @@ def _environment():
         lstrip_blocks=True,
     )
     env.filters["sci"] = sci
+    env.filters["vec"] = vec
     return env
+
+
+def _render(template: str, **context) -> str:
+    return _environment().get_template(template).render(fignum=FigureNumbers(), **context)
 
 
 def render_html(results: dict) -> str:
     """The self-contained HTML report for check results (JSON-able dict)."""
     figs = {name: Markup(svg) for name, svg in figures(results).items()}
-    return _environment().get_template("report.html.j2").render(r=results, figs=figs)
+    return _render("report.html.j2", r=results, figs=figs)
 
 
 def render_sweep_html(results: dict) -> str:
@@ -60,14 +91,14 @@ def render_sweep_html(results: dict) -> str:
             failures.append({"values": [grids[k][i] for k, i in enumerate(idx)], "status": status,
                              "reason": np.array(g["reason"], dtype=object)[idx]})
     figs = {name: Markup(svg) for name, svg in sweep_figures(results).items()}
-    return _environment().get_template("sweep.html.j2").render(r=results, figs=figs, models=dict(models),
+    return _render("sweep.html.j2", r=results, figs=figs, models=dict(models),
                                                                failures=failures[:50])
 
 
 def render_diagram_html(results: dict) -> str:
     """The self-contained HTML report of a bifurcation diagram."""
     figs = {name: Markup(svg) for name, svg in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
-    return _environment().get_template("diagram.html.j2").render(r=results, d=results["diagram"], figs=figs)
+    return _render("diagram.html.j2", r=results, d=results["diagram"], figs=figs)
 
 
 def render_damping_html(results: dict) -> str:
@@ -77,4 +108,4 @@ def render_damping_html(results: dict) -> str:
             "paths": Markup(eigen_paths_plot(paths, "spin ω (dimensionless)",
                                              f"b1 at B = {paths['B']:g}, γ = {paths['gamma']:g}: lowest eigenvalues "
                                              "against spin"))}
-    return _environment().get_template("damping.html.j2").render(r=results, figs=figs)
+    return _render("damping.html.j2", r=results, figs=figs)

@@ -28,7 +28,7 @@ FIELDS = {
     "spin_margin": ("spin_margin", "", "critical_spin / spin (inf: no spin)"),
     "spin_error": ("spin_error", "", "relative numerical error of critical_spin"),
     "critical_spin_at_rest_rpm": ("critical_spin_without_load", "rpm", "critical spin rate with no magnetic load"),
-    "B": ("B", "", "dimensionless load (eq:nondim)"),
+    "B": ("B", "", "dimensionless load (arXiv:0810.3668 eq. (36))"),
     "omega": ("omega", "", "dimensionless spin"),
     "T": ("T", "", "dimensionless end tension"),
     "gamma": ("gamma", "", "dimensionless Kelvin-Voigt damping"),

@@ -1,9 +1,9 @@
 """Damping map of the coiled tether: the stability and damping of b1 over the (load, spin) plane.
 
-For each damping of the paper's Fig. 11 (arXiv:0810.3668; or the user's), the
+For each damping of the paper's Fig. 19 (arXiv:0810.3668; or the user's), the
 damping ratio of the least-damped mode of b1 over a (B, omega) grid below b1's
 secondary-pitchfork curve B*(omega), and b1 at fixed load followed in spin with
-its eigenvalue paths (the paper's Hopf test, Sec. 7.2). Dimensionless work in
+its eigenvalue paths (the paper's Hopf test, Sec. VII B). Dimensionless work in
 :mod:`etcheck.rod.branch_stability`; JSON-able results with SI counterparts.
 """
 
@@ -55,7 +55,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     wc = scales.frequency
     zeta = m.zeta
     unstable = np.nan_to_num(m.max_real, nan=-1.0) > 0
-    # b1 at fixed load followed in spin: the paper's Hopf test (Sec. 7.2, B = 1.2), at the smallest damping
+    # b1 at fixed load followed in spin: the paper's Hopf test (Sec. VII B, B = 1.2), at the smallest damping
     B_path = max(B_ref, min(1.2, 2.05 * pf0))  # the paper's B = 1.2 for SET
     paths = eigenvalue_paths(b1_spin_branch(params, B_path, omega_max, N), min(m.gammas))
     paths["B"] = B_path

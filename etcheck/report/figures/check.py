@@ -21,7 +21,7 @@ def chi_plot(results: dict) -> str:
     chi = sr["chi_curve"]["chi_scaled"]
     op = sr["operating_beta"]
     fig, ax = plt.subplots(figsize=(6.4, 2.8))
-    ax.plot(beta, chi, color="#1f4e79", lw=1.4, label=r"$\chi(\beta)\,e^{-\sqrt{3}\beta}$ (eq. char_welded)")
+    ax.plot(beta, chi, color="#1f4e79", lw=1.4, label=r"$\chi(\beta)\,e^{-\sqrt{3}\beta}$ (arXiv:0810.3668 eq. (91))")
     for i, load in enumerate(sr["critical_loads"]):
         if load["beta"] <= beta[-1] and (i < 3 or op > beta[-1]):
             ax.axvline(load["beta"], color="#c0392b", ls=":", lw=1,
@@ -238,7 +238,8 @@ def postbuckling_plots(results: dict) -> dict[str, str]:
     op = post.get("operating")
     out = {"b1": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]", "maximum lateral deflection [m]",
                              "first post-buckling branch b1 at the operating spin and tension",
-                             "pitchfork_IB0_N_per_m", mark=_operating_mark(results, op))}
+                             "pitchfork_IB0_N_per_m", mark=_operating_mark(results, op),
+                             critical=_critical_mark(results))}
     if post.get("region"):
         out["region"] = coil_region_plot(results)
     if op and op.get("available"):
@@ -248,28 +249,59 @@ def postbuckling_plots(results: dict) -> dict[str, str]:
 
 
 def coil_region_plot(results: dict) -> str:
-    """Stable region of the coiled tether (b1) in the (spin rate, I·B0) plane at the mission's tension."""
+    """Stable region of the coiled tether (b1) in the (spin rate, I·B0) plane at the mission's tension.
+
+    Lower edge: b1's pitchfork, located exactly at every drawn spin; upper edge:
+    the secondary pitchfork, located exactly at the marked spins and drawn
+    between them by the monotone cubic (PCHIP) interpolant.
+    """
+    import numpy as np
+
     plt = _plt()
     reg = results["postbuckling"]["region"]
     rows = reg["rows"]
-    rpm = [r["spin_rpm"] for r in rows]
-    low = [r["pitchfork_IB0_N_per_m"] or 0.0 for r in rows]
-    top = [r["secondary_IB0_N_per_m"] if r["secondary_IB0_N_per_m"] is not None else math.nan for r in rows]
-    fig, ax = plt.subplots(figsize=(6.4, 3.2))
-    ax.fill_between(rpm, 0.0, low, color="#d8efdd", label="straight tether stable")
-    ax.fill_between(rpm, low, top, color="#d6e4f5", label="coiled tether (b1) stable")
-    ax.plot(rpm, low, "-o", color="#555", ms=3, label="b1 leaves the straight tether (pitchfork)")
-    ax.plot(rpm, top, "-s", color="k", ms=3, lw=2, label="secondary pitchfork of b1 (coil loses stability)")
-    if reg.get("liftoff_rpm") is not None and reg["liftoff_rpm"] <= rpm[-1]:
-        ax.axvline(reg["liftoff_rpm"], color="#888", ls=":", label="b1 lift-off (straight tether whirls above)")
-    ax.plot([reg["operating_rpm"]], [results["scene"]["load_N_per_m"]], marker="*", ms=13, color="#27ae60",
-            mec="k", ls="none", label="operating point")
-    ax.set_ylim(0, 1.15 * max([v for v in top if math.isfinite(v)] + [results["scene"]["load_N_per_m"]]))
+    load = results["scene"]["load_N_per_m"]
+    fig, ax = plt.subplots(figsize=(6.6, 3.8))
+    if "pitchfork_curve" in reg:
+        pc, sc = reg["pitchfork_curve"], reg["secondary_curve"]
+        low_w = np.array(pc["spin_rpm"], dtype=float)
+        low = np.array([v if v is not None else 0.0 for v in pc["IB0_N_per_m"]], dtype=float)
+        top_w, top = np.array(sc["spin_rpm"], dtype=float), np.array(sc["IB0_N_per_m"], dtype=float)
+    else:  # results written before the curves were stored: the located rows only
+        low_w = top_w = np.array([r["spin_rpm"] for r in rows], dtype=float)
+        low = np.array([r["pitchfork_IB0_N_per_m"] or 0.0 for r in rows], dtype=float)
+        top = np.array([r["secondary_IB0_N_per_m"] if r["secondary_IB0_N_per_m"] is not None else np.nan
+                        for r in rows], dtype=float)
+    low_on_top = np.interp(top_w, low_w, low)
+    ax.fill_between(low_w, 0.0, low, color="#d8efdd", lw=0, label="straight tether stable")
+    ax.fill_between(top_w, low_on_top, top, color="#d6e4f5", lw=0, label="coiled tether (b1) stable")
+    ax.plot(low_w, low, "-", color="#555", lw=1.4, label="b1 leaves the straight tether (first critical load)")
+    ax.plot(top_w, top, "-", color="k", lw=2, label="secondary pitchfork of b1 (the coil loses stability)")
+    located = [(r["spin_rpm"], r["secondary_IB0_N_per_m"]) for r in rows if r["secondary_IB0_N_per_m"] is not None]
+    if located:
+        ax.plot(*zip(*located), "s", color="k", ms=4, ls="none", label="secondary pitchfork located exactly")
+    if reg.get("liftoff_rpm") is not None and reg["liftoff_rpm"] <= top_w[-1]:
+        ax.axvline(reg["liftoff_rpm"], color="#888", ls=":", label="b1 lift-off (the straight tether whirls above)")
+    ax.plot([reg["operating_rpm"]], [load], marker="*", ms=14, color="#27ae60", mec="k", ls="none", zorder=6,
+            label="operating point", clip_on=False)
+    ax.set_xlim(0.0, max(top_w[-1], low_w[-1]))
+    ax.set_ylim(0, 1.08 * max([v for v in top if np.isfinite(v)] + [load]))
     ax.set_xlabel("spin rate [rpm]")
-    ax.set_ylabel("I·B0 [N/m]")
-    ax.set_title(f"where the coiled tether is stable (N = {reg['N']}, damping-independent)", fontsize=9)
-    ax.legend(fontsize=7, loc="upper left")
+    ax.set_ylabel("magnetic load I·B0 [N/m]")
+    ax.set_title(f"Where the coiled tether is stable (T = {results['scene']['tension_N']:.3g} N; "
+                 "independent of the damping)", fontsize=9)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
     return _svg(fig)
+
+
+def _critical_mark(results: dict):
+    """The first critical load of the straight tether at the operating spin and tension (where b1 starts)."""
+    post = results["postbuckling"]
+    b1 = next((b for b in post["diagram"]["branches"] if b["label"] == "b1"), None)
+    x = b1.get("pitchfork_IB0_N_per_m") if b1 else None
+    if x is None:
+        x = post["B_c"] * results["scales"]["load_N_per_m"]
+    return (x, f"first critical load, I·B0 = {x:.4g} N/m")
 
 
 def _operating_mark(results: dict, op: dict | None):

@@ -31,8 +31,9 @@ def _segments(x, y, stable):
 
 
 def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: str,
-                pitchfork_key: str | None = None, mark: tuple | None = None) -> str:
-    """Branches of a diagram; ``mark`` = (x, y, label) draws the operating point."""
+                pitchfork_key: str | None = None, mark: tuple | None = None, critical: tuple | None = None) -> str:
+    """Branches of a diagram; ``mark`` = (x, y, label) draws the operating point, ``critical`` =
+    (x, label) the first critical load (where b1 leaves the straight tether)."""
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6.4, 3.6))
     seen = set()
@@ -58,6 +59,10 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
             seen.add(name)
         if pitchfork_key and b.get(pitchfork_key) is not None:
             ax.plot([b[pitchfork_key]], [0.0], marker="o", color=c, ms=4, ls="none")
+    if critical is not None:
+        ax.axvline(critical[0], color="#c0392b", ls=":", lw=1.2)
+        ax.plot([critical[0]], [0.0], marker="o", color="#c0392b", mec="k", ms=7, ls="none", zorder=6,
+                label=critical[1])
     if mark is not None:
         ax.plot([mark[0]], [mark[1]], marker="*", ms=13, color="#27ae60", mec="k", ls="none", zorder=7, label=mark[2])
     if any(b.get("stable") is not None for b in d["branches"]):
@@ -73,34 +78,50 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
 
 
 def shapes_plot(shapes: list[tuple[str, dict]], length_m: float | None = None) -> str:
-    """3-D view and the e1-e3 and e2-e3 projections of the given shapes.
+    """A large 3-D view and the e1-e3 and e2-e3 projections of the given shapes.
 
     ``shapes``: (label, shape dict with s, x, y, z dimensionless, and x_m...);
-    in metres when ``length_m`` is given.
+    in metres when ``length_m`` is given. The 3-D box has the true proportions
+    of the shapes (each side at least 40 % of the longest, so a slight coil stays visible).
     """
+    from matplotlib.ticker import MaxNLocator
+
     plt = _plt()
-    fig = plt.figure(figsize=(7.2, 3.0))
-    ax3 = fig.add_subplot(1, 3, 1, projection="3d")
-    ax1 = fig.add_subplot(1, 3, 2)
-    ax2 = fig.add_subplot(1, 3, 3)
+    fig = plt.figure(figsize=(7.2, 4.6))
+    grid = fig.add_gridspec(2, 2, width_ratios=[1.55, 1.0], hspace=0.55, wspace=0.05)
+    ax3 = fig.add_subplot(grid[:, 0], projection="3d")
+    ax1 = fig.add_subplot(grid[0, 1])
+    ax2 = fig.add_subplot(grid[1, 1])
     unit = "m" if length_m else "L"
     suffix = "_m" if length_m else ""
+    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
     for n, (label, sh) in enumerate(shapes):
         c = COLOURS[n % len(COLOURS)]
-        x, y, z = (np.asarray(sh[k + suffix]) for k in ("x", "y", "z"))
-        ax3.plot(x, y, z, color=c, lw=1.5, label=label)
-        ax1.plot(x, z, color=c, lw=1.5, label=label)
-        ax2.plot(y, z, color=c, lw=1.5, label=label)
-    ax3.set_xlabel(f"e1 [{unit}]", fontsize=7)
-    ax3.set_ylabel(f"e2 [{unit}]", fontsize=7)
-    ax3.set_zlabel(f"e3 [{unit}]", fontsize=7)
-    ax3.tick_params(labelsize=6)
+        x, y, z = (np.asarray(sh[k + suffix], dtype=float) for k in ("x", "y", "z"))
+        ax3.plot(x, y, z, color=c, lw=1.8, label=label)
+        ax3.plot([x[0], x[-1]], [y[0], y[-1]], [z[0], z[-1]], "o", color="k", ms=3)
+        ax1.plot(z, x, color=c, lw=1.5, label=label)
+        ax2.plot(z, y, color=c, lw=1.5, label=label)
+        for k, v in enumerate((x, y, z)):
+            lo[k], hi[k] = min(lo[k], v.min()), max(hi[k], v.max())
+    span = np.maximum(hi - lo, 1e-12)
+    ax3.set_box_aspect(tuple(np.maximum(span, span.max() / 2.5)))
+    for axis in (ax3.xaxis, ax3.yaxis, ax3.zaxis):
+        axis.set_major_locator(MaxNLocator(4))
+    ax3.tick_params(labelsize=7, pad=1)
+    ax3.set_xlabel(f"e1 [{unit}]", fontsize=8, labelpad=6)
+    ax3.set_ylabel(f"e2 [{unit}]", fontsize=8, labelpad=6)
+    ax3.set_zlabel(f"e3 [{unit}]", fontsize=8, labelpad=8)
+    ax3.set_title("3-D view (dots: the welded ends)", fontsize=8)
+    ax3.view_init(elev=18, azim=-58)
     for ax, name in ((ax1, "e1"), (ax2, "e2")):
-        ax.set_xlabel(f"{name} [{unit}]")
-        ax.set_ylabel(f"e3 [{unit}]")
+        ax.set_xlabel(f"e3, along the undeformed tether [{unit}]", fontsize=8)
+        ax.set_ylabel(f"{name} [{unit}]", fontsize=8)
         ax.set_title(f"{name}–e3 projection", fontsize=8)
-    ax1.legend(fontsize=7, loc="best")
-    fig.tight_layout()
+        ax.tick_params(labelsize=7)
+    if len(shapes) > 1:
+        ax1.legend(fontsize=7, loc="best")
+    fig.subplots_adjust(left=0.0, right=0.98, top=0.93, bottom=0.1)
     return _svg(fig)
 
 
@@ -134,10 +155,10 @@ def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
     figs = {
         "measure1": branch_plot(d, "values", "measure1", "B (dimensionless load)",
                                 r"measure$_1 = \int_0^1 |x^0(s)|\,ds$",
-                                "bifurcation diagram (cf. Fig. fig:tet:bif-measure1)", "pitchfork_B"),
+                                "bifurcation diagram (cf. arXiv:0810.3668 Fig. 5)", "pitchfork_B"),
         "measure2": branch_plot(d, "values", "measure2", "B (dimensionless load)",
                                 r"measure$_2 = \int_0^1 x^0 y^0\,ds$",
-                                "connecting branches come in mirror pairs (cf. Fig. fig:tet:bif-measure2)",
+                                "connecting branches come in mirror pairs (cf. arXiv:0810.3668 Fig. 6)",
                                 "pitchfork_B"),
         "physical": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]",
                                 "maximum lateral deflection [m]", "the same branches in physical units",
@@ -157,7 +178,7 @@ def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
 
 
 def damping_maps(r: dict) -> str:
-    """Damping ratio of b1's least-damped mode over (B, omega), one panel per damping (cf. Fig. fig:hopf)."""
+    """Damping ratio of b1's least-damped mode over (B, omega), one panel per damping (cf. arXiv:0810.3668 Fig. 19)."""
     plt = _plt()
     from matplotlib.colors import LogNorm
 
