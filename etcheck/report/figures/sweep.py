@@ -48,18 +48,30 @@ def margin_map(results: dict, field: str, title: str) -> str:
     code = np.select([region == "straight-stable", region == "buckled-stable", region == "straight-unstable"],
                      [2.0, 1.0, 0.0], np.nan)
     X, Y = np.meshgrid(x, y, indexing="ij")
-    ax.contourf(X, Y, code, levels=[-0.5, 0.5, 1.5, 2.5], colors=[UNSTABLE, BUCKLED, STABLE])
+    cl = results.get("critical_length")
+    edge = _exact_edge(results, x) if field == "load_margin" and not (region == "buckled-stable").any() else None
+    if edge is not None:  # two regions split by the exactly located critical length: shade them by it
+        ax.set_facecolor(UNSTABLE)
+        ax.fill_betweenx(edge[1], x[0], edge[0], color=STABLE, lw=0)
+    else:  # categories: each grid point's own colour (no invented in-between category)
+        from matplotlib.colors import ListedColormap
+
+        ax.pcolormesh(X, Y, code, shading="nearest", cmap=ListedColormap([UNSTABLE, BUCKLED, STABLE]), vmin=-0.5,
+                      vmax=2.5)
     lm = _log_margin(results, field)
-    levels = [lv for lv in (-1, np.log10(0.5), 0, np.log10(req), 1, 2, 3) if np.nanmin(lm) < lv < np.nanmax(lm)]
+    RX, RY, rlm = refined_log_margin(x, y, xlog, ylog, lm)
+    levels = [lv for lv in (-1, 1, 2, 3) if np.nanmin(rlm) < lv < np.nanmax(rlm)]
     if levels:
-        cs = ax.contour(X, Y, lm, levels=sorted(set(levels)), colors="#555555", linewidths=0.8)
-        ax.clabel(cs, fmt=lambda v: f"{10 ** v:.3g}", fontsize=7)
+        cs = ax.contour(RX, RY, rlm, levels=sorted(set(levels)), colors="#555555", linewidths=0.8)
+        ax.clabel(cs, fmt=lambda v: f"{10 ** v:.3g}", fontsize=7, inline=True, inline_spacing=4)
     cl = results.get("critical_length")
     exact = bool(cl) and field == "load_margin" and any(r["length_m"] is not None for r in cl)
-    if np.nanmin(lm) < 0 < np.nanmax(lm) and not exact:
-        ax.contour(X, Y, lm, levels=[0], colors="k", linewidths=2.0)
-    if np.nanmin(lm) < np.log10(req) < np.nanmax(lm):
-        ax.contour(X, Y, lm, levels=[np.log10(req)], colors="#1f4e79", linewidths=1.6, linestyles="--")
+    if np.nanmin(rlm) < 0 < np.nanmax(rlm) and not exact:
+        ax.contour(RX, RY, rlm, levels=[0], colors="k", linewidths=2.0)
+    if np.nanmin(rlm) < np.log10(req) < np.nanmax(rlm):
+        cs = ax.contour(RX, RY, rlm, levels=[np.log10(req)], colors="#1f4e79", linewidths=2.6, linestyles="--",
+                        zorder=6)
+        ax.clabel(cs, fmt=lambda v: f"required {req:g}", fontsize=8, inline=True, inline_spacing=6)
     bad = status != "ok"
     if bad.any():
         ax.scatter(X[bad], Y[bad], marker="x", color="#8e1b10", s=22, zorder=5, label="no answer (failed / outside range)")
@@ -77,8 +89,8 @@ def margin_map(results: dict, field: str, title: str) -> str:
                     bbox={"facecolor": "white", "alpha": 0.6, "edgecolor": "none", "pad": 1})
     if not exact:
         ax.plot([], [], color="k", lw=2, label="stability boundary (margin 1)")
-    ax.plot([], [], color="#1f4e79", lw=1.6, ls="--", label=f"required margin {req:g}")
-    ax.plot([], [], color="#555555", lw=0.8, label="margin contours (labelled)")
+    ax.plot([], [], color="#1f4e79", lw=2.6, ls="--", label=f"required margin {req:g}")
+    ax.plot([], [], color="#555555", lw=0.8, label="margin 0.1, 10, 100, 1000 (labelled)")
     if xlog:
         ax.set_xscale("log")
     if ylog:
@@ -90,6 +102,48 @@ def margin_map(results: dict, field: str, title: str) -> str:
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, framealpha=0.85)
     return _svg(fig)
+
+
+def _exact_edge(results: dict, x) -> tuple | None:
+    """(critical length, other value) along the other axis from the exactly located critical
+    lengths, with the swept ends where the tether is stable or unstable over the whole length range."""
+    rows = results.get("critical_length") or []
+    if not rows or any(r["length_m"] is None and r["status"] not in ("beyond range", "below range") for r in rows):
+        return None
+    if not any(r["length_m"] is not None for r in rows):
+        return None
+    lengths = [r["length_m"] if r["length_m"] is not None else (x[-1] if r["status"] == "beyond range" else x[0])
+               for r in rows]
+    return np.array(lengths), np.array([r["other_display"] for r in rows])
+
+
+def refined_log_margin(x, y, xlog: bool, ylog: bool, lm: np.ndarray, factor: int = 6):
+    """log10 margin on a grid ``factor`` times finer, for smooth contours.
+
+    The margin field is smooth where the critical value is positive and drops
+    discontinuously to 0 where the straight tether is unstable without any load
+    or spin (there it is clipped to 1e-6); contouring across that jump draws the
+    grid's staircase. So those points and non-finite ones are masked, the rest is
+    interpolated by a cubic in the plotting coordinates (log where an axis is
+    log), and refined points in a grid cell with a masked corner are masked.
+    """
+    from scipy.interpolate import RegularGridInterpolator
+
+    u = np.log10(x) if xlog else np.asarray(x, dtype=float)
+    v = np.log10(y) if ylog else np.asarray(y, dtype=float)
+    bad = ~np.isfinite(lm) | (lm <= -5.999)
+    if u.size < 4 or v.size < 4 or bad.all():
+        X, Y = np.meshgrid(x, y, indexing="ij")
+        return X, Y, np.where(bad, np.nan, lm)
+    filled = np.where(bad, np.nanmax(np.where(bad, -np.inf, lm)), lm)
+    fu, fv = np.linspace(u[0], u[-1], factor * (u.size - 1) + 1), np.linspace(v[0], v[-1], factor * (v.size - 1) + 1)
+    FU, FV = np.meshgrid(fu, fv, indexing="ij")
+    fine = RegularGridInterpolator((u, v), filled, method="cubic")(np.stack([FU, FV], axis=-1))
+    iu = np.clip(np.searchsorted(u, fu, side="right") - 1, 0, u.size - 2)
+    iv = np.clip(np.searchsorted(v, fv, side="right") - 1, 0, v.size - 2)
+    cell_bad = bad[:-1, :-1] | bad[1:, :-1] | bad[:-1, 1:] | bad[1:, 1:]
+    fine = np.where(cell_bad[np.ix_(iu, iv)], np.nan, fine)
+    return (10.0 ** FU if xlog else FU), (10.0 ** FV if ylog else FV), fine
 
 
 def _mark_operating(ax, results, x, y=None) -> None:
