@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import base64
+import contextvars
 import math
 from collections import Counter
 
@@ -69,13 +71,55 @@ def _environment():
     return env
 
 
+#: when set (a list), every rendered document is also rendered for print, figures as PNG, into it
+_PRINT: contextvars.ContextVar[list | None] = contextvars.ContextVar("etcheck_print_html", default=None)
+
+
+class _Figure(Markup):
+    png: bytes | None = None
+
+
+def _fig(source: str) -> Markup:
+    """Markup of one figure, keeping its PNG copy (if any) for the print version."""
+    out = _Figure(source)
+    out.png = getattr(source, "png", None)
+    return out
+
+
+def _as_image(fig: Markup, name: str) -> Markup:
+    png = getattr(fig, "png", None)
+    if not png:
+        return fig
+    return Markup('<img src="data:image/png;base64,{}" alt="{}">').format(base64.b64encode(png).decode(), name)
+
+
 def _render(template: str, **context) -> str:
-    return _environment().get_template(template).render(fignum=FigureNumbers(), **context)
+    tpl = _environment().get_template(template)
+    collector = _PRINT.get()
+    if collector is not None:
+        figs = {k: _as_image(v, k) for k, v in context["figs"].items()}
+        collector.append(tpl.render(fignum=FigureNumbers(), **(context | {"figs": figs})))
+    return tpl.render(fignum=FigureNumbers(), **context)
+
+
+def render_with_print(renderer, results: dict) -> tuple[str, str]:
+    """(screen HTML with SVG figures, print HTML with the same figures as PNG at print resolution);
+    the figures are drawn once."""
+    from etcheck.report.figures.common import rasterised
+
+    collected: list = []
+    token = _PRINT.set(collected)
+    try:
+        with rasterised():
+            screen = renderer(results)
+    finally:
+        _PRINT.reset(token)
+    return screen, collected[0]
 
 
 def render_html(results: dict) -> str:
     """The self-contained HTML report for check results (JSON-able dict)."""
-    figs = {name: Markup(svg) for name, svg in figures(results).items()}
+    figs = {name: _fig(svg) for name, svg in figures(results).items()}
     return _render("report.html.j2", r=results, figs=figs)
 
 
@@ -90,22 +134,22 @@ def render_sweep_html(results: dict) -> str:
         if status != "ok":
             failures.append({"values": [grids[k][i] for k, i in enumerate(idx)], "status": status,
                              "reason": np.array(g["reason"], dtype=object)[idx]})
-    figs = {name: Markup(svg) for name, svg in sweep_figures(results).items()}
+    figs = {name: _fig(svg) for name, svg in sweep_figures(results).items()}
     return _render("sweep.html.j2", r=results, figs=figs, models=dict(models),
                                                                failures=failures[:50])
 
 
 def render_diagram_html(results: dict) -> str:
     """The self-contained HTML report of a bifurcation diagram."""
-    figs = {name: Markup(svg) for name, svg in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
+    figs = {name: _fig(svg) for name, svg in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
     return _render("diagram.html.j2", r=results, d=results["diagram"], figs=figs)
 
 
 def render_damping_html(results: dict) -> str:
     """The self-contained HTML report of a damping map of the coiled tether."""
     paths = results["study"]["spin_paths"]
-    figs = {"maps": Markup(damping_maps(results)),
-            "paths": Markup(eigen_paths_plot(paths, "spin ω (dimensionless)",
+    figs = {"maps": _fig(damping_maps(results)),
+            "paths": _fig(eigen_paths_plot(paths, "spin ω (dimensionless)",
                                              f"b1 at B = {paths['B']:g}, γ = {paths['gamma']:g}: lowest eigenvalues "
                                              "against spin"))}
     return _render("damping.html.j2", r=results, figs=figs)
