@@ -22,6 +22,8 @@ import astropy.units as u
 
 from etcheck.errors import MissionError
 from etcheck.input.sweep_axes import AXES, Axis, parse_table
+from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
+from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
 from etcheck.rod.parameters import F_CLAMPED
 
@@ -52,6 +54,7 @@ SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
         "end_tension": ("force", False),
     },
     "sweep": {name: ("sweep_axis", False) for name in AXES},
+    "uncertainty": {name: ("uncertainty", False) for name in UNCERTAIN_INPUTS},
     "check": {
         "required_margin": ("number", False),
         "fidelity": ("text", False),
@@ -96,6 +99,7 @@ class Mission:
     sha256: str = ""
     notes: tuple[str, ...] = field(default_factory=tuple)
     sweep: tuple[Axis, ...] = ()  # the [sweep] table: default axes of `etcheck sweep`
+    uncertainty: Uncertainty | None = None  # the [uncertainty] table (etcheck.input.uncertainty)
 
     @property
     def slug(self) -> str:
@@ -351,6 +355,15 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
 
     if current[0] != current[1] or bfield[0] != bfield[1]:
         notes.append("current and/or field given as a range: the check uses the worst case |I| x |B0|")
+    uncertainty = None
+    if "uncertainty" in data:
+        nominal = {"EI1": EI1, "EI2": EI2, "torsional_stiffness": GJ, "mass_per_length": mass, "length": length,
+                   "current": max(abs(current[0]), abs(current[1])), "axial_field": max(abs(bfield[0]), abs(bfield[1])),
+                   "spin_rate": spin, "end_tension": tension, "damping_time": damping}
+        fixed = {"torsional_stiffness": "GJ follows from poisson_ratio and the bending stiffnesses; give "
+                 "[tether] torsional_stiffness instead of poisson_ratio to vary it"} if nu is not None else {}
+        uncertainty = parse_uncertainty(data["uncertainty"], source, nominal, fixed)
+        notes.extend(uncertainty.notes)
     if damping is None:
         notes.append(
             f"no damping_time given: dimensionless damping gamma = {DEFAULT_GAMMA} assumed "
@@ -383,6 +396,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         sha256=sha256,
         notes=tuple(notes),
         sweep=parse_table(data["sweep"], source) if data.get("sweep") else (),
+        uncertainty=uncertainty,
     )
 
 

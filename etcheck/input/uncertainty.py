@@ -1,0 +1,368 @@
+"""The ``[uncertainty]`` table of a mission: how well each input is known.
+
+Each entry names one input and gives either a tolerance or a distribution::
+
+    [uncertainty]
+    bending_stiffness = "±15 %"                          # EI1 and EI2 by one common factor
+    axial_field = { distribution = "lognormal", sigma = "30 %" }
+    length = "±0.5 m"
+    damping_time = { distribution = "log-uniform", factor = 10 }
+    end_tension = { distribution = "normal", sigma = "0.2 N", bounds = ["-0.1 N", "0.5 N"] }
+
+Meaning (stated in the report):
+
+* a tolerance ``"±10 %"`` or ``"±0.5 m"`` is a *uniform* distribution over
+  nominal ± tolerance (all that a tolerance says is "somewhere in this band");
+* ``normal``: mean = the mission's value, ``sigma`` relative ("10 %") or
+  absolute ("2 N m2");
+* ``lognormal``: median = the mission's value, ``sigma`` the standard
+  deviation of ln(x), a plain number or a percentage ("30 %" is 0.30);
+* ``uniform`` needs ``bounds = [lo, hi]``; ``log-uniform`` needs ``bounds``
+  or ``factor`` (nominal / factor ... nominal x factor);
+* ``bounds`` on a normal or lognormal truncates it; a bound is a quantity or
+  a percentage of the nominal value ("-20 %", "+20 %").
+
+The nominal value of an input is the mission's value; for the current and the
+field, given as ranges in ``[operation]``, it is the worst case |I|, |B0|
+(ranges stay worst-case; the tolerance is around the worst case). Inputs that
+are positive (stiffnesses, mass, length, damping time) or magnitudes (current,
+field, spin) are truncated at zero when a normal distribution would reach it;
+that is recorded as a note. Everything is converted to SI floats here: the
+study works without units.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from etcheck.errors import MissionError
+from etcheck.input.units import KINDS, QuantityProblem, to_quantity
+
+#: input -> (quantity kind of etcheck.input.units, what it is, lower physical limit, strict)
+INPUTS: dict[str, tuple[str | None, str, float | None, bool]] = {
+    "bending_stiffness": (None, "both bending stiffnesses EI1 and EI2 (one common factor)", 0.0, True),
+    "EI1": ("bending_stiffness", "the stiff-axis bending stiffness EI1", 0.0, True),
+    "EI2": ("bending_stiffness", "the weak-axis bending stiffness EI2", 0.0, True),
+    "torsional_stiffness": ("torsional_stiffness", "the torsional stiffness GJ", 0.0, True),
+    "mass_per_length": ("mass_per_length", "the mass per length", 0.0, True),
+    "length": ("length", "the tether length", 0.0, True),
+    "current": ("current", "the current magnitude |I|", 0.0, False),
+    "axial_field": ("field", "the axial field magnitude |B0|", 0.0, False),
+    "spin_rate": ("angular_rate", "the spin rate", 0.0, False),
+    "end_tension": ("force", "the end tension", None, False),
+    "damping_time": ("time", "the Kelvin-Voigt damping time", 0.0, True),
+}
+DISTRIBUTIONS = ("uniform", "normal", "lognormal", "log-uniform")
+_KEYS = {"distribution", "sigma", "bounds", "factor"}
+_TOL = re.compile(r"^\s*(±|\+-|\+/-)\s*(.+?)\s*$")
+_PCT = re.compile(r"^\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*%\s*$")
+
+
+@dataclass(frozen=True)
+class Distribution:
+    """One uncertain input as a distribution of SI floats (or of a factor).
+
+    ``shape`` is uniform, normal, lognormal or log-uniform; ``a``, ``b`` its
+    parameters in SI: uniform (lo, hi), normal (mean, sigma), lognormal
+    (ln median, sigma of ln x), log-uniform (lo, hi). ``lower``, ``upper``
+    truncate it. ``factor`` True: the samples multiply the mission's value
+    (nominal 1, dimensionless); otherwise they replace it (``unit`` SI).
+    ``text`` is the entry as written.
+    """
+
+    input: str
+    shape: str
+    nominal: float
+    a: float
+    b: float
+    lower: float = -math.inf
+    upper: float = math.inf
+    factor: bool = False
+    unit: str = ""
+    text: str = ""
+
+    def _base(self):
+        from scipy import stats
+
+        if self.shape == "uniform":
+            return stats.uniform(loc=self.a, scale=self.b - self.a)
+        if self.shape == "normal":
+            return stats.norm(loc=self.a, scale=self.b)
+        if self.shape == "lognormal":
+            return stats.lognorm(s=self.b, scale=math.exp(self.a))
+        return stats.loguniform(self.a, self.b)
+
+    def _cut(self):
+        d = self._base()
+        return d, float(d.cdf(self.lower)), float(d.sf(self.upper))
+
+    def mass(self) -> float:
+        """Probability mass of the untruncated distribution inside [lower, upper]."""
+        _, lo, hi = self._cut()
+        return 1.0 - lo - hi
+
+    def ppf(self, u) -> np.ndarray:
+        """Quantile function (vectorised over u in [0, 1]); tails computed from the near side."""
+        d, lo, hi = self._cut()
+        u = np.asarray(u, dtype=float)
+        z = 1.0 - lo - hi
+        low = d.ppf(lo + u * z)
+        high = d.isf(hi + (1.0 - u) * z)
+        x = np.where(u < 0.5, low, high)
+        return np.clip(x, self.lower, self.upper)
+
+    def cdf(self, x) -> np.ndarray:
+        """P(X <= x) (vectorised)."""
+        d, lo, hi = self._cut()
+        x = np.clip(np.asarray(x, dtype=float), self.lower, self.upper)
+        return np.clip((d.cdf(x) - lo) / (1.0 - lo - hi), 0.0, 1.0)
+
+    def sf(self, x) -> np.ndarray:
+        """P(X > x) (vectorised; accurate far into the upper tail)."""
+        d, lo, hi = self._cut()
+        x = np.clip(np.asarray(x, dtype=float), self.lower, self.upper)
+        return np.clip((d.sf(x) - hi) / (1.0 - lo - hi), 0.0, 1.0)
+
+    def interval(self) -> tuple[float, float]:
+        """The tolerance range drawn in the tornado chart: the bounds of a uniform or
+        log-uniform distribution, the central 95 % (2.5 %, 97.5 % quantiles) otherwise."""
+        if self.shape in ("uniform", "log-uniform"):
+            return (max(self.a, self.lower), min(self.b, self.upper))
+        lo, hi = self.ppf([0.025, 0.975])
+        return float(lo), float(hi)
+
+    def log_spread(self) -> float:
+        """Half the 16 %-84 % range of ln(x / nominal) (one 'sigma' in log terms); 0 if x can reach 0."""
+        lo, hi = self.ppf([0.158655, 0.841345])
+        if lo <= 0 or hi <= 0:
+            lo = max(lo, 1e-300)
+        return 0.5 * (math.log(hi) - math.log(lo))
+
+    def describe(self) -> str:
+        """Human text: the distribution and its parameters in SI (or as a factor)."""
+        unit = "" if self.factor else f" {self.unit}"
+        g = "{:.4g}".format
+        if self.shape == "uniform":
+            s = f"uniform on [{g(self.a)}, {g(self.b)}]{unit}"
+        elif self.shape == "normal":
+            s = f"normal, mean {g(self.a)}{unit}, sigma {g(self.b)}{unit}"
+        elif self.shape == "lognormal":
+            s = f"lognormal, median {g(math.exp(self.a))}{unit}, sigma of ln x {g(self.b)}"
+        else:
+            s = f"log-uniform on [{g(self.a)}, {g(self.b)}]{unit}"
+        if math.isfinite(self.lower) or math.isfinite(self.upper):
+            if not (self.shape in ("uniform", "log-uniform") and self.lower <= self.a and self.upper >= self.b):
+                s += f", truncated to [{g(self.lower)}, {g(self.upper)}]{unit}"
+        return s + (" (factor on the mission's value)" if self.factor else "")
+
+    def as_dict(self) -> dict[str, Any]:
+        lo, hi = self.interval()
+        return {"input": self.input, "written": self.text, "distribution": self.shape, "nominal": self.nominal,
+                "factor": self.factor, "unit": "" if self.factor else self.unit, "describe": self.describe(),
+                "range": [lo, hi]}
+
+
+@dataclass(frozen=True)
+class Uncertainty:
+    """The parsed [uncertainty] table: one Distribution per uncertain input, and notes."""
+
+    inputs: tuple[Distribution, ...]
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    def get(self, name: str) -> Distribution | None:
+        return next((d for d in self.inputs if d.input == name), None)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(d.input for d in self.inputs)
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"inputs": [d.as_dict() for d in self.inputs], "notes": list(self.notes)}
+
+
+def parse_uncertainty(table: Any, source: str, nominal: dict[str, Any], fixed: dict[str, str] | None = None) -> Uncertainty:
+    """Validate an [uncertainty] table against the mission's nominal values.
+
+    ``nominal`` maps input names to astropy quantities (or None when the
+    mission does not give the value, e.g. damping_time by default: then only
+    relative entries are accepted); ``fixed`` maps inputs that cannot vary
+    independently to the reason (e.g. GJ derived from poisson_ratio).
+    Raises MissionError naming ``uncertainty.FIELD`` and the fix.
+    """
+    fixed = fixed or {}
+    if not isinstance(table, dict):
+        raise MissionError(source, "uncertainty", "must be a table", 'write it as [uncertainty] with lines like length = "±1 %"')
+    if not table:
+        raise MissionError(source, "uncertainty", "is empty", 'give at least one input, e.g. bending_stiffness = "±15 %"')
+    if "bending_stiffness" in table and ("EI1" in table or "EI2" in table):
+        raise MissionError(source, "uncertainty.bending_stiffness",
+                           "given together with EI1/EI2",
+                           "give either bending_stiffness (one factor for both axes) or EI1 and/or EI2 (independent)")
+    out, notes = [], []
+    for key, value in table.items():
+        fld = f"uncertainty.{key}"
+        if key not in INPUTS:
+            close = difflib.get_close_matches(key, list(INPUTS), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise MissionError(source, fld, "unknown input" + hint, f"inputs are {', '.join(INPUTS)}")
+        if key in fixed:
+            raise MissionError(source, fld, f"cannot vary on its own: {fixed[key]}", "")
+        d, note = _parse_one(key, value, source, nominal, fld)
+        out.append(d)
+        if note:
+            notes.append(note)
+    return Uncertainty(tuple(out), tuple(notes))
+
+
+def _parse_one(key: str, value: Any, source: str, nominal: dict[str, Any], fld: str) -> tuple[Distribution, str]:
+    kind, what, limit, strict = INPUTS[key]
+
+    def err(problem: str, fix: str = "") -> MissionError:
+        return MissionError(source, fld, problem, fix)
+
+    q0 = nominal.get(key) if kind else None
+    as_factor = kind is None or q0 is None
+    unit = "" if as_factor else KINDS[kind][0].to_string()
+    x0 = 1.0 if as_factor else float(q0.to_value(KINDS[kind][0]))
+    example = KINDS[kind][2] if kind else '"10 %"'
+
+    def amount(v: Any, part: str, signed: bool = False) -> tuple[float, bool]:
+        """(value, relative?) of a percentage or a quantity; relative values are fractions."""
+        if isinstance(v, bool) or not isinstance(v, str):
+            raise err(f"{part}: expected a percentage such as \"10 %\" or a quantity such as {example}, got {v!r}")
+        m = _PCT.match(v)
+        if m:
+            frac = float(m.group(1)) / 100.0
+            if not math.isfinite(frac):
+                raise err(f"{part}: {v!r} is not a finite number")
+            return frac, True
+        if kind is None:
+            raise err(f"{part}: {v!r} is not a percentage; the common factor of both stiffnesses is relative",
+                      'write e.g. "±15 %" (or give EI1/EI2 separately in N m2)')
+        if q0 is None:
+            raise err(f"{part}: {v!r} is absolute, but the mission gives no {key} (a default is used)",
+                      f"give a relative value such as \"50 %\", or state {key} in the mission")
+        try:
+            q = to_quantity(v, kind)
+        except QuantityProblem as exc:
+            raise err(f"{part}: {exc}") from None
+        return float(q.to_value(KINDS[kind][0])), False
+
+    def deviation(v: Any, part: str) -> float:
+        """A tolerance or sigma: positive, finite, absolute SI (or factor)."""
+        a, rel = amount(v, part)
+        if not a > 0:
+            raise err(f"{part} must be positive, got {v!r}", "leave the input out of [uncertainty] to keep it exact")
+        if rel:
+            if x0 == 0:
+                raise err(f"{part}: a percentage of a zero {key} is zero", f"give an absolute value such as {example}")
+            return a * abs(x0)
+        return a
+
+    def bound(v: Any, part: str) -> float:
+        a, rel = amount(v, part, signed=True)
+        return x0 * (1.0 + a) if rel else a
+
+    text = value if isinstance(value, str) else repr(value)
+    note = ""
+    lower, upper = -math.inf, math.inf
+    if isinstance(value, str):
+        m = _TOL.match(value)
+        if not m:
+            raise err(f"cannot read {value!r} as a tolerance",
+                      'write a tolerance as "±10 %" or "±0.5 m", or a table such as '
+                      '{ distribution = "normal", sigma = "10 %" }')
+        t = deviation(m.group(2), "tolerance")
+        shape, a, b = "uniform", x0 - t, x0 + t
+    elif isinstance(value, dict):
+        for k in value:
+            if k not in _KEYS:
+                close = difflib.get_close_matches(k, list(_KEYS), n=1)
+                hint = f" (did you mean {close[0]!r}?)" if close else ""
+                raise err(f"unknown key {k!r}" + hint, f"keys are {', '.join(sorted(_KEYS))}")
+        shape = value.get("distribution")
+        if shape not in DISTRIBUTIONS:
+            close = difflib.get_close_matches(str(shape), list(DISTRIBUTIONS), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise err(f"distribution {shape!r} is not known" + hint, f"use one of {', '.join(DISTRIBUTIONS)}")
+        bnds = value.get("bounds")
+        if bnds is not None:
+            if not isinstance(bnds, list) or len(bnds) != 2:
+                raise err(f"bounds: expected [lo, hi], got {bnds!r}", 'e.g. bounds = ["-20 %", "+20 %"]')
+            lower, upper = bound(bnds[0], "bounds[0]"), bound(bnds[1], "bounds[1]")
+            if not lower < upper:
+                raise err(f"bounds {bnds!r}: lo must be below hi", "write them as [lo, hi]")
+            if not lower <= x0 <= upper:
+                raise err(f"bounds {bnds!r} do not contain the mission's value", "the nominal value must be possible")
+        extra = {"uniform": {"sigma", "factor"}, "normal": {"factor"}, "lognormal": {"factor"},
+                 "log-uniform": {"sigma"}}[shape] & set(value)
+        if extra:
+            raise err(f"{', '.join(sorted(extra))} does not apply to a {shape} distribution",
+                      {"uniform": "give bounds = [lo, hi]", "log-uniform": "give bounds = [lo, hi] or factor = 10"}.get(
+                          shape, "give sigma (and optional bounds)"))
+        if shape in ("normal", "lognormal"):
+            if "sigma" not in value:
+                raise err(f"a {shape} distribution needs sigma", 'e.g. sigma = "10 %"')
+            if shape == "normal":
+                a, b = x0, deviation(value["sigma"], "sigma")
+            else:
+                s = value["sigma"]
+                if isinstance(s, (int, float)) and not isinstance(s, bool):
+                    b = float(s)
+                elif isinstance(s, str) and _PCT.match(s):
+                    b = float(_PCT.match(s).group(1)) / 100.0
+                else:
+                    raise err(f"sigma of a lognormal is the standard deviation of ln(x): a number or a percentage, got {s!r}",
+                              'e.g. sigma = "30 %" or sigma = 0.3')
+                if not (math.isfinite(b) and b > 0):
+                    raise err(f"sigma must be a positive finite number, got {s!r}")
+                if x0 <= 0:
+                    raise err(f"a lognormal needs a positive {key}, the mission gives {x0:g}", "use a normal distribution")
+                a = math.log(x0)
+        elif shape == "uniform":
+            if bnds is None:
+                raise err("a uniform distribution needs bounds = [lo, hi]", 'e.g. bounds = ["-10 %", "+10 %"] or a tolerance "±10 %"')
+            a, b = lower, upper
+        else:  # log-uniform
+            if (bnds is None) == ("factor" not in value):
+                raise err("a log-uniform distribution needs bounds = [lo, hi] or factor (not both)", "e.g. factor = 10")
+            if "factor" in value:
+                fct = value["factor"]
+                if isinstance(fct, bool) or not isinstance(fct, (int, float)) or not math.isfinite(fct) or fct <= 1:
+                    raise err(f"factor must be a number > 1, got {fct!r}", "e.g. factor = 10 (nominal/10 ... nominal x 10)")
+                if x0 <= 0:
+                    raise err(f"a log-uniform needs a positive {key}, the mission gives {x0:g}")
+                a, b = x0 / fct, x0 * fct
+            else:
+                a, b = lower, upper
+            if not a > 0:
+                raise err(f"a log-uniform distribution needs a positive lower bound, got {a:g}")
+    else:
+        raise err(f"expected a tolerance such as \"±10 %\" or a distribution table, got {value!r}",
+                  'e.g. { distribution = "normal", sigma = "10 %" }')
+
+    # physical limits: positive inputs and magnitudes cannot go below zero
+    if limit is not None:
+        reach = a if shape in ("uniform", "log-uniform") else -math.inf if shape == "normal" else 0.0
+        reach = max(reach, lower)
+        if reach < limit or (strict and reach == limit and shape == "uniform"):
+            if shape == "uniform":
+                raise err(f"the range reaches {reach:g}{'' if as_factor else ' ' + unit}, but {what} is "
+                          f"{'positive' if strict else 'not negative'}", "narrow the tolerance")
+            if shape == "normal" and lower < limit:
+                from scipy import stats
+
+                lower = limit
+                cut = float(stats.norm.cdf((limit - a) / b))
+                note = (f"[uncertainty] {key}: the normal distribution is truncated at {limit:g} ({what} cannot be "
+                        f"negative); the probability cut off is {cut:.2e}")
+    d = Distribution(key, shape, x0, float(a), float(b), float(lower), float(upper), as_factor, unit, text)
+    if not d.mass() > 0:
+        raise err("the bounds leave no probability", "widen the bounds")
+    return d, note
