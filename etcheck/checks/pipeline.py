@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
+from etcheck.checks.fidelity import fidelity_of
 from etcheck.checks.margins import FAIL, INCOMPLETE, PASS, buckled_margins, overall_verdict, straight_margins
 from etcheck.checks.plan import plan
 from etcheck.checks.results import results_header
@@ -54,15 +55,18 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     sc = scene(mission)
     scaled = scale(sc)
     chosen = plan(scaled.params, mission.fidelity)
+    fid = fidelity_of(mission.fidelity, mission.tolerance)
     static = static_buckling(scaled)
     static["limits"] = static_limits(static, mission, sc)
     linear = accuracy_rows = None
-    options = replace(options, N=mission.resolution, eig_tol=mission.tolerance)  # the mission's [check] rules
+    options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
+    if fid.draft:
+        options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=())
     if chosen.rung == 1:
         linear = linear_stability(scaled, options)
         accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N else None
     margins = straight_margins(mission, sc, scaled, chosen, static, linear)
-    post = _postbuckling(mission, scaled, static, linear)
+    post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
     results = {
@@ -76,6 +80,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
             "load_N_per_m": scaled.scales.load,
         },
         "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete},
+        "fidelity": fid.as_dict(),
         "straight_rod": static,
         "linear": linear,
         "postbuckling": post,

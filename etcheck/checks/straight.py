@@ -22,6 +22,7 @@ from etcheck.errors import SolverError
 from etcheck.jsonable import finite_or_none
 from etcheck.rod.analytic import critical_loads
 from etcheck.rod.convergence import accuracy_table
+from etcheck.rod.damped_critical import damped_critical
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import (
     THRESHOLD,
@@ -45,7 +46,7 @@ class WhirlOptions:
     ``map_points``: grid of the stability map per axis; ``row_points``: spins
     at which the damped map is cut exactly at its static points; ``campbell_points``:
     spin values of the Campbell diagram; ``accuracy_N``: resolutions of the
-    accuracy table (empty: skip it).
+    accuracy table (empty: skip it); ``draft``: critical values and verdict only.
     """
 
     tol: float = 1e-10
@@ -56,6 +57,7 @@ class WhirlOptions:
     row_points: int = 61
     campbell_points: int = 41
     accuracy_N: tuple[int, ...] = (8, 12, 16, 24, 32)
+    draft: bool = False
 
     def __post_init__(self) -> None:
         if not (0 < self.tol < 1e-2 and 0 < self.eig_tol < 1e-2):
@@ -82,6 +84,58 @@ def _critical(point, what: str) -> dict[str, Any]:
     }
 
 
+def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
+    """A first pencil root (damped rod, Kelvin-Tait-Chetaev) as a critical point; refuses an unconverged one."""
+    if not root.converged:
+        raise SolverError(f"rung 1: the {what} was not located to tolerance: two-resolution error "
+                          f"{root.error:.1e} at N = {root.N}")
+    if root.value == 0:
+        kind = "unstable at start"
+    elif math.isinf(root.value):
+        kind = "none found"
+    else:
+        kind = "divergence"  # with damping the straight rod loses stability only through lambda = 0
+    value = root.value if 0 < root.value < math.inf else None
+    return {"value": value, "kind": kind, "bracket": [0.0, float(hi)] if kind == "none found" else
+            [float(root.value), float(root.value)], "error": root.error * (value or 0.0),
+            "message": f"first root of the static pencil ({root.model}), N = {root.N}", "N": root.N}
+
+
+def _damped_critical(p, options: WhirlOptions) -> tuple[dict, dict, bool]:
+    """Critical load at the operating spin and critical spin at the operating load of a damped
+    tether from the static pencils (exact, milliseconds), and whether the operating point is stable."""
+    dc = damped_critical(p, tol=options.tol)
+    if not dc.converged:
+        raise SolverError(f"rung 1: {dc.message}")
+    B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)
+    w_hi = 1.6 * max(p.omega, math.sqrt(p.R))
+    load = _pencil_critical(dc.critical_load, "critical load at the operating spin", B_hi)
+    spin = _pencil_critical(dc.critical_spin, "critical spin at the operating load", w_hi)
+    return load, spin, dc.stable
+
+
+def _operating_spectrum(op, wc: float) -> dict[str, Any]:
+    lam = op.eigenvalues
+    return {
+        "N": op.N,
+        "N_check": op.N_check,
+        "message": op.message,
+        "modes": [
+            {
+                "re": float(z.real),
+                "im": float(z.imag),
+                "error": float(e),
+                "frequency_Hz": float(abs(z.imag) * wc / (2 * math.pi)),
+                "growth_rate_per_s": float(z.real * wc),
+                "damping_ratio": float(-z.real / abs(z)) if abs(z) > 0 else None,
+            }
+            for z, e in zip(lam, op.errors)
+        ],
+        "least_damped": int(np.argmax(lam.real)) if lam.size else None,
+        "stable": bool(op.stable),
+    }
+
+
 def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) -> dict[str, Any]:
     """All rung-1 answers for the scene, dimensionless and in SI.
 
@@ -90,25 +144,63 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     (B_c(omega, T, gamma)), the critical spin at the operating load
     (omega_c(B, T, gamma)), the stable spin windows at the operating load,
     the Campbell diagram and the stability map.
+
+    With damping the critical values are first roots of the static pencils
+    (Kelvin-Tait-Chetaev: one dense QZ per resolution, no scan) and there are
+    no stability windows; without damping they come from the spectral scan
+    (flutter possible). ``options.draft`` answers the critical values and the
+    operating point only (no spectrum when damped, no Campbell diagram, no map).
     """
     p, sc = scaled.params, scaled.scales
     wc = sc.frequency
-    op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
-    if not op.converged:
-        fix = " (raise [check] resolution or leave it out)" if options.N else ""
-        raise SolverError(f"rung 1: the operating-point spectrum did not converge: {op.message}{fix}")
+    damped = p.gamma > 0
+    op = None
+    if not (options.draft and damped):
+        op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
+        if not op.converged:
+            fix = " (raise [check] resolution or leave it out)" if options.N else ""
+            raise SolverError(f"rung 1: the operating-point spectrum did not converge: {op.message}{fix}")
 
     # the critical points are located at the resolution the operating spectrum
     # needed (boundary layers under strong tension need more than the default)
-    N = options.N or max(24, op.N_check)
-    load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
-    # one scan along the spin from rest gives the critical spin and all stable spin windows
-    spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
-    if p.omega > 0 or spin_point.converged or spin_point.kind not in ("divergence", "flutter"):
-        spin = _critical(spin_point, "critical spin at the operating load")
-    else:  # informative only for a mission without spin: say so instead of stopping the check
-        spin = {"value": None, "kind": "not located", "bracket": [float(b) for b in spin_point.bracket],
-                "error": None, "message": spin_point.message, "N": N}
+    N = options.N or max(24, op.N_check if op else 24)
+    windows: list = []
+    scanned_to = None
+    if damped:
+        load, spin, stable = _damped_critical(p, options)
+    else:
+        load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
+        # one scan along the spin from rest gives the critical spin and all stable spin windows
+        spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
+        if p.omega > 0 or spin_point.converged or spin_point.kind not in ("divergence", "flutter"):
+            spin = _critical(spin_point, "critical spin at the operating load")
+        else:  # informative only for a mission without spin: say so instead of stopping the check
+            spin = {"value": None, "kind": "not located", "bracket": [float(b) for b in spin_point.bracket],
+                    "error": None, "message": spin_point.message, "N": N}
+        stable = bool(op.stable)
+
+    out = {
+        "model": "rung 1 (linear spectral)" + (", critical values from the static pencils" if damped else ""),
+        "threshold": THRESHOLD,
+        "operating_stable": bool(stable),
+        "operating_spectrum": _operating_spectrum(op, wc) if op else None,
+        "critical_load": load
+        | {"IB0_N_per_m": None if load["value"] is None else load["value"] * sc.load},
+        "critical_spin": spin
+        | {
+            "rad_s": None if spin["value"] is None else spin["value"] * wc,
+            "rpm": None if spin["value"] is None else spin["value"] * wc * RPM,
+        },
+        "spin_windows": [
+            {"omega": [a, b], "rpm": [a * wc * RPM, b * wc * RPM]} for a, b in windows
+        ],
+        "spin_windows_scanned_to_rpm": None if scanned_to is None else scanned_to * wc * RPM,
+        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * sc.load, "spin_rpm": p.omega * wc * RPM},
+        "campbell": None,
+        "stability_map": None,
+    }
+    if options.draft:
+        return out
 
     # ranges of the pictures: past the boundary and the operating point
     B_ref = load["value"] if load["kind"] in ("divergence", "flutter") else None
@@ -122,7 +214,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     w_grid = np.linspace(0.0, w_hi, options.map_points)
     curve_B, curve_w = static_curves(p, B_hi, w_hi, N=N)
     growth = rows = None
-    if p.gamma == 0:  # undamped: flutter can occur anywhere, sample a grid
+    if not damped:  # undamped: flutter can occur anywhere, sample a grid
         growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
     else:  # damped: stability changes only at static points, cut each row there exactly
         w_rows = np.linspace(0.0, w_hi, options.row_points)
@@ -131,41 +223,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
              "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
             for w, iv in zip(w_rows, stable_rows(p, w_rows, B_hi, N=N))
         ]
-
-    lam = op.eigenvalues
-    least = int(np.argmax(lam.real))
-    return {
-        "model": "rung 1 (linear spectral)",
-        "threshold": THRESHOLD,
-        "operating_spectrum": {
-            "N": op.N,
-            "N_check": op.N_check,
-            "message": op.message,
-            "modes": [
-                {
-                    "re": float(z.real),
-                    "im": float(z.imag),
-                    "error": float(e),
-                    "frequency_Hz": float(abs(z.imag) * wc / (2 * math.pi)),
-                    "growth_rate_per_s": float(z.real * wc),
-                    "damping_ratio": float(-z.real / abs(z)) if abs(z) > 0 else None,
-                }
-                for z, e in zip(lam, op.errors)
-            ],
-            "least_damped": least,
-            "stable": bool(op.stable),
-        },
-        "critical_load": load
-        | {"IB0_N_per_m": None if load["value"] is None else load["value"] * sc.load},
-        "critical_spin": spin
-        | {
-            "rad_s": None if spin["value"] is None else spin["value"] * wc,
-            "rpm": None if spin["value"] is None else spin["value"] * wc * RPM,
-        },
-        "spin_windows": [
-            {"omega": [a, b], "rpm": [a * wc * RPM, b * wc * RPM]} for a, b in windows
-        ],
-        "spin_windows_scanned_to_rpm": scanned_to * wc * RPM,
+    return out | {
         "campbell": {
             "omega": omegas.tolist(),
             "spin_rpm": (omegas * wc * RPM).tolist(),
@@ -184,7 +242,6 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
                 "spin_rpm": (curve_w * wc * RPM).tolist(),
             },
         },
-        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * sc.load, "spin_rpm": p.omega * wc * RPM},
     }
 
 
@@ -196,7 +253,8 @@ def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: i
     """
     rows = accuracy_table(scaled.params, Ns=Ns, k=k)
     return [
-        {"N": r.N, "solve_time_s": r.solve_time, "eigenvalue_error": r.eig_error, "load_error": r.load_error}
+        {"N": r.N, "solve_time_s": r.solve_time, "eigenvalue_error": finite_or_none(r.eig_error),
+         "load_error": finite_or_none(r.load_error)}
         for r in rows
     ]
 

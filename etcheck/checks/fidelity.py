@@ -1,0 +1,41 @@
+"""Sign-off or draft: what a check computes, at which tolerance, and what a draft leaves out.
+
+A sign-off check (the default) computes everything the report shows. A draft
+answers the margins and the verdict only, at a looser tolerance: no stability
+map, no Campbell diagram, no accuracy table, no post-buckling analysis (the
+straight tether's margins decide the verdict either way: a tether past its
+first critical load fails them).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+#: relative two-resolution agreement of a draft's critical values and eigenvalues
+DRAFT_TOLERANCE = 1e-6
+
+LEFT_OUT = ("stability map", "Campbell diagram", "eigenvalues at the operating point (damped tethers)",
+            "accuracy table", "post-buckling analysis (rungs 2-3)")
+
+
+@dataclass(frozen=True)
+class Fidelity:
+    """Which fidelity ran: ``name`` "sign-off" or "draft", its tolerance and what it left out."""
+
+    name: str
+    tolerance: float
+    left_out: tuple[str, ...] = ()
+
+    @property
+    def draft(self) -> bool:
+        return self.name == "draft"
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "tolerance": self.tolerance, "left_out": list(self.left_out)}
+
+
+def fidelity_of(mission_fidelity: str, tolerance: float) -> Fidelity:
+    """The fidelity a mission's ``[check] fidelity`` asks for (``tolerance``: its ``[check] tolerance``)."""
+    if mission_fidelity == "draft":
+        return Fidelity("draft", max(tolerance, DRAFT_TOLERANCE), LEFT_OUT)
+    return Fidelity("sign-off", tolerance)
