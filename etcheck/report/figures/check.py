@@ -319,5 +319,9 @@ def figures(results: dict) -> dict[str, str]:
         out["map"] = stability_map_plot(results)
     if (results.get("postbuckling") or {}).get("computed"):
         out |= postbuckling_plots(results)
+    if results.get("uncertainty"):
+        from etcheck.report.figures.uncertainty import tornado_plot
+
+        out["uncertainty"] = tornado_plot(results)
     return out
 
