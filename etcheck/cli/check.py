@@ -35,6 +35,10 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         if sys.stderr.isatty():
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         result = check(mission)
+        if mission.uncertainty is not None:  # the [uncertainty] table: sensitivities and probabilities (issue 15)
+            from etcheck.studies.uncertainty import attach
+
+            attach(result.results, mission)
         return result, write_reports(result.results, Path(args.out) / mission.slug, fmts)
 
     out = guarded(action, "no report written")
@@ -53,5 +57,9 @@ def summary(results: dict, paths: list[Path]) -> None:
         print(f"  {m['name']}: margin {value} (required {m['required']:g}) -> {m['verdict']} [{m['model']}]")
         if m["verdict"] == "incomplete":
             print(f"    incomplete: {m['why']}")
+    if results.get("uncertainty"):
+        from etcheck.studies.uncertainty import summary_lines
+
+        print("\n".join(summary_lines(results)))
     for path in paths:
         print(f"  wrote {path}")
