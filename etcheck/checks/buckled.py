@@ -34,6 +34,7 @@ from etcheck.checks.coil import (
 )
 from etcheck.errors import SolverError
 from etcheck.rod import equilibria as eq
+from etcheck.rod.branch_stability import secondary_pitchfork
 from etcheck.rod.branches import (
     Branch,
     connecting_branch,
@@ -287,13 +288,17 @@ def needs_postbuckling(B: float, B_c: float | None, required: float) -> bool:
     return B_c is not None and B > 0 and B * required >= B_c
 
 
-def _break_error(params: RodParameters, B_star: float, N: int) -> float:
-    """Relative change of b1's first secondary pitchfork when b1 is recomputed at 1.5 N."""
-    M = N + N // 2
-    start = next(s for s in primary_branches(params.with_(B=0.0), 1, M) if s.which == "S1")
-    branch = continue_branch(params, start, stop=(0.0, 1.05 * B_star), N=M)
-    other = [q.value for q in branch.special if q.kind == "break"]
-    return abs(other[0] - B_star) / B_star if other else math.inf
+def _secondary_pitchfork(params: RodParameters, branch: Branch, N: int) -> dict:
+    """b1's first secondary pitchfork at the scene's spin: :func:`~etcheck.rod.branch_stability.secondary_pitchfork`
+    (the one implementation of B*) on the diagram's b1 at N and b1 recomputed at 1.5 N; the value at 1.5 N,
+    its relative error estimate (the change from N), or the reason why there is none."""
+    try:
+        pt = secondary_pitchfork(params, params.omega, N=N, N_check=N + N // 2, branch=branch)
+    except ValueError:
+        return {"B": None, "error": None, "reason": "no secondary pitchfork on b1 in the computed range"}
+    except SolverError as exc:
+        return {"B": None, "error": None, "reason": f"not converged: {exc}"}
+    return {"B": pt.B, "error": pt.error / pt.B, "reason": ""}
 
 
 def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, required: float, N: int = 32) -> dict:
@@ -319,9 +324,13 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
     if b1 is not None:
         breaks = [q for q in b1["special"] if q["kind"] == "break"]
         first_unstable = next((v for v, st in zip(b1["values"], b1["stable"]) if st is False), None)
-        out["secondary_pitchfork_B"] = breaks[0]["B"] if breaks else None
-        out["secondary_pitchfork_error"] = _break_error(params, breaks[0]["B"], N) if breaks else None
-        out["secondary_pitchfork_IB0_N_per_m"] = breaks[0]["IB0_N_per_m"] if breaks else None
+        star = (_secondary_pitchfork(params, kept["b1"], N) if breaks
+                else {"B": None, "error": None, "reason": "no secondary pitchfork on b1 in the computed range"})
+        out["secondary_pitchfork_B"] = star["B"]
+        out["secondary_pitchfork_error"] = star["error"]
+        out["secondary_pitchfork_IB0_N_per_m"] = None if star["B"] is None else star["B"] * scales.load
+        if star["reason"]:
+            out["secondary_pitchfork_reason"] = star["reason"]
         out["b1_first_unstable_B"] = first_unstable
         out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
     out["operating"] = None

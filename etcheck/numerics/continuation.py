@@ -23,10 +23,12 @@ Numerical Continuation Methods*, ch. 2-3, 8):
   turn of the tangent;
 * folds: sign change of tau_p; simple branch points: sign change of
   det([[Ju, Jp], [tau]]) (a fold does not change it); user tests: sign
-  change of the test function. Every special point is located by the secant
-  (Illinois) method on the arclength between the two bracketing points, each
-  trial point being corrected onto the branch, and is stored with its
-  bracket.
+  change of the test function. Every special point is a bracketed root: the
+  secant (Illinois) method on the arclength between the two bracketing
+  points, each trial point corrected onto the branch and rejected if it
+  jumped to a crossing branch; the root is interpolated between the two
+  converged ends of the final bracket and flagged ``converged`` only when
+  that bracket is narrower than ``LOCATE_WIDTH`` (never the nearest step).
 * branch switching: :func:`switch_branch` starts the continuation from a
   branch point along a given kernel direction (the caller supplies it, e.g.
   the kernel of the Jacobian restricted to a symmetry class).
@@ -41,7 +43,7 @@ import math
 import time
 import warnings
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -125,14 +127,27 @@ class Point:
 @dataclass(frozen=True, eq=False)
 class SpecialPoint:
     """A located special point: kind ("fold", "bp" or a user test name), the
-    corrected point, the index i of the branch point before it, the arclength
-    bracket (s_lo, s_hi) it was located in, and the test value there."""
+    converged point of the final bracket nearest the root (``point``), the
+    index i of the branch point before it, the arclength bracket (s_lo, s_hi)
+    it was located in, and the test value at ``point``.
+
+    ``p``: the located parameter value, the root of the test function
+    interpolated linearly inside the final bracket (whose ends are both
+    converged points of the branch on either side of the sign change);
+    ``p_bracket``: the parameter at the two ends (the root lies between);
+    ``converged``: the bracket shrank below ``LOCATE_WIDTH`` in arclength
+    (else ``reason`` says why it stopped and the bracket is all that is known).
+    """
 
     kind: str
     point: Point
     index: int
     bracket: tuple
     value: float
+    p: float = math.nan
+    p_bracket: tuple = (math.nan, math.nan)
+    converged: bool = True
+    reason: str = ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -275,30 +290,82 @@ def illinois_update(x: float, fx: float, lo: float, hi: float, flo: float, fhi: 
     return lo, x, 0.5 * flo, fx
 
 
-def _locate(problem, a: Point, b: Point, name: str, W, opts) -> tuple[Point, tuple]:
-    """Secant/Illinois on the arclength from point a where tests[name] changes sign."""
-    fa, fb = a.tests[name], b.tests[name]
+#: a special point counts as located when its arclength bracket is narrower than this (weighted norm)
+LOCATE_WIDTH = 1e-7
+
+
+def _locate(problem, a: Point, b: Point, name: str, W, opts) -> SpecialPoint:
+    """Bracketed root of tests[name] between the accepted points a and b.
+
+    Illinois (modified regula falsi) on the arclength from a. Each trial is
+    corrected onto the branch by a short pseudo-arclength step from the
+    nearer converged end of the current bracket, along that end's tangent
+    (up to 40 Newton iterations: next to a branch point the bordered matrix
+    is nearly singular and Newton converges only linearly), and is kept only
+    if its tangent has not turned away from that end's by more than the two
+    ends' tangents differ (plus slack): next to a branch point a corrector
+    can land on the crossing branch (e.g. the straight rod), whose test value
+    says nothing about the root. A trial that fails or jumps is replaced by
+    points ever closer to the converged ends. The root is interpolated
+    linearly between the two converged bracket ends; the point is
+    ``converged`` when the bracket is narrower than ``LOCATE_WIDTH``.
+    """
     lo, hi = 0.0, b.s - a.s
-    flo, fhi = fa, fb
-    best = b
-    prev = math.inf
-    for _ in range(60):
-        sig = hi - fhi * (hi - lo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
-        if not (lo < sig < hi):
-            sig = 0.5 * (lo + hi)
-        if abs(sig - prev) < opts.locate_tol:
+    flo, fhi = a.tests[name], b.tests[name]
+    f0lo, f0hi = flo, fhi  # true (not Illinois-halved) values at the ends
+    plo, phi = a, b
+    failures = 0
+    reason = ""
+    for _ in range(100):
+        if hi - lo <= opts.locate_tol:
             break
-        prev = sig
-        u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, sig, W, opts.tol, opts.max_newton + 4)
-        if not ok:
-            break
-        q = _make_point(problem, u, p, a.tau, W, a.s + sig, rn, it, opts)
+        if failures:
+            # after a failed or jumped trial: probe ever closer to the converged ends, alternately
+            frac = 0.5 ** (1 + (failures + 1) // 2)
+            sig = lo + (frac if failures % 2 else 1.0 - frac) * (hi - lo)
+        else:
+            sig = hi - fhi * (hi - lo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
+            if not (lo < sig < hi):
+                sig = 0.5 * (lo + hi)
+        # predictor-corrector from the nearer converged bracket end along its own tangent: a short step
+        # keeps the trial in the basin of this branch next to a branch point
+        base, step = (plo, sig - lo) if sig - lo <= hi - sig else (phi, sig - hi)
+        u, p, rn, it, ok = correct(problem, base.u, base.p, base.tau, step, W, opts.tol, max(40, opts.max_newton + 4))
+        q = None
+        if ok:
+            q = _make_point(problem, u, p, base.tau, W, a.s + sig, rn, it, opts)
+            cos_end = float(np.sum(W * plo.tau * phi.tau))
+            if float(np.sum(W * base.tau * q.tau)) < min(cos_end, math.cos(opts.max_angle)) - 0.2 or name not in q.tests:
+                q = None  # left the branch (landed on a crossing one)
+        if q is None:
+            failures += 1
+            if failures > 12:
+                reason = (f"corrector failed or left the branch {failures} times; bracket width {hi - lo:.1e} "
+                          f"> {LOCATE_WIDTH:.0e}")
+                break
+            continue
+        failures = 0
         fq = q.tests[name]
-        best = q
-        lo, hi, flo, fhi = illinois_update(sig, fq, lo, hi, flo, fhi)
-        if hi - lo < opts.locate_tol or fq == 0.0:
+        if fq == 0.0:
+            lo = hi = sig
+            plo = phi = q
+            f0lo = f0hi = 0.0
             break
-    return best, (a.s + lo, a.s + hi)
+        if (fq > 0) == (flo > 0):
+            lo, flo, f0lo, plo = sig, fq, fq, q
+            fhi *= 0.5
+        else:
+            hi, fhi, f0hi, phi = sig, fq, fq, q
+            flo *= 0.5
+    width = hi - lo
+    t = f0lo / (f0lo - f0hi) if f0lo != f0hi else 0.5
+    p_root = plo.p + t * (phi.p - plo.p)
+    best = plo if abs(f0lo) <= abs(f0hi) else phi
+    converged = width <= LOCATE_WIDTH
+    if not converged and not reason:
+        reason = f"bracket width {width:.1e} > {LOCATE_WIDTH:.0e} after the iteration limit"
+    return SpecialPoint(name, best, -1, (a.s + lo, a.s + hi), float(best.tests[name]), float(p_root),
+                        (float(plo.p), float(phi.p)), converged, reason)
 
 
 def continuation(problem, u0, p0: float, tau0: np.ndarray, opts: ContinuationOptions,
@@ -365,8 +432,8 @@ def continuation(problem, u0, p0: float, tau0: np.ndarray, opts: ContinuationOpt
             fb = b.tests.get(name)
             if fb is None or fa == 0.0 or (fa > 0) == (fb > 0):
                 continue
-            q, br = _locate(problem, a, b, name, W, opts)
-            special.append(SpecialPoint(name, q, len(pts) - 1, br, float(q.tests[name])))
+            sp = _locate(problem, a, b, name, W, opts)
+            special.append(replace(sp, index=len(pts) - 1))
             if name in opts.stop_on:
                 hit_special = name
         pts.append(b)

@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
+from ..errors import SolverError
 from ..numerics.chebyshev import clenshaw_curtis_weights
 from ..numerics.eigen import match_spectra, single_blas_thread
 from . import branches as br
@@ -71,6 +72,7 @@ __all__ = [
     "mode_energies",
     "branch_spectra",
     "b1_state",
+    "first_break",
     "secondary_pitchfork",
     "secondary_pitchfork_curve",
     "find_hopf",
@@ -374,10 +376,16 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
 
 @dataclass(frozen=True)
 class PitchforkPoint:
-    """Secondary pitchfork of b1 at spin omega: load ``B`` (located exactly at
-    resolution ``N`` as the symmetry-breaking branch point of the Fix(S1)
-    continuation in B), ``B_check`` the same at ``N_check``, ``error`` their
-    difference; ``measure1`` of the state there. Dimensionless."""
+    """Secondary pitchfork of b1 at spin omega (dimensionless).
+
+    Located as the symmetry-breaking branch point of the Fix(S1) continuation
+    of b1 in B (a bracketed root of the restricted test function) at two
+    resolutions: ``B`` is the value at the finer one, max(``N``,
+    ``N_check``), ``B_check`` the value at the other; ``error`` = |B -
+    B_check|: the change of the coarser value, which bounds the error of the
+    finer one (the collocation converges spectrally; checked against a much
+    finer resolution in the tests). NaN when N_check = N (one resolution).
+    ``measure1`` of the state there (finer resolution)."""
 
     omega: float
     B: float
@@ -500,33 +508,66 @@ def _b1_in_B(params: RodParameters, omega: float, N: int, B_ref: float, B_max: f
     return up, down
 
 
+def first_break(branch, above: float = -math.inf) -> br.RodBranchPoint | None:
+    """The first symmetry-breaking branch point ("break") of ``branch`` with B > ``above``
+    (None if there is none); raises :class:`~etcheck.errors.SolverError` when it was
+    bracketed but not located (bracket wider than ``LOCATE_WIDTH``)."""
+    brk = next((q for q in branch.special if q.kind == "break" and q.value > above), None)
+    if brk is not None and not brk.converged:
+        raise SolverError(f"secondary pitchfork of {branch.name} at N = {branch.N} not located: {brk.reason} "
+                          f"(bracketed in B = [{brk.bracket[0]:.10g}, {brk.bracket[1]:.10g}])")
+    return brk
+
+
+def _b1_direct(params: RodParameters, N: int, B_max: float):
+    """b1 from its pitchfork at the scene's omega and T, continued in B up to B_max (Fix(S1))."""
+    start = next(s for s in br.primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
+    return br.continue_branch(params, start, stop=(0.0, B_max), N=N)
+
+
+@single_blas_thread
 def secondary_pitchfork(params: RodParameters, omega: float, N: int = 32, N_check: int | None = None,
-                        B_ref: float = 1.2, B_max: float = 20.0) -> PitchforkPoint:
+                        B_ref: float = 1.2, B_max: float = 20.0, branch=None) -> PitchforkPoint:
     """Secondary (symmetry-breaking) pitchfork of b1 at spin omega (Secs. VII A, VIII).
 
-    b1 is continued inside Fix(S1) in B from (B_ref, omega); the first
-    zero of the Jacobian restricted to the -1 eigenspace of S1 (kind
-    "break") is located exactly (secant on a continuous test function,
-    each trial corrected onto the branch). Done at N and N_check (default
-    check_resolution(N)); error = |B_N - B_check| (NaN when N_check = N:
-    one resolution only). Dimensionless.
+    The one implementation of B* (the check's margin, the B*(omega) curve of
+    the damping map and the benchmarks all come here). b1 is continued inside
+    Fix(S1) in B, either from (B_ref, omega) reached through spin (works past
+    b1's lift-off) or, when ``branch`` is given (b1 at this omega from its
+    pitchfork, as the check's diagram continues it), from its pitchfork at
+    the same omega at the other resolution; the first zero of the Jacobian
+    restricted to the -1 eigenspace of S1 (kind "break") is located as a
+    bracketed root (:func:`first_break`). Done at N and N_check (default
+    check_resolution(N)); see :class:`PitchforkPoint` (value at the finer
+    resolution, error = the change of the coarser one). Raises ValueError
+    when no secondary pitchfork lies below B_max, SolverError when it is not
+    located. Dimensionless.
     """
     t0 = time.perf_counter()
     Nc = check_resolution(N) if N_check is None else int(N_check)
-    out = []
-    m1 = math.nan
-    for n in (int(N),) if Nc == int(N) else (int(N), Nc):
-        up, _ = _b1_in_B(params, omega, n, B_ref, B_max)
-        brk = [q for q in up.special if q.kind == "break" and q.value > B_ref]
-        if not brk:
-            raise ValueError(f"no secondary pitchfork of b1 between B = {B_ref} and {B_max} at omega = {omega}")
-        out.append(brk[0].value)
-        if n == N:
-            m1 = brk[0].measure1
-    if len(out) == 1:  # N_check = N: one resolution, no error estimate
-        out.append(out[0])
-    return PitchforkPoint(float(omega), out[0], out[1], abs(out[0] - out[1]) if Nc != int(N) else math.nan,
-                          int(N), Nc, m1, time.perf_counter() - t0)
+    if branch is not None and (branch.parameter != "B" or branch.which != "S1"
+                               or branch.params.omega != omega or branch.N != int(N)):
+        raise ValueError("branch must be b1 (Fix(S1)) continued in B at the given omega and resolution N")
+    got = {}
+    for n in sorted({int(N), Nc}, key=lambda k: k != (branch.N if branch is not None else -1)):
+        if branch is not None and n == branch.N:
+            brk = first_break(branch)
+        elif branch is not None:
+            B_first = got[branch.N][0]
+            brk = first_break(_b1_direct(branch.params, n, B_first * (1.0 + 0.05)))
+        else:
+            up, _ = _b1_in_B(params, omega, n, B_ref, B_max)
+            brk = first_break(up, above=B_ref)
+        if brk is None:
+            lo = 0.0 if branch is not None else B_ref
+            hi = branch.values.max() if branch is not None and n == branch.N else B_max
+            raise ValueError(f"no secondary pitchfork of b1 between B = {lo:g} and {hi:g} at omega = {omega} "
+                             f"(N = {n})")
+        got[n] = (float(brk.value), float(brk.measure1))
+    fine, coarse = max(got), min(got)
+    err = abs(got[fine][0] - got[coarse][0]) if fine != coarse else math.nan
+    return PitchforkPoint(float(omega), got[fine][0], got[coarse][0], err, int(N), Nc, got[fine][1],
+                          time.perf_counter() - t0)
 
 
 @single_blas_thread

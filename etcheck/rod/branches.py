@@ -261,7 +261,11 @@ class BranchStart:
 @dataclass(frozen=True, eq=False)
 class RodBranchPoint:
     """A special point on a branch: kind ("fold", "bp", "break" = symmetry-breaking
-    branch point), parameter value, bracket in the parameter, the state and its measure_1."""
+    branch point), parameter value (the bracketed root of its test function,
+    :class:`~etcheck.numerics.continuation.SpecialPoint`), bracket in the
+    parameter (the converged branch points on either side of the root), the
+    state there (the nearer bracket end) and its measure_1; ``converged``:
+    the bracket shrank to ``LOCATE_WIDTH`` in arclength (else ``reason``)."""
 
     kind: str
     value: float
@@ -269,6 +273,8 @@ class RodBranchPoint:
     state: eq.Equilibrium
     measure1: float
     raw: SpecialPoint
+    converged: bool = True
+    reason: str = ""
 
 
 @dataclass(frozen=True, eq=False)
@@ -311,8 +317,8 @@ def _summary(branch: Branch) -> dict:
         "name": branch.name, "parameter": branch.parameter, "N": branch.N, "symmetry": branch.which,
         "values": branch.values.tolist(), "measure1": branch.measure1.tolist(),
         "measure2": branch.measure2.tolist(), "max_deflection": branch.max_deflection.tolist(),
-        "special": [{"kind": q.kind, "value": q.value, "bracket": list(q.bracket), "measure1": q.measure1}
-                    for q in branch.special],
+        "special": [{"kind": q.kind, "value": q.value, "bracket": list(q.bracket), "measure1": q.measure1,
+                     "converged": q.converged, "reason": q.reason} for q in branch.special],
         "time": branch.time, "reason": branch.reason, "residual": branch.residual,
     }
 
@@ -330,8 +336,8 @@ def _branch(name, problem: _RodProblem, res: ContinuationResult) -> Branch:
     special = []
     for sp in res.special:
         st = _stamp(problem, sp.point)
-        a, b = res.points[sp.index], res.points[min(sp.index + 1, len(res.points) - 1)]
-        special.append(RodBranchPoint(sp.kind, sp.point.p, (a.p, b.p), st, eq.measure1(st), sp))
+        special.append(RodBranchPoint(sp.kind, sp.p, tuple(sorted(sp.p_bracket)), st, eq.measure1(st), sp,
+                                      sp.converged, sp.reason))
     return Branch(
         name=name, parameter=problem.parameter, params=problem.params, N=problem.N, which=problem.which,
         values=res.p, measure1=np.array([m.measure1 for m in ms]), measure2=np.array([m.measure2 for m in ms]),
@@ -583,7 +589,7 @@ def trivial_branch_points(params: RodParameters, which: str | None, B_max: float
     opts = ContinuationOptions(ds=dB, ds_min=1e-9, ds_max=dB, p_min=-1.0, p_max=B_max, max_points=100000,
                                tol=1e-10, locate_tol=1e-13, weight_p=0.5)
     res = continuation(prob, u0, 0.0, tau, opts)
-    return [sp.point.p for sp in res.special if sp.kind == "bp"], res
+    return [sp.p for sp in res.special if sp.kind == "bp"], res
 
 
 @dataclass(frozen=True)

@@ -56,7 +56,7 @@ def test_secondary_pitchfork_at_rest_matches_paper(pitchfork0):
 def test_secondary_pitchfork_is_where_the_static_operator_is_singular(b1_static, pitchfork0):
     """The located break point is a zero of A0 (lambda = 0 eigenvalue of rung 3)."""
     brk = [q for q in b1_static.special if q.kind == "break"][0]
-    assert abs(brk.value - pitchfork0.B) < 1e-9
+    assert abs(brk.value - pitchfork0.B_check) < 1e-9  # both at N = 24 (pitchfork0.B is at 32)
     A0 = linear_operator(brk.state.params, brk.state, N)[0]
     near = eq.solve_equilibrium(brk.state.params.with_(B=1.5), brk.state)
     A0_far = linear_operator(near.params, near, N)[0]
@@ -244,3 +244,36 @@ def test_damping_map_sanity(pitchfork0):
     # away from the pitchfork (complex modes) more damping gives more decay
     assert np.all(dm.decay[1, 0, 1:3] > dm.decay[0, 0, 1:3])
     json.dumps(dm.as_dict())
+
+
+# --- error estimates bound the true error (issue 11) ------------------------------------------
+
+
+_F = 4.730040744862704**4
+
+
+@pytest.mark.parametrize("params", [RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, f=_F),
+                                    RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, f=_F, omega=0.3)],
+                         ids=["SET", "SET-omega0.3"])
+def test_secondary_pitchfork_estimate_bounds_its_error(params):
+    """B* (the value at the finer resolution) is within its stated error of B* at a much finer
+    resolution, and the check's route (b1 from its pitchfork at the scene's spin) and the curve's
+    route (b1 reached through spin at B_ref) give one value."""
+    b = bs._b1_direct(params, 20, 2.5)
+    pt = bs.secondary_pitchfork(params, params.omega, N=20, N_check=28, branch=b)
+    ref = bs.first_break(bs._b1_direct(params, 40, 1.02 * pt.B)).value
+    assert abs(pt.B - ref) <= pt.error
+    if params.omega == 0:
+        up, _ = bs._b1_in_B(params, 0.0, 28, 1.2, 2.5)
+        assert abs(bs.first_break(up, above=1.2).value - pt.B) <= 1e-9  # one value, one route
+
+
+def test_measure1_estimate_bounds_its_error():
+    """measure_1 along b1: the two-resolution estimate of resolution_check bounds the change
+    against a much finer resolution (SET, omega = 0.3)."""
+    p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, f=_F, omega=0.3)
+    b = bs._b1_direct(p, 20, 1.6)
+    chk = br.resolution_check(b)
+    B, st = br.locate(b, lambda s: s.params.B, 1.5)
+    fine = eq.solve_equilibrium(st.params, eq.resample_state(st, 40))
+    assert abs(eq.measure1(fine) - eq.measure1(st)) <= chk.measure1_error

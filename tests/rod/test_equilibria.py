@@ -497,12 +497,12 @@ class _Pitchfork:
 def test_generic_continuation_finds_folds_and_branch_points():
     opts = ContinuationOptions(ds=0.1, ds_max=0.2, max_points=200, detect_bp=False)
     res = continuation(_Circle(), np.array([1.0]), 0.0, np.array([0.0, 1.0]), opts)
-    folds = [sp.point.p for sp in res.special if sp.kind == "fold"]
+    folds = [sp.p for sp in res.special if sp.kind == "fold"]
     assert len(folds) >= 2
     assert abs(folds[0] - 1.0) < 1e-9 and abs(folds[1] + 1.0) < 1e-9
     opts = ContinuationOptions(ds=0.07, ds_max=0.1, p_min=-1.0, p_max=1.0)
     res = continuation(_Pitchfork(), np.array([0.0]), -0.5, np.array([0.0, 1.0]), opts)
-    bps = [sp.point.p for sp in res.special if sp.kind == "bp"]
+    bps = [sp.p for sp in res.special if sp.kind == "bp"]
     assert len(bps) == 1 and abs(bps[0] - 0.3) < 1e-9
     assert res.reason == "parameter bound" and res.p[-1] == 1.0
     with pytest.raises(ValueError):
