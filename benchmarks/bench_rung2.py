@@ -1,6 +1,6 @@
 """Rung-2 timing and accuracy for the SET scene (not a test).
 
-P = 0.001, R = 21/38, Gamma = 0.76923, f = 4.730040744862704**4, T = 0.
+P = 0.001, R = 21/38, Gamma = 1/1.3, f = 4.730040744862704**4, T = 0.
 For each resolution N: trace b1 from BP1 to B = 3, b2 to measure_1 = 0.05,
 switch onto b12 at b1's secondary pitchfork and follow it back to BP1; print
 time, points, largest residual, a two-resolution error (resolution_check:
@@ -24,7 +24,7 @@ RESOLUTIONS = (20, 24, 32, 40, 48)
 
 
 def main() -> None:
-    scene = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
+    scene = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3)
     Bc = critical_loads(scene.R, scene.f, 1)[0]
     rows = {}
     with threadpool_limits(limits=1):

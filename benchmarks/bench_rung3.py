@@ -25,7 +25,7 @@ from etcheck.rod import branches as br  # noqa: E402
 from etcheck.rod import equilibria as eq  # noqa: E402
 from etcheck.rod.parameters import RodParameters  # noqa: E402
 
-SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
+SET = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3)  # Gamma = 1/(1 + nu), nu = 0.3, as the missions
 
 
 def pitchfork_curve(omegas, N, N_check):
