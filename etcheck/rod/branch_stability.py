@@ -860,8 +860,8 @@ def damping_map(params: RodParameters, B_grid, omega_grid, gammas=HOPF_GAMMAS, N
         lower = max(pf + margin, float(B_grid.min()) - 0.05) if math.isfinite(pf) else float(B_grid.min()) - 0.05
         up, down = _b1_in_B(params, float(w), N, B_ref, max(float(B_grid.max()) + B_above, B_ref + 0.1),
                             lower=lower)
-        brk = [q for q in up.special if q.kind == "break" and q.value > B_ref]
-        curve[iw] = brk[0].value if brk else math.inf
+        brk = first_break(up, above=B_ref)
+        curve[iw] = brk.value if brk is not None else math.inf
         pool = list(up.states) + (list(down.states) if down is not None else [])
         pool_B = np.array([s.params.B for s in pool])
         pool_m = np.array([eq.measure1(s) for s in pool])
