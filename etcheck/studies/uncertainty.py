@@ -153,6 +153,8 @@ ROUTE_PENCIL = "first roots of the static pencils per sample (rung 1, exact with
 ROUTE_UNDAMPED = "rung 1 spectral scans (undamped: flutter possible)"
 NOT_ANSWERED_UNDAMPED = "not answered (undamped: flutter possible; no fast exact route)"
 _BETA1_CUBED = characteristic_roots(1)[0].beta ** 3
+#: Quantile cut of the conditioning input's range in the root find (absolute error <= 1e-10 in P).
+_CUT = 1e-10
 
 
 def closed_form_margin(v: dict[str, np.ndarray]) -> np.ndarray:
@@ -476,8 +478,10 @@ def conditional_probability(model: MarginModel, kind: str, v: dict[str, float], 
         x_star = xv * (req / m) ** (1.0 / a)
         sample_x = x_star / model.nominal[name] if d.factor and name != "bending_stiffness" else x_star
         return float(d.sf(sample_x) if a < 0 else d.cdf(sample_x)), 1
-    lo, hi = (float(x) for x in d.ppf([1e-15, 1.0 - 1e-15]))
-    lo = max(lo, 1e-300) if lo <= 0 else lo
+    # the range searched: the 1e-10 and 1 - 1e-10 quantiles (an absolute error below 1e-10 in P)
+    lo, hi = (float(x) for x in d.ppf([_CUT, 1.0 - _CUT]))
+    if lo <= 0:
+        lo = float(d.ppf(0.5)) * 1e-6
     count = [0]
 
     def g(lnx: float) -> float:
@@ -554,10 +558,11 @@ def _chunk_worker(args) -> list[tuple[float, int]]:
         return [conditional_probability(model, kind, v, cond) for v in rows]
 
 
+@single_blas_thread
 def failure_probabilities(model: MarginModel, unc: Uncertainty, sens: tuple[MarginSensitivity, ...] | None = None,
                           target: float = 0.1, max_samples: int | None = None, replicates: int = 8,
                           first: int = 8, seed: int = 20240615, workers: int | None = None,
-                          negligible: float = 1e-12) -> tuple[Probability, ...]:
+                          negligible: float = 1e-9) -> tuple[Probability, ...]:
     """P(margin < required) for every margin of the model, to a relative 95 % half-width ``target``.
 
     Randomised QMC (``replicates`` scrambled Sobol sequences, ``first`` points
@@ -720,6 +725,7 @@ class UncertaintyStudy:
         }
 
 
+@single_blas_thread
 def study(mission: Mission, target: float = 0.1, max_samples: int | None = None, workers: int | None = None,
           probabilities: bool = True, seed: int = 20240615) -> UncertaintyStudy:
     """Elasticities of every margin; with the mission's [uncertainty] table also the tolerance
