@@ -14,6 +14,7 @@ from typing import Any
 from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
 from etcheck.checks.fidelity import fidelity_of
 from etcheck.checks.margins import FAIL, INCOMPLETE, PASS, buckled_margins, overall_verdict, straight_margins
+from etcheck.checks.orbit_load import orbit_results
 from etcheck.checks.plan import plan
 from etcheck.checks.results import results_header
 from etcheck.checks.static_buckling import static_buckling, static_limits
@@ -88,6 +89,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "margins": [m.as_dict() for m in margins],
         "verdict": overall_verdict(margins),
         "validity": validity(mission, scaled, chosen, post),
+        "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
     }
     return CheckResult(results=results)

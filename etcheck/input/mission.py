@@ -16,16 +16,21 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import astropy.units as u
 
 from etcheck.errors import MissionError
+from etcheck.input.orbit_field import check_one_field_source, orbit_axial_field, orbit_echo, orbit_notes
 from etcheck.input.sweep_axes import AXES, Axis, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
 from etcheck.rod.parameters import F_CLAMPED
+
+if TYPE_CHECKING:  # etcheck.orbit (IGRF, SGP4) is imported only for missions with an [orbit] table
+    from etcheck.orbit.envelope import AxialFieldEnvelope
+    from etcheck.orbit.spec import OrbitSpec
 
 #: Dimensionless damping gamma assumed when a mission gives no damping_time:
 #: the paper's estimate for a real tether in working conditions (Sec. VII B).
@@ -49,11 +54,12 @@ SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
     },
     "operation": {
         "current": ("current_range", True),
-        "axial_field": ("field_range", True),
+        "axial_field": ("field_range", False),  # required unless [orbit] is given (exactly one of the two)
         "spin_rate": ("angular_rate", False),
         "end_tension": ("force", False),
     },
     "sweep": {name: ("sweep_axis", False) for name in AXES},
+    "orbit": {},  # its fields are checked by etcheck.orbit.spec.parse_orbit (imported only when given)
     "uncertainty": {name: ("uncertainty", False) for name in UNCERTAIN_INPUTS},
     "check": {
         "required_margin": ("number", False),
@@ -100,6 +106,10 @@ class Mission:
     notes: tuple[str, ...] = field(default_factory=tuple)
     sweep: tuple[Axis, ...] = ()  # the [sweep] table: default axes of `etcheck sweep`
     uncertainty: Uncertainty | None = None  # the [uncertainty] table (etcheck.input.uncertainty)
+    # the [orbit] table (etcheck.orbit.spec) and its envelope, computed once at load: axial_field is then
+    # (env.worst, env.worst) T, the worst axial field over the orbit and the libration set
+    orbit: OrbitSpec | None = None
+    orbit_envelope: AxialFieldEnvelope | None = field(default=None, compare=False, repr=False)
 
     @property
     def slug(self) -> str:
@@ -163,7 +173,7 @@ class Mission:
                 "tolerance": self.tolerance,
             },
             "notes": list(self.notes),
-        }
+        } | ({"orbit": orbit_echo(self.orbit, self.orbit_envelope)} if self.orbit_envelope is not None else {})
 
 
 _UNIT_TEXT = {"m2 N": "N m²", "kg / m": "kg/m", "rad / s": "rad/s", "m2": "m²"}
@@ -329,7 +339,14 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
             raise err("tether.damping_time", f"must be >= 0, got {t['damping_time']!r}")
 
     current = _range(o, "operation", "current", "current", err)
-    bfield = _range(o, "operation", "axial_field", "field", err)
+    check_one_field_source(o, data, source)
+    orbit = envelope = None
+    if "orbit" in data:  # the field along the orbit (IGRF), evaluated once here: its worst case is the load's field
+        orbit, envelope = orbit_axial_field(data["orbit"], source)
+        bfield = (envelope.worst * u.T, envelope.worst * u.T)
+        notes.extend(orbit_notes(orbit, envelope))
+    else:
+        bfield = _range(o, "operation", "axial_field", "field", err)
     spin = 0.0 * u.rad / u.s
     if "spin_rate" in o:
         spin = get("operation", "spin_rate", "angular_rate", o)
@@ -397,6 +414,8 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         notes=tuple(notes),
         sweep=parse_table(data["sweep"], source) if data.get("sweep") else (),
         uncertainty=uncertainty,
+        orbit=orbit,
+        orbit_envelope=envelope,
     )
 
 
@@ -422,6 +441,8 @@ def _check_tables(data: dict[str, Any], source: str) -> None:
             raise MissionError(source, table, "unknown table" + _suggest(table, SCHEMA), f"tables are {', '.join('[' + k + ']' for k in SCHEMA)}")
         if not isinstance(value, dict):
             raise MissionError(source, table, "must be a table", f"write it as [{table}] followed by its fields")
+        if table == "orbit":
+            continue  # parse_orbit names unknown orbit.FIELDs with its own suggestions
         for key in value:
             if key not in SCHEMA[table]:
                 raise MissionError(
