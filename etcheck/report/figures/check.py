@@ -314,7 +314,7 @@ def _operating_mark(results: dict, op: dict | None):
 def figures(results: dict) -> dict[str, str]:
     """All figures the report shows, keyed by name."""
     out = {"chi": chi_plot(results), "mode": mode_plot(results)}
-    if results.get("linear"):
+    if (results.get("linear") or {}).get("campbell"):  # a draft has neither Campbell diagram nor map
         out["campbell"] = campbell_plot(results)
         out["map"] = stability_map_plot(results)
     if (results.get("postbuckling") or {}).get("computed"):
@@ -323,5 +323,9 @@ def figures(results: dict) -> dict[str, str]:
         from etcheck.report.figures.uncertainty import tornado_plot
 
         out["uncertainty"] = tornado_plot(results)
+    if results.get("orbit"):
+        from etcheck.report.figures.orbit import orbit_figures
+
+        out |= orbit_figures(results)
     return out
 
