@@ -25,7 +25,7 @@ def sci(x, digits: int = 4) -> Markup:
         return Markup("0")
     if not math.isfinite(x):
         return Markup("∞" if x > 0 else "−∞")
-    if 1e-3 <= abs(x) < 1e5:
+    if 1e-3 <= abs(x) < 1e5 and "e" not in f"{x:.{digits}g}":  # .4g of 31380 would print 3.138e+04
         return escape(f"{x:.{digits}g}")
     mant, exp = f"{x:.{digits - 1}e}".split("e")
     return Markup(f"{escape(mant)}×10<sup>{int(exp)}</sup>")
