@@ -1,0 +1,905 @@
+"""Rung 1x: the exact characteristic function of the straight tether (dimensionless).
+
+The linearisation about the straight, untwisted rod (paper Sec. 6.1, the
+trivial solution eq. (86) with the tension sign of the boundary condition
+eq. (25), F = +T e3) has constant coefficients. In the f-scaling of Sec. 4
+(eq. (36)), rotating frame, u along the weak axis e1 (stiffness R/f), v along
+e2 (stiffness 1/f), its static (lambda = 0) part is
+
+    (R/f) u'''' - a u'' - omega^2 u - B v' = 0,   a = T + P R omega^2,
+    (1/f) v'''' - b v'' - omega^2 v + B u' = 0,   b = T + P omega^2,
+    u = u' = v = v' = 0 at s = 0 and s = 1
+
+(rotary inertia acts as an extra tension P R omega^2, P omega^2 in the
+rotating frame; torsion decouples). For omega = T = 0 and f = 1 this is the
+lambda = 0 case of eq. (87). With Kelvin-Voigt damping the straight rod
+loses stability only where this static operator is singular
+(Kelvin-Tait-Chetaev, see :mod:`etcheck.rod.damped_critical`), so its exact
+characteristic function decides the damped straight rod without any
+discretisation, down to boundary layers of width sqrt(R/(f T)) that a
+Chebyshev grid cannot resolve.
+
+**The characteristic function.** Write the ODE as y' = A y for the scaled
+state y = (u, u'/ku, u''/ku^2, u'''/ku^3, v, v'/kv, v''/kv^2, v'''/kv^3)
+(ku, kv continuous wavenumber scales of the u and v exponents). Let G be
+the 8x8 map from y(0) to the clamped boundary values (u, u', v, v') at
+s = 0 and s = 1. det G is real and analytic in (B, omega, T); it grows like
+exp(sigma), sigma = sum of the positive real parts of the exponents (the
+eigenvalues of A). The function returned is
+
+    D = det G * exp(-sigma),
+
+real, with a sign that is continuous in the parameters (every basis and
+scaling choice below cancels exactly), zero exactly where the clamped
+problem has a kernel, and free of exponential growth: its size is a power
+of the exponents (O(1) for moderate tension, 1e14 at T f = 1e12, R = 1e-7). Two routes compute it:
+
+* **exponential basis** (default where it applies): the exponents are the
+  roots of a quartic in k^2, polished by Newton's method to full relative
+  accuracy; the basis solutions are the analytic null vectors times
+  exp(k (s - s_k)), scaled at the end where each is small (s_k = 1 for
+  Re k above a split tau, else 0). det G is det M / det W with M the scaled
+  boundary matrix and det W the closed-form determinant of the initial
+  data (a Vandermonde product in the exponents). This keeps full accuracy
+  when the exponents span many decades (T f up to 1e12 with R = 1e-7:
+  layer exponents 3e9 next to string exponents 2 pi): nothing is computed
+  from a matrix whose norm is the largest exponent.
+* **ordered real Schur** (fallback): A = Q T Q^T ordered so the exponents
+  with Re k < tau come first; the other invariant subspace is Q [Y; I] with
+  T11 Y - Y T22 = -T12 (so det of the two bases together is det Q = +-1),
+  the first block is propagated from s = 0 with expm(T11), the second from
+  s = 1 with expm(-T22). Robust where exponents coincide (k = 0 double at
+  omega = 0, the Jordan block at B = omega = 0, equal u and v exponents at
+  R = 1) because no eigenvectors are formed; its absolute error on the
+  exponents is eps times the largest exponent, so it is used only where
+  the exponential basis does not apply.
+
+**Double roots.** For R = 1 (any omega, T) and for omega = T = 0 (any R) the
+problem is isotropic: with w = u + i v (R = 1) or w = u + i v / sqrt(R)
+(omega = T = 0) it is one complex equation c4 w'''' - c2 w'' - c0 w +
+i c1 w' = 0, whose clamped determinant is real (the map w(s) ->
+conj(w(1 - s)) preserves the problem) and has simple zeros; D is a positive
+multiple of its square, so every zero of D is double (touching, no sign
+change; the kernel is two-dimensional, Sec. 6.1). Roots in these cases come
+from the complex determinant. Elsewhere zeros are simple; close pairs (the
+split double root at small T, omega or 1 - R, and the u and v string modes
+near B = 2 pi T) are found by minimising |D| between samples.
+
+Everything here is dimensionless and pure; numpy/scipy only.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+from scipy.linalg import lapack
+from scipy.optimize import brentq, minimize_scalar
+from threadpoolctl import ThreadpoolController
+
+from .damped_critical import DampedCritical, PencilRoot
+from .parameters import RodParameters
+
+__all__ = [
+    "MODEL",
+    "AXES",
+    "Characteristic",
+    "ExactRoot",
+    "characteristic",
+    "evaluate",
+    "isotropic_characteristic",
+    "is_isotropic",
+    "kernel_dimension",
+    "exact_root",
+    "first_exact_root",
+    "exact_critical",
+    "string_limit_load",
+]
+
+#: Model string of every root from this module.
+MODEL = "rung 1x (exact determinant)"
+#: Axes along which roots are searched (as in :func:`etcheck.rod.damped_critical.first_root`).
+AXES = ("B", "omega", "T", "ray")
+
+_EPS = np.finfo(float).eps
+#: Relative gap between two exponents below which the exponential basis is not used.
+_CONFLUENT = 1e-4
+#: |k| below which an exponent is treated as near zero (Schur route).
+_SMALL_K = 1e-3
+#: Boundary-value rows of the scaled state: u, u', v, v' (real) or w, w' (complex).
+_BC_REAL = np.array([0, 1, 4, 5])
+_BC_COMPLEX = np.array([0, 1])
+#: beta_1 of the first double zero of chi (eq. (91)): the static load is beta_1^3 sqrt(R) / f.
+_BETA1 = 7.332130
+
+
+_CONTROLLER: list[ThreadpoolController] = []
+
+
+def _one_blas_thread(fn):
+    """Run fn with BLAS on one thread (8x8 problems: threads only add contention; a
+    controller made once keeps the switch at microseconds)."""
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        if not _CONTROLLER:
+            _CONTROLLER.append(ThreadpoolController())
+        with _CONTROLLER[0].limit(limits=1, user_api="blas"):
+            return fn(*args, **kwargs)
+
+    return wrapper
+
+
+# --- coefficients and scales ---------------------------------------------------------
+
+
+def _tensions(params: RodParameters) -> tuple[float, float, float]:
+    """(a, b, omega^2): effective tensions of the u and v equations and the spin term."""
+    w2 = params.omega**2
+    return params.T + params.P * params.R * w2, params.T + params.P * w2, w2
+
+
+def _scales(params: RodParameters, factor: float = 1.0) -> tuple[float, float]:
+    """Continuous wavenumber scales (ku, kv) of the u and v exponents (>= 1)."""
+    a, b, w2 = _tensions(params)
+    R, f = params.R, params.f
+    kb = (f * abs(params.B) / math.sqrt(R)) ** (1.0 / 3.0)
+    ku = 1.0 + math.sqrt(f * abs(a) / R) + (f * w2 / R) ** 0.25 + kb
+    kv = 1.0 + math.sqrt(f * abs(b)) + (f * w2) ** 0.25 + kb
+    return factor * ku, factor * kv
+
+
+def _companion(params: RodParameters, ku: float, kv: float) -> np.ndarray:
+    """8x8 first-order matrix of the scaled state (see the module docstring)."""
+    a, b, w2 = _tensions(params)
+    R, f, B = params.R, params.f, params.B
+    A = np.zeros((8, 8))
+    A[0, 1] = A[1, 2] = A[2, 3] = ku
+    A[4, 5] = A[5, 6] = A[6, 7] = kv
+    A[3, 0] = f * w2 / (R * ku**3)
+    A[3, 2] = f * a / (R * ku)
+    A[3, 5] = f * B * kv / (R * ku**3)
+    A[7, 4] = f * w2 / kv**3
+    A[7, 6] = f * b / kv
+    A[7, 1] = -f * B * ku / kv**3
+    return A
+
+
+def _split(re: np.ndarray, shift: int = 0) -> float:
+    """Threshold tau between the exponents propagated from s = 0 (Re k < tau) and from
+    s = 1: the middle of the widest gap (log scale) of the positive real parts in
+    [0.25, 6], so no exponent sits near it and nothing grows by more than e^6."""
+    pos = np.sort(re[(re > 0.25) & (re < 6.0)])
+    pts = np.log(np.concatenate([[0.25], pos, [6.0]]))
+    gaps = np.diff(pts)
+    order = np.argsort(gaps)[::-1]
+    i = order[min(shift, len(order) - 1)]
+    return math.exp(0.5 * (pts[i] + pts[i + 1]))
+
+
+# --- route 1: ordered Schur ------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Evans:
+    value: complex
+    M: np.ndarray  # scaled boundary matrix (columns: the basis solutions)
+    route: str
+
+
+def _schur(A: np.ndarray, bc: np.ndarray, shift: int = 0) -> _Evans:
+    cplx = np.iscomplexobj(A)
+    T, Q = sla.schur(A, output="complex" if cplx else "real")
+    re = np.diag(T).real.copy()  # real parts (equal on the diagonal of a 2x2 block)
+    tau = _split(re, shift)
+    n = A.shape[0]
+    select = (re < tau).astype(np.int32)
+    if cplx:
+        T, Q, _, m, _, _, info = lapack.ztrsen(select, T, Q, job="N")
+    else:
+        T, Q, _, _, m, _, _, info = lapack.dtrsen(select, T, Q, job="N")
+    if info != 0:
+        raise np.linalg.LinAlgError(f"Schur reordering failed (info = {info})")
+    T11, T12, T22 = T[:m, :m], T[:m, m:], T[m:, m:]
+    if 0 < m < n:
+        trsyl = lapack.ztrsyl if cplx else lapack.dtrsyl
+        Y, scale, info = trsyl(T11, T22, -T12, isgn=-1)
+        if info < 0:
+            raise np.linalg.LinAlgError(f"Sylvester solve failed (info = {info})")
+        Y = Y / scale
+    else:
+        Y = np.zeros((m, n - m), dtype=T.dtype)
+    Q1 = Q[:, :m]
+    Q2 = Q1 @ Y + Q[:, m:]  # invariant subspace of the exponents with Re k >= tau
+    P1 = Q1 @ sla.expm(T11) if m else Q1
+    P2 = Q2 @ sla.expm(-T22) if m < n else Q2
+    M = np.vstack([np.hstack([Q1[bc], P2[bc]]), np.hstack([P1[bc], Q2[bc]])])
+    sigma = float(np.sum(np.maximum(re, 0.0)))
+    value = np.linalg.det(M) * np.exp(np.trace(T22) - sigma) / np.linalg.det(Q)
+    return _Evans(complex(value), M, "schur")
+
+
+# --- route 2: exponential basis --------------------------------------------------------
+
+
+def _roots(c: np.ndarray) -> np.ndarray:
+    """Roots of the polynomials with coefficient rows c (n, d+1), highest first: companion
+    eigenvalues, then Newton steps (relative accuracy for well-separated roots)."""
+    n, d = c.shape[0], c.shape[1] - 1
+    C = np.zeros((n, d, d), dtype=complex)
+    C[:, 0, :] = -c[:, 1:] / c[:, :1]
+    C[:, np.arange(1, d), np.arange(d - 1)] = 1.0
+    r = np.linalg.eigvals(C)
+    dc = c[:, :-1] * np.arange(d, 0, -1)
+    for _ in range(3):
+        p = np.zeros_like(r) + c[:, :1]
+        q = np.zeros_like(r) + dc[:, :1]
+        for j in range(1, d + 1):
+            p = p * r + c[:, j:j + 1]
+            if j < d:
+                q = q * r + dc[:, j:j + 1]
+        step = np.where(q != 0, p / np.where(q != 0, q, 1.0), 0.0)
+        r = r - np.where(np.isfinite(step), step, 0.0)
+    return r
+
+
+def _separated(k: np.ndarray, small: bool = True) -> np.ndarray:
+    """Rows of k (n, m) where no two exponents nearly coincide (and, with ``small``,
+    none is near zero)."""
+    d = np.abs(k[:, :, None] - k[:, None, :])
+    ak = np.abs(k)
+    scale = np.maximum(ak[:, :, None], ak[:, None, :])
+    d[:, np.arange(k.shape[1]), np.arange(k.shape[1])] = np.inf
+    ok = np.all(d >= _CONFLUENT * scale, axis=(1, 2)) & np.all(np.isfinite(k), axis=1)
+    return ok & np.all(ak >= _SMALL_K, axis=1) if small else ok
+
+
+def _log_vandermonde(k: np.ndarray) -> np.ndarray:
+    i, j = np.triu_indices(k.shape[1], 1)
+    return np.sum(np.log(k[:, j] - k[:, i]), axis=1)
+
+
+def _splits(re: np.ndarray, shift: int = 0) -> np.ndarray:
+    """:func:`_split` for each row of re (n, m)."""
+    lo, hi = math.log(0.25), math.log(6.0)
+    x = np.clip(np.log(np.where(re > 0, re, 0.25)), lo, hi)
+    n = re.shape[0]
+    pts = np.sort(np.hstack([np.full((n, 1), lo), x, np.full((n, 1), hi)]), axis=1)
+    gaps = np.diff(pts, axis=1)
+    i = np.argsort(-gaps, axis=1, kind="stable")[:, min(shift, gaps.shape[1] - 1)]
+    rows = np.arange(n)
+    return np.exp(0.5 * (pts[rows, i] + pts[rows, i + 1]))
+
+
+def _assemble(k: np.ndarray, V: np.ndarray, logdet: np.ndarray, shift: int) -> tuple[np.ndarray, np.ndarray]:
+    """D (n,) and the scaled boundary matrices M (n, 2 r, m) from exponents k (n, m),
+    boundary rows V (n, r, m) (initial values of the basis solutions at the bc rows)
+    and log det of the full initial-data matrix W (n,)."""
+    norm = np.max(np.abs(V), axis=1)
+    V = V / norm[:, None, :]
+    logdet = logdet - np.sum(np.log(norm), axis=1)
+    tau = _splits(k.real, shift)
+    far = k.real >= tau[:, None]  # scaled at s = 1
+    e0 = np.exp(np.where(far, -k, 0.0))
+    e1 = np.exp(np.where(far, 0.0, k))
+    M = np.concatenate([V * e0[:, None, :], V * e1[:, None, :]], axis=1)
+    sigma = np.sum(np.maximum(k.real, 0.0), axis=1)
+    value = np.linalg.det(M) * np.exp(np.sum(np.where(far, k, 0.0), axis=1) - sigma - logdet)
+    return value, M
+
+
+def _exponential_batch(P: float, R: float, f: float, B: np.ndarray, w2: np.ndarray, a: np.ndarray,
+                       b: np.ndarray, ku: np.ndarray, kv: np.ndarray, shift: int = 0):
+    """The exponential-basis route of the coupled real problem for arrays of (B, omega^2,
+    a, b, ku, kv), all with omega = 0 or all with omega != 0. Returns (D, M); D is NaN
+    where the route does not apply (B = 0, coincident or near-zero exponents)."""
+    n = B.size
+    static = bool(np.all(w2 == 0))
+    # det [[(R/f) k^4 - a k^2 - w2, -B k], [B k, k^4/f - b k^2 - w2]] as a polynomial in k^2
+    c = np.stack([np.full(n, R / f**2), -(R * b + a) / f, a * b - w2 * (R + 1) / f, w2 * (a + b) + B**2, w2**2],
+                 axis=1)
+    if static:
+        c = c[:, :4]  # k^2 = 0 is a root: the constants u = 1, v = 1 solve the problem
+    with np.errstate(all="ignore"):
+        kap = _roots(c)
+        r = np.sqrt(kap)
+        k = np.concatenate([r, -r], axis=1)
+        ok = _separated(k, small=False) & (B != 0)
+        Bc = B[:, None]
+        Pu = R / f * k**4 - a[:, None] * k**2 - w2[:, None]
+        Pv = k**4 / f - b[:, None] * k**2 - w2[:, None]
+        second = np.abs(Pv) > np.abs(Pu)  # (Pv, -B k) is the better-conditioned null vector
+        u = np.where(second, Pv, Bc * k)
+        v = np.where(second, -Bc * k, Pu)
+        # Near-zero exponents are harmless while their null vectors span (u, v) with
+        # room to spare: at most two (none besides the constants at omega = 0), and
+        # not parallel (near a Jordan block the basis degenerates: Schur instead).
+        nsmall = np.sum(np.abs(k) < _SMALL_K, axis=1)
+        ok &= nsmall <= (0 if static else 2)
+        two = np.argsort(np.abs(k), axis=1)[:, :2]
+        rows = np.arange(n)[:, None]
+        phi = np.stack([u[rows, two], v[rows, two]], axis=2)  # (n, 2, 2)
+        phi = phi / np.linalg.norm(phi, axis=2, keepdims=True)
+        cos = np.abs(np.sum(np.conj(phi[:, 0]) * phi[:, 1], axis=1))
+        ok &= (nsmall < 2) | (cos < 0.99)
+        log_lam = np.sum(np.where(second, np.log(Pv / (Bc * k)), 0.0), axis=1)
+        # closed-form det of the unscaled initial data with null vectors (B k, Pu(k))
+        if static:
+            logW = 3 * np.log(B + 0j) + 3 * math.log(R / f) + np.sum(2 * np.log(k), axis=1) + _log_vandermonde(k)
+        else:
+            logW = np.log(B**4 * w2 + 0j) + 3 * math.log(R / f) + _log_vandermonde(k)
+        logW = logW + 1j * math.pi + log_lam - 6 * np.log(ku) - 6 * np.log(kv)
+        V = np.stack([u, u * k / ku[:, None], v, v * k / kv[:, None]], axis=1)
+        if static:
+            const = np.zeros((n, 4, 2))
+            const[:, 0, 0] = const[:, 2, 1] = 1.0
+            V = np.concatenate([const, V], axis=2)
+            k = np.concatenate([np.zeros((n, 2)), k], axis=1)
+        ok &= np.all(np.isfinite(V), axis=(1, 2)) & np.isfinite(logW)
+        k = np.where(ok[:, None], k, 1.0 + np.arange(k.shape[1]))
+        V = np.where(ok[:, None, None], V, 1.0)
+        logW = np.where(ok, logW, 0.0)
+        value, M = _assemble(k, V, logW, shift)
+    return np.where(ok & np.isfinite(value), value, np.nan), M
+
+
+def _real_batch(params: RodParameters, B, omega, T, factor: float = 1.0, shift: int = 0) -> np.ndarray:
+    """D at arrays of (B, omega, T): exponential basis, Schur where it does not apply."""
+    B, omega, T = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (B, omega, T)))
+    P, R, f = params.P, params.R, params.f
+    w2 = omega**2
+    a, b = T + P * R * w2, T + P * w2
+    kb = (f * np.abs(B) / math.sqrt(R)) ** (1.0 / 3.0)
+    ku = factor * (1.0 + np.sqrt(f * np.abs(a) / R) + (f * w2 / R) ** 0.25 + kb)
+    kv = factor * (1.0 + np.sqrt(f * np.abs(b)) + (f * w2) ** 0.25 + kb)
+    out = np.full(B.size, np.nan, dtype=complex)
+    for group in (w2 == 0, w2 != 0):
+        group = group & (B != 0)
+        if np.any(group):
+            out[group] = _exponential_batch(P, R, f, B[group], w2[group], a[group], b[group], ku[group], kv[group],
+                                            shift)[0]
+    free = B == 0
+    if np.any(free):
+        out[free] = _decoupled_batch(R, f, w2[free], a[free], b[free], ku[free], kv[free], shift)[0]
+    for i in np.nonzero(~np.isfinite(out))[0]:
+        p = params.with_(B=float(B[i]), omega=float(omega[i]), T=float(T[i]))
+        out[i] = _schur(_companion(p, ku[i], kv[i]), _BC_REAL, shift).value
+    return out.real
+
+
+def _decoupled_batch(R: float, f: float, w2: np.ndarray, a: np.ndarray, b: np.ndarray, ku: np.ndarray,
+                     kv: np.ndarray, shift: int = 0):
+    """B = 0: u and v decouple and D = D_u D_v, each the real determinant of a scalar
+    clamped beam (the complex route with c1 = 0; the two boundary blocks are swapped
+    pairwise, so no sign). Returns (D, M) with M block diagonal; NaN where it does
+    not apply (the Jordan block at omega = 0)."""
+    out, Ms = np.ones(w2.size, dtype=complex), []
+    for c4, c2, kap in ((R / f, a, ku), (1.0 / f, b, kv)):
+        n = w2.size
+        value = np.full(n, np.nan, dtype=complex)
+        M = np.full((n, 4, 4), np.nan, dtype=complex)
+        for group in (w2 == 0, w2 != 0):
+            if np.any(group):
+                value[group], M[group] = _isotropic_batch(c4, c2[group], w2[group], np.zeros(int(group.sum())),
+                                                          kap[group], shift)
+        out *= value
+        Ms.append(M)
+    M = np.zeros((w2.size, 8, 8), dtype=complex)
+    M[:, np.ix_([0, 1, 4, 5], [0, 1, 2, 3])[0], np.ix_([0, 1, 4, 5], [0, 1, 2, 3])[1]] = Ms[0]
+    M[:, np.ix_([2, 3, 6, 7], [4, 5, 6, 7])[0], np.ix_([2, 3, 6, 7], [4, 5, 6, 7])[1]] = Ms[1]
+    return out, M
+
+
+def _exponential(params: RodParameters, ku: float, kv: float, shift: int = 0) -> _Evans | None:
+    """The exponential-basis route at one point, or None where it does not apply."""
+    a, b, w2 = _tensions(params)
+    one = lambda x: np.array([float(x)])  # noqa: E731
+    if params.B == 0:
+        value, M = _decoupled_batch(params.R, params.f, one(w2), one(a), one(b), one(ku), one(kv), shift)
+    else:
+        value, M = _exponential_batch(params.P, params.R, params.f, one(params.B), one(w2), one(a), one(b), one(ku),
+                                      one(kv), shift)
+    if not np.isfinite(value[0]):
+        return None
+    return _Evans(complex(value[0]), M[0], "exponential")
+
+
+# --- the isotropic (complex) problem ----------------------------------------------------
+
+
+def is_isotropic(params: RodParameters) -> bool:
+    """True where the linear static problem is isotropic (R = 1, or omega = T = 0):
+    every zero of D is then double (Sec. 6.1)."""
+    return params.R == 1.0 or (params.omega == 0.0 and params.T == 0.0)
+
+
+def _isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, kap: np.ndarray, shift: int = 0):
+    """Exponential-basis route of the complex problem for arrays (all c0 = 0 or all c0 != 0).
+    Returns (D, M); D is NaN where the route does not apply."""
+    n = c2.size
+    static = bool(np.all(c0 == 0))
+    c = np.stack([np.full(n, c4, dtype=complex), np.zeros(n), -c2 + 0j, 1j * c1, -c0 + 0j], axis=1)
+    with np.errstate(all="ignore"):
+        if static:  # m = 0 is a root (the constants): keep it exact
+            m = _roots(c[:, :4])
+            ok = _separated(m) & (c1 != 0)
+            m = np.concatenate([np.zeros((n, 1)), m], axis=1)
+        else:
+            m = _roots(c)
+            ok = _separated(m)
+        ms = m / kap[:, None]
+        V = np.stack([np.ones_like(m), ms], axis=1)
+        logW = _log_vandermonde(ms)
+        ok &= np.isfinite(logW) & np.all(np.isfinite(V), axis=(1, 2))
+        m = np.where(ok[:, None], m, 1.0 + np.arange(4))
+        V = np.where(ok[:, None, None], V, 1.0)
+        value, M = _assemble(m, V, np.where(ok, logW, 0.0), shift)
+    return np.where(ok & np.isfinite(value), value, np.nan), M
+
+
+def _isotropic_arrays(params: RodParameters, B, omega, T, factor: float = 1.0):
+    B, omega, T = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (B, omega, T)))
+    if params.R == 1.0:
+        c4, c2, c0, c1 = 1.0 / params.f, T + params.P * omega**2, omega**2, B
+    elif np.all(omega == 0) and np.all(T == 0):
+        c4, c2, c0, c1 = params.R / params.f, np.zeros_like(B), np.zeros_like(B), B * math.sqrt(params.R)
+    else:
+        raise ValueError("the problem is isotropic only for R = 1 or omega = T = 0")
+    kap = factor * (1.0 + np.sqrt(np.abs(c2) / c4) + (np.abs(c0) / c4) ** 0.25 + (np.abs(c1) / c4) ** (1.0 / 3.0))
+    return c4, c2, c0, c1, kap
+
+
+def _isotropic_schur(c4: float, c2: float, c0: float, c1: float, kap: float, shift: int = 0) -> _Evans:
+    A = np.zeros((4, 4), dtype=complex)
+    A[0, 1] = A[1, 2] = A[2, 3] = kap
+    A[3, 0] = c0 / (c4 * kap**3)
+    A[3, 1] = -1j * c1 / (c4 * kap**2)
+    A[3, 2] = c2 / (c4 * kap)
+    return _schur(A, _BC_COMPLEX, shift)
+
+
+def _isotropic_batch_values(params: RodParameters, B, omega, T, factor: float = 1.0, shift: int = 0) -> np.ndarray:
+    """Real complex-problem determinant at arrays of (B, omega, T) (R = 1 or omega = T = 0)."""
+    c4, c2, c0, c1, kap = _isotropic_arrays(params, B, omega, T, factor)
+    out = np.full(c2.size, np.nan, dtype=complex)
+    for group in (c0 == 0, c0 != 0):
+        if np.any(group):
+            out[group] = _isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift)[0]
+    for i in np.nonzero(~np.isfinite(out))[0]:
+        out[i] = _isotropic_schur(c4, c2[i], c0[i], c1[i], kap[i], shift).value
+    return out.real
+
+
+def _isotropic_evans(params: RodParameters, route: str, factor: float = 1.0, shift: int = 0) -> _Evans:
+    c4, c2, c0, c1, kap = _isotropic_arrays(params, params.B, params.omega, params.T, factor)
+    if route != "schur":
+        value, M = _isotropic_batch(c4, c2, c0, c1, kap, shift)
+        if np.isfinite(value[0]):
+            return _Evans(complex(value[0]), M[0], "exponential")
+        if route == "exponential":
+            raise ValueError("the exponential basis does not apply here (coincident exponents)")
+    return _isotropic_schur(c4, c2[0], c0[0], c1[0], kap[0], shift)
+
+
+# --- public evaluation -----------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Characteristic:
+    """The exact characteristic function at one point (dimensionless).
+
+    ``value``: D = det G exp(-sigma) (real, O(1), sign continuous in the
+    parameters); ``imaginary``: |Im| of the computed value relative to its
+    modulus (zero in exact arithmetic: a consistency check); ``route``:
+    "exponential" or "schur"; ``singular_values``: of the column-normalised
+    scaled boundary matrix, largest first (the kernel dimension is the
+    number that vanish).
+    """
+
+    value: float
+    imaginary: float
+    route: str
+    singular_values: tuple[float, ...]
+
+
+def _real_evans(params: RodParameters, route: str = "auto", factor: float = 1.0, shift: int = 0) -> _Evans:
+    ku, kv = _scales(params, factor)
+    if route != "schur":
+        ev = _exponential(params, ku, kv, shift)
+        if ev is not None and np.isfinite(ev.value):
+            return ev
+        if route == "exponential":
+            raise ValueError("the exponential basis does not apply here (B = 0 or coincident exponents)")
+    return _schur(_companion(params, ku, kv), _BC_REAL, shift)
+
+
+def _finish(ev: _Evans) -> Characteristic:
+    M = ev.M / np.maximum(np.max(np.abs(ev.M), axis=0), 1e-300)
+    s = np.linalg.svd(M, compute_uv=False)
+    mod = abs(ev.value)
+    return Characteristic(float(ev.value.real), abs(ev.value.imag) / mod if mod > 0 else 0.0, ev.route,
+                          tuple(float(x) for x in s))
+
+
+def characteristic(params: RodParameters, route: str = "auto") -> float:
+    """D(B, omega, T) at the parameters' load, spin and tension (dimensionless, real).
+
+    ``route``: "auto" (exponential basis where it applies, else Schur),
+    "exponential" or "schur". Zero exactly where the clamped static problem
+    has a kernel; the sign is continuous in every parameter.
+    """
+    return float(_real_evans(params, route).value.real)
+
+
+def evaluate(params: RodParameters, route: str = "auto") -> Characteristic:
+    """:func:`characteristic` with its diagnostics (route, imaginary residue, singular values)."""
+    return _finish(_real_evans(params, route))
+
+
+def isotropic_characteristic(params: RodParameters, route: str = "auto") -> float:
+    """Real clamped determinant of the isotropic complex problem (R = 1 or omega = T = 0).
+
+    Simple zeros exactly at the (double) zeros of :func:`characteristic`;
+    normalised like D (det exp(-sigma) of the complex boundary map).
+    Dimensionless.
+    """
+    return float(_isotropic_evans(params, route).value.real)
+
+
+def kernel_dimension(params: RodParameters, rtol: float = 1e-7) -> int:
+    """Dimension of the kernel of the clamped static problem at params (real solutions):
+    the number of singular values of the scaled boundary matrix below rtol times the
+    largest. Use it at a located root (1 for a simple zero, 2 for a double one)."""
+    s = np.asarray(_finish(_real_evans(params, "schur")).singular_values)
+    return int(np.sum(s <= rtol * s[0]))
+
+
+# --- roots along an axis -----------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ExactRoot:
+    """A root of the exact characteristic function along one axis (dimensionless).
+
+    ``value``: B, T, omega (not omega^2) or the ray parameter t; inf when
+    none lies below the search limit. ``error``: relative error bound (the
+    Brent tolerance plus the disagreement with a second formulation,
+    doubled; relative to max(|value|, floor)). ``multiplicity``: 2 for the
+    double zeros of the isotropic cases (R = 1, or omega = T = 0), 1 else.
+    ``evaluations``: determinant evaluations spent; ``route``: the
+    formulation that located it.
+    """
+
+    axis: str
+    value: float
+    error: float
+    multiplicity: int
+    evaluations: int
+    route: str
+
+    def pencil_root(self, tol: float) -> PencilRoot:
+        """The same root as :class:`etcheck.rod.damped_critical.PencilRoot` (N = 0: no grid)."""
+        model = MODEL if self.multiplicity == 1 else f"{MODEL}, double root"
+        return PencilRoot(self.axis, self.value, self.error, 0, bool(self.error <= tol), model)
+
+
+def _axis_params(params: RodParameters, axis: str, x: float) -> RodParameters:
+    if axis == "ray":
+        return params.with_(B=x * params.B, omega=math.sqrt(max(x, 0.0)) * params.omega)
+    return params.with_(**{axis: x})
+
+
+def _root_scale(params: RodParameters, axis: str, sign: float) -> float:
+    """Expected size of the first root on ``axis`` (sets the scan step): the static
+    load (chi) plus the string load 2 pi T; the Rayleigh quotient of the first
+    clamped mode for the spin; the clamped Euler load for the tension."""
+    P, R, f = params.P, params.R, params.f
+    Tp = max(params.T, 0.0)
+    load = _BETA1**3 * math.sqrt(R) / f + 2 * math.pi * Tp
+    # first clamped mode: int phi''^2 / int phi^2 = f, int phi'^2 / int phi^2 = 12.30
+    spin = math.sqrt((R + 12.30 * Tp) / max(1.0 - 12.30 * P * R, 0.05))
+    if axis == "B":
+        return load
+    if axis == "omega":
+        return spin
+    if axis == "T":
+        return 4 * math.pi**2 * R / f + abs(params.B) / (2 * math.pi) + params.omega**2 / math.pi**2
+    if params.B == 0 and params.omega == 0:
+        raise ValueError("the ray needs B != 0 or omega != 0")
+    return 1.0 / (abs(params.B) / load + params.omega**2 / spin**2)
+
+
+class _Counter:
+    """Vectorised function of the axis value with an evaluation count; scalar calls too."""
+
+    def __init__(self, fn):
+        self.fn, self.n = fn, 0
+
+    def many(self, x: np.ndarray) -> np.ndarray:
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        self.n += x.size
+        return self.fn(x)
+
+    def __call__(self, x: float) -> float:
+        return float(self.many(np.array([x]))[0])
+
+
+def _function(params: RodParameters, axis: str, sign: float, route: str = "auto", factor: float = 1.0,
+              shift: int = 0):
+    """The real, vectorised function of the (unsigned) axis value whose zeros are the
+    roots, and the multiplicity of its zeros as roots of D."""
+    moving = {"ray": ("B", "omega")}.get(axis, (axis,))
+    iso = params.R == 1.0 or (params.omega == 0.0 and params.T == 0.0 and "omega" not in moving
+                              and "T" not in moving)
+
+    def args(x):
+        t = sign * x
+        if axis == "ray":
+            return t * params.B, np.sqrt(np.maximum(t, 0.0)) * params.omega, np.full_like(t, params.T)
+        vals = {"B": params.B, "omega": params.omega, "T": params.T}
+        return tuple(t if name == axis else np.full_like(t, vals[name]) for name in ("B", "omega", "T"))
+
+    def one(x, evans):
+        B, w, T = args(x)
+        return np.array([evans(params.with_(B=float(b), omega=float(o), T=float(t)), route, factor, shift).value.real
+                         for b, o, t in zip(B, w, T)])
+
+    if iso:
+        if route == "auto":
+            return (lambda x: _isotropic_batch_values(params, *args(x), factor, shift)), 2
+        return (lambda x: one(x, _isotropic_evans)), 2
+    if route == "auto":
+        return (lambda x: _real_batch(params, *args(x), factor, shift)), 1
+    return (lambda x: one(x, _real_evans)), 1
+
+
+#: Samples per block of the scan (one vectorised evaluation) and per expected root.
+_BLOCK = 16
+
+
+def _scan(g: _Counter, step: float, limit: float, rtol: float):
+    """First zero of g on (0, limit]: a sign change, or a close pair found by
+    minimising |g| at a local minimum of the samples. Returns (x, bracket) with x
+    set for a touching zero, or None. Steps of ``step`` up to 64 steps, then
+    geometric (1/16 of the current value)."""
+    xs_prev = np.array([0.0])
+    gs_prev = g.many(xs_prev)
+    x = 0.0
+    while x < limit:
+        if x < 64 * step:
+            xs = x + step * np.arange(1, _BLOCK + 1)
+        else:
+            xs = x * (1.0 + 1.0 / 16) ** np.arange(1, _BLOCK + 1)
+        gs = g.many(xs)
+        X = np.concatenate([xs_prev[-2:], xs])
+        G = np.concatenate([gs_prev[-2:], gs])
+        for i in range(len(xs_prev[-2:]), len(X)):
+            if G[i] == 0.0:
+                return X[i], (X[i], X[i])
+            if np.sign(G[i]) != np.sign(G[i - 1]):
+                return None, (X[i - 1], X[i])
+            if i >= 2 and abs(G[i - 1]) < abs(G[i - 2]) and abs(G[i - 1]) < abs(G[i]):
+                sg = np.sign(G[i - 1])
+                res = minimize_scalar(lambda t, sg=sg: sg * g(t), bounds=(X[i - 2], X[i]), method="bounded",
+                                      options={"xatol": rtol * X[i]})
+                if sg * res.fun <= 0.0:
+                    return None, (X[i - 2], res.x)
+                if abs(res.fun) <= 1e3 * _EPS * max(abs(G[i - 2]), abs(G[i])):  # touching zero
+                    return res.x, (res.x, res.x)
+        xs_prev, gs_prev, x = xs, gs, xs[-1]
+    return None
+
+
+def _refine(g, bracket: tuple[float, float], rtol: float) -> float:
+    lo, hi = bracket
+    if lo == hi:
+        return lo
+    return brentq(g, lo, hi, xtol=1e-300, rtol=rtol, maxiter=200)
+
+
+def _second_opinion(g2, x: float, rtol: float) -> float:
+    """Root of a second formulation g2 next to x (bracket grown from 1e-13 relative);
+    located to 1 % of the bracket, which is all an error estimate needs."""
+    d = 1e-13 * max(abs(x), 1e-300)
+    for _ in range(12):
+        lo, hi = x - d, x + d
+        glo, ghi = g2.many(np.array([lo, hi]))
+        if np.sign(glo) != np.sign(ghi):
+            return brentq(g2, lo, hi, xtol=max(1e-2 * d, 4 * _EPS * abs(x)), rtol=rtol, maxiter=200)
+        d *= 10.0
+    return math.nan
+
+
+@_one_blas_thread
+def exact_root(params: RodParameters, axis: str, sign: float = 1.0, floor: float = 0.0,
+               rtol: float = 4 * _EPS, limit: float = 1e3) -> ExactRoot:
+    """Smallest root of the exact characteristic function on ``axis`` on the side ``sign``.
+
+    ``axis``: "B", "omega", "T" or "ray" (t with D(t B, sqrt(t) omega, T)
+    = 0), the others fixed at ``params`` (for B, omega, T the axis value in
+    params is ignored). Scans from zero in vectorised blocks with a step of
+    1/16 of the expected root (:func:`_root_scale`), later 1/16 of the current
+    value, up to ``limit`` times the expected root (inf beyond). A sign
+    change is refined by Brent's method; a local minimum of |D| between
+    samples is minimised to split a close pair of roots. The error is the
+    Brent tolerance plus the distance to the root of a second formulation
+    (the other route, or other scales and split), doubled, relative to
+    max(|root|, floor).
+    """
+    if axis not in AXES:
+        raise ValueError(f"axis must be one of {AXES}, got {axis!r}")
+    if sign not in (1.0, -1.0):
+        raise ValueError("sign must be +1 or -1")
+    scale = _root_scale(params, axis, sign)
+    fn, mult = _function(params, axis, sign)
+    g = _Counter(fn)
+    found = _scan(g, scale / 16, limit * scale, 1e-10)
+    if found is None:
+        return ExactRoot(axis, sign * math.inf, 0.0, mult, g.n, "exponential")
+    x, bracket = found
+    if x is None:
+        x = _refine(g, bracket, rtol)
+    elif mult == 1:
+        mult = 2  # a numerically touching zero of the generic function
+    value = sign * x
+    route = _route_at(params, axis, value, mult)
+    g2 = _Counter(_alternative(params, axis, sign, value, route))
+    x2 = _second_opinion(g2, x, rtol)
+    err = 2.0 * (abs(x - x2) + 2 * rtol * abs(x)) if math.isfinite(x2) else math.inf
+    return ExactRoot(axis, value, err / max(abs(x), floor, 1e-300), mult, g.n + g2.n, route)
+
+
+def _alternative(params: RodParameters, axis: str, sign: float, value: float, route: str):
+    """A second formulation for the error estimate: the other route where it applies
+    and is accurate (Schur only while the exponents span < 4 decades: its error is
+    eps times the largest),
+    else the same route with other scales (x 1.37) and another split tau."""
+    other = "exponential" if route == "schur" else "schur"
+    if other == "schur" and _separation(params, axis, value) > 1e4:
+        other = None
+    if other is not None:
+        fn, _ = _function(params, axis, sign, route=other)
+        try:
+            fn(np.array([abs(value)]))
+            return fn
+        except ValueError:
+            pass
+    fn, _ = _function(params, axis, sign, route=route, factor=1.37, shift=1)
+    return fn
+
+
+def _route_at(params: RodParameters, axis: str, x: float, mult: int) -> str:
+    p = _axis_params(params, axis, x)
+    if mult == 2 and is_isotropic(p):
+        return _isotropic_evans(p, "auto").route
+    return _real_evans(p, "auto").route
+
+
+def _separation(params: RodParameters, axis: str, x: float) -> float:
+    """Largest wavenumber scale over the smallest non-zero exponent at the root: the
+    Schur route's absolute error on the exponents is eps times the former."""
+    p = _axis_params(params, axis, x)
+    a, b, w2 = _tensions(p)
+    c = np.array([[p.R / p.f**2, -(p.R * b + a) / p.f, a * b - w2 * (p.R + 1) / p.f, w2 * (a + b) + p.B**2, w2**2]])
+    with np.errstate(all="ignore"):
+        k = np.sqrt(np.abs(_roots(c[:, :4] if w2 == 0 else c)))
+    k = k[np.isfinite(k) & (k > 0)]
+    return max(_scales(p)) / max(float(np.min(k)) if k.size else 1.0, 1e-300)
+
+
+def first_exact_root(params: RodParameters, axis: str, tol: float = 1e-8, sign: float = 1.0,
+                     floor: float = 0.0) -> PencilRoot:
+    """:func:`exact_root` as a :class:`~etcheck.rod.damped_critical.PencilRoot`
+    (same semantics as :func:`etcheck.rod.damped_critical.first_root`: value
+    signed, inf when none, error relative to max(|value|, floor))."""
+    if axis != "ray":
+        params = params.with_(**{axis: 0.0})
+    return exact_root(params, axis, sign, floor).pencil_root(tol)
+
+
+@_one_blas_thread
+def exact_critical(params: RodParameters, tol: float = 1e-8, spin: bool = True) -> DampedCritical:
+    """Critical load, critical spin and stability of the damped straight rod, exactly.
+
+    Same semantics as :func:`etcheck.rod.damped_critical.damped_critical`
+    (requires gamma > 0, Kelvin-Tait-Chetaev): the compressive limit when
+    T < 0, the spin that destabilises the unloaded rod, the static load at
+    zero spin, the critical load at the operating spin (0 beyond the spin
+    at rest), the critical spin at the operating load (0 when statically
+    buckled; NaN with ``spin=False``), stable iff omega < spin at rest and
+    B < critical load. Errors relative to the root or to 1 % of its value at
+    zero spin (load) or zero load (spin). Dimensionless.
+    """
+    if not params.gamma > 0:
+        raise ValueError("exact_critical needs gamma > 0 (Kelvin-Tait-Chetaev); undamped rods can flutter")
+    p = params
+    if p.T < 0:
+        comp = first_exact_root(p.with_(B=0.0, omega=0.0), "T", tol, sign=-1.0)
+        if not comp.converged:
+            return _failed(comp, "the compressive limit did not converge")
+        if p.T <= comp.value:
+            zero = PencilRoot("B", 0.0, 0.0, comp.N, True, comp.model)
+            return DampedCritical(zero, PencilRoot("omega", 0.0, 0.0, comp.N, True, comp.model), zero, False, True,
+                                  f"the end compression exceeds the Euler limit T = {comp.value:.6g}")
+    rest = first_exact_root(p.with_(B=0.0), "omega", tol)
+    if not rest.converged:
+        return _failed(rest, "the critical spin of the unloaded rod did not converge")
+    static = first_exact_root(p.with_(omega=0.0), "B", tol)
+    if not static.converged:
+        return _failed(static, "the static critical load did not converge")
+    if p.omega == 0:
+        load = static
+    elif p.omega >= rest.value:
+        load = PencilRoot("B", 0.0, 0.0, rest.N, True, rest.model)
+    else:
+        load = first_exact_root(p, "B", tol, floor=1e-2 * static.value)
+    if not spin:
+        crit = PencilRoot("omega", math.nan, math.nan, 0, True, "not asked")
+    elif p.B >= static.value:
+        crit = PencilRoot("omega", 0.0, 0.0, static.N, True, static.model)
+    else:
+        crit = first_exact_root(p, "omega", tol, floor=1e-2 * rest.value)
+    converged = load.converged and crit.converged
+    stable = p.omega < rest.value and p.B < load.value
+    msg = "converged" if converged else "; ".join(
+        f"{r.axis} root not converged (error estimate {r.error:.1e} > {tol:.0e})"
+        for r in (load, crit) if not r.converged)
+    return DampedCritical(load, crit, rest, bool(stable), converged, msg)
+
+
+def _failed(root: PencilRoot, why: str) -> DampedCritical:
+    nan = PencilRoot(root.axis, math.nan, root.error, root.N, False, root.model)
+    return DampedCritical(nan, nan, root, False, False, f"{why} (error estimate {root.error:.1e})")
+
+
+# --- the string limit ----------------------------------------------------------------------
+
+
+def string_limit_load(params: RodParameters, order: int = 1) -> float:
+    """First critical load B of the straight tether under strong tension (dimensionless).
+
+    As T f -> infinity both axes are strings with welded ends: with
+    w = u + i v the outer problem is -T w'' + i B w' = 0, w(0) = w(1) = 0,
+    whose first root is B = 2 pi T (I B0 = 2 pi T / L physically). Each
+    clamped end carries a boundary layer exp(-s / eps) of width
+    eps_u = sqrt(R / (f a)) in u and eps_v = sqrt(1 / (f b)) in v
+    (a = T + P R omega^2, b = T + P omega^2); matching it to the outer
+    solution turns the clamped conditions into u -/+ eps_u u' = 0,
+    v -/+ eps_v v' = 0 at s = 0, 1. With w = A + C exp(i beta s),
+    beta = B / T = 2 pi + delta, the four conditions split at first order
+    into (delta - 4 pi eps_u) Im C = 0 and (delta - 4 pi eps_v) Re C = 0:
+    the double string root splits into beta = 2 pi (1 + 2 eps_u) (the mode
+    whose ends bend about the weak axis, the first one) and
+    2 pi (1 + 2 eps_v). So
+
+        order 0:  B = 2 pi T
+        order 1:  B = 2 pi T (1 + 2 eps_u)                 error O(1 / (f T))
+        order 2:  + 2 pi T [4 eps_u^2 + 2 pi^2 (1 + R) / (f T)
+                            - omega^2 / (2 pi^2 T) + P (1 + R) omega^2 / (2 T)]
+
+    The order-2 terms: the next term of the layer series (the clamped end
+    acts as a pin at eps_u, 2 pi / (1 - 2 eps_u)), the bending stiffness of
+    the outer helix w = A + C exp(2 pi i s), averaged over u and v
+    ((R + 1) / (2 f) times (2 pi)^2), and the spin (the whirling string
+    B^2 = 4 pi^2 T^2 - 4 T omega^2, rotary inertia as the mean extra
+    tension). For a thin tape (R << 1) the order-2 bending term
+    2 pi^2 / (f T) exceeds the layer term 2 sqrt(R / (f T)) until
+    f T ~ pi^4 / R. Error of order 2: O((f T)^-3/2). Requires T > 0.
+    """
+    if not params.T > 0:
+        raise ValueError("the string limit needs tension T > 0")
+    if order not in (0, 1, 2):
+        raise ValueError("order must be 0, 1 or 2")
+    T, R, f, P, w2 = params.T, params.R, params.f, params.P, params.omega**2
+    a = T + P * R * w2
+    eps_u = math.sqrt(R / (f * a))
+    ratio = 1.0
+    if order >= 1:
+        ratio += 2 * eps_u
+    if order >= 2:
+        ratio += (4 * eps_u**2 + 2 * math.pi**2 * (1 + R) / (f * T) - w2 / (2 * math.pi**2 * T)
+                  + P * (1 + R) * w2 / (2 * T))
+    return 2 * math.pi * T * ratio
