@@ -18,7 +18,7 @@ FORMATS = ("html", "pdf", "json", "csv", "nc")
 
 def add_parser(sub) -> None:
     p = sub.add_parser(
-        NAME, help="what-if maps: sweep length, spin, current, field or tension",
+        NAME, help="what-if maps: sweep length, spin, current, field, tension, orbit altitude or inclination",
         description="Sweep one or two mission quantities and map the margins of the straight tether.",
         epilog="axes: START:STOP:POINTS[:log], values with units, e.g. --length 50m:5km:40:log "
         "--spin 0rpm:2rpm:40. Without axis options the mission's [sweep] table is used.\n" + EXIT_TEXT,
@@ -26,7 +26,9 @@ def add_parser(sub) -> None:
     )
     p.add_argument("mission", help="mission file (TOML)")
     for option, what in (("length", "tether length"), ("spin", "spin rate"), ("current", "current"),
-                         ("field", "axial magnetic field"), ("tension", "end tension")):
+                         ("field", "axial magnetic field"), ("tension", "end tension"),
+                         ("altitude", "circular orbit altitude (needs [orbit]; each orbit's worst axial field)"),
+                         ("inclination", "orbit inclination (needs [orbit]; each orbit's worst axial field)")):
         p.add_argument(f"--{option}", metavar="START:STOP:N[:log]", help=f"sweep the {what}")
     add_output_options(p, FORMATS, "OUT/<mission>/sweep/")
     p.add_argument("--workers", type=int, default=None, help="local worker processes (default: every core; 1: serial)")

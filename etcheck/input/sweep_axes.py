@@ -24,11 +24,16 @@ AXES = {
     "current": ("current", "A", "A", 1.0, "current"),
     "axial_field": ("field", "T", "uT", 1e6, "axial field"),
     "end_tension": ("force", "N", "N", 1.0, "end tension"),
+    # orbit axes (need the mission's [orbit] table): the axial field of each point is the worst case over that orbit
+    "altitude": ("length", "m", "km", 1e-3, "orbit altitude"),
+    "inclination": ("angle", "rad", "deg", 180.0 / math.pi, "orbit inclination"),
 }
 #: command-line option -> axis name
 OPTIONS = {"length": "length", "spin": "spin_rate", "current": "current", "field": "axial_field",
-           "tension": "end_tension"}
+           "tension": "end_tension", "altitude": "altitude", "inclination": "inclination"}
 MAX_POINTS = 400
+#: Lowest orbit altitude (m) of an altitude axis (etcheck.orbit.spec.MIN_ALTITUDE).
+MIN_ORBIT_ALTITUDE = 150e3
 
 
 @dataclass(frozen=True)
@@ -93,6 +98,11 @@ def make_axis(name: str, start, stop, points, spacing: str, source: str, where: 
         raise err(f"start {start!r} must be {'positive' if name == 'length' else 'zero or positive'}")
     if spacing == "log" and lo <= 0:
         raise err("log spacing needs a positive start", "start above zero, or use linear spacing")
+    if name == "altitude" and lo < MIN_ORBIT_ALTITUDE:
+        raise err(f"start {start!r} is below {MIN_ORBIT_ALTITUDE / 1e3:.0f} km: the atmosphere would decay the orbit",
+                  "sweep altitudes of at least 150 km above the equatorial radius")
+    if name == "inclination" and hi > math.pi * (1 + 1e-15):
+        raise err(f"stop {stop!r} is above 180 deg", "sweep inclinations within 0-180 deg")
     return Axis(name, lo, hi, points, spacing)
 
 
@@ -140,4 +150,5 @@ def check_axes(axes: tuple[Axis, ...], source: str) -> tuple[Axis, ...]:
 
 
 _EXAMPLES = {"length": "50m:5km:40:log", "spin_rate": "0rpm:2rpm:40", "current": "0.1A:5A:30",
-             "axial_field": "20uT:70uT:20", "end_tension": "0N:1N:20"}
+             "axial_field": "20uT:70uT:20", "end_tension": "0N:1N:20", "altitude": "300km:1500km:20",
+             "inclination": "0deg:98deg:20"}

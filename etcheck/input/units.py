@@ -28,6 +28,7 @@ KINDS = {
     "field": (u.T, "a magnetic flux density", '"70 uT"'),
     "angular_rate": (u.rad / u.s, "a spin rate", '"2 rpm" or "0.2 rad/s"'),
     "force": (u.N, "a force", '"5 N"'),
+    "angle": (u.rad, "an angle", '"51.6 deg"'),
 }
 
 
@@ -116,4 +117,5 @@ _PINT_SI = {
     "T": "T",
     "rad / s": "rad/s",
     "N": "N",
+    "rad": "radian",
 }

@@ -51,6 +51,7 @@ from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import critical_load, critical_spin
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
+from etcheck.studies.orbit_sweep import orbit_fields
 
 SWEEP_SCHEMA = 1
 #: Rod theory assumes a slender rod: P = I1 / (A L^2) << 1.
@@ -367,10 +368,13 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = Swee
     grids = [a.values for a in axes]
     shape = tuple(len(g) for g in grids)
     cache = Cache(options.cache)
+    orbit = orbit_fields(mission, axes, options, cache, _run)  # altitude/inclination axes: worst field per orbit
 
     points = []
     for idx in np.ndindex(*shape):
         values = {a.name: float(g[i]) for a, g, i in zip(axes, grids, idx)}
+        if orbit is not None:
+            values["axial_field"] = orbit.field(values)
         sc = point_scene(base, current, field, values)
         scaled = scale(sc)
         kind = "point+buckled" if options.buckled else "point"
@@ -413,9 +417,10 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = Swee
         "tolerance": options.tol,
         "buckled_assessed": options.buckled,
         "required_margin": mission.required_margin,
-        "operating": _operating(base, current, field),
+        "operating": _operating(base, current, field) | (orbit.operating if orbit else {}),
         "grid": grid,
         "critical_length": lengths,
+        "orbit": orbit.as_dict() if orbit else None,
         "cost": {
             "points": total,
             "solved": len(todo),
