@@ -288,7 +288,7 @@ def coil_region_plot(results: dict) -> str:
     ax.set_ylim(0, 1.08 * max([v for v in top if np.isfinite(v)] + [load]))
     ax.set_xlabel("spin rate [rpm]")
     ax.set_ylabel("magnetic load I·B0 [N/m]")
-    ax.set_title(f"Where the coiled tether is stable (T = {results['scene']['tension_N']:.3g} N; "
+    ax.set_title(f"Coil (b1): where the coiled tether is stable (T = {results['scene']['tension_N']:.3g} N; "
                  "independent of the damping)", fontsize=9)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
     return _svg(fig)
