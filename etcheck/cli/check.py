@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from etcheck import __version__
@@ -20,6 +21,9 @@ def add_parser(sub) -> None:
                        epilog=EXIT_TEXT, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("mission", help="mission file (TOML), e.g. missions/set.toml")
     add_output_options(p, FORMATS, "OUT/<mission-name>/")
+    p.add_argument("--draft", action="store_true",
+                   help="margins and verdict only, at a looser tolerance (1e-6): no maps, Campbell diagram, "
+                   "accuracy table or post-buckling analysis (same as [check] fidelity = \"draft\")")
     p.set_defaults(run=run, parser=p)
 
 
@@ -32,6 +36,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         from etcheck.report import write_reports
 
         mission = load_mission(args.mission)
+        if args.draft:
+            mission = replace(mission, fidelity="draft")
         if sys.stderr.isatty():
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         result = check(mission)
@@ -51,7 +57,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
 def summary(results: dict, paths: list[Path]) -> None:
     """A few lines on stdout: verdict, margins, where the reports are."""
-    print(f"etcheck {__version__}: {results['mission']['name']}: {results['verdict'].upper()}")
+    draft = " (DRAFT: margins only, not for signature)" if results.get("fidelity", {}).get("name") == "draft" else ""
+    print(f"etcheck {__version__}: {results['mission']['name']}: {results['verdict'].upper()}{draft}")
     for m in results["margins"]:
         value = "not answered" if m["verdict"] == "incomplete" else "unlimited" if m["value"] is None else f"{m['value']:.4g}"
         print(f"  {m['name']}: margin {value} (required {m['required']:g}) -> {m['verdict']} [{m['model']}]")
