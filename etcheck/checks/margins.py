@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
-from etcheck.checks.plan import RUNG_NAMES, Plan
+from etcheck.checks.plan import EXACT, EXACT_MODEL, RUNG_NAMES, Plan
 from etcheck.input.mission import Mission
 from etcheck.scaling import RPM, Scaled, Scene
 
@@ -31,10 +31,11 @@ class Margin:
     rung: int
     error: float | None
     why: str
+    route: str = ""
 
     @property
     def model(self) -> str:
-        return RUNG_NAMES[self.rung]
+        return EXACT_MODEL if self.route == EXACT and self.rung == 1 else RUNG_NAMES[self.rung]
 
     def as_dict(self) -> dict:
         return asdict(self) | {"model": self.model}
@@ -131,7 +132,7 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) -> 
                 + window,
             )
         )
-    return margins
+    return [replace(m, route=linear.get("route", "")) for m in margins]
 
 
 def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:

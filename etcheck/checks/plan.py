@@ -2,9 +2,19 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from etcheck.rod.parameters import RodParameters
+
+#: end boundary layers thinner than this fraction of the length are left to the exact determinant:
+#: Chebyshev collocation on the whole length needs N of order 1/sqrt(width) and more to resolve them
+LAYER_MIN = 0.02
+#: below this stiffness ratio the weak axis is nearly a string: the exact determinant (collocation is ill-conditioned)
+R_MIN_SPECTRAL = 1e-3
+
+SPECTRAL, EXACT = "spectral", "exact determinant"
+EXACT_MODEL = "rung 1 (linear, exact characteristic determinant)"
 
 RUNG_NAMES = {0: "rung 0 (analytic)", 1: "rung 1 (linear spectral)",
               3: "rungs 2-3 (post-buckling equilibria and their stability)"}
@@ -21,10 +31,31 @@ class Plan:
     rung: int
     reason: str
     complete: bool = True
+    route: str = ""
 
     @property
     def model(self) -> str:
-        return RUNG_NAMES[self.rung]
+        return EXACT_MODEL if self.route == EXACT and self.rung == 1 else RUNG_NAMES[self.rung]
+
+
+def boundary_layer(params: RodParameters) -> float:
+    """Width (fraction of L, dimensionless) of the thinner end boundary layer of the straight tether.
+
+    Under the effective tension T + P R omega^2 the weak-axis bending stiffness R/f acts only in
+    layers of width sqrt(R / (f T_eff)) at the welded ends; inf without tension.
+    """
+    tension = params.T + params.P * params.R * params.omega**2
+    return math.sqrt(params.R / (params.f * tension)) if tension > 0 else math.inf
+
+
+def straight_route(params: RodParameters) -> str:
+    """How the straight tether's critical values are computed: "spectral" (Chebyshev collocation
+    of rung 1) or "exact determinant" (the constant-coefficient characteristic determinant,
+    :mod:`etcheck.rod.exact_straight`) where the boundary layers are thinner than LAYER_MIN or the
+    weak axis is nearly a string (R < R_MIN_SPECTRAL). Both are exact where both apply (tested to 1e-9)."""
+    if boundary_layer(params) < LAYER_MIN or params.R < R_MIN_SPECTRAL:
+        return EXACT
+    return SPECTRAL
 
 
 def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
@@ -37,7 +68,7 @@ def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
     if static and fidelity in ("auto", "draft", "analytic"):
         return Plan(0, "no spin and no end tension: the static buckling loads of chi(beta) are exact")
     if static:
-        return Plan(1, "fidelity = linear requested (rung 0 would be exact here)")
+        return Plan(1, "fidelity = linear requested (rung 0 would be exact here)", route=SPECTRAL)
     why = []
     if params.omega != 0:
         why.append("spin")
@@ -51,4 +82,17 @@ def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
             "fidelity = analytic was requested, so the check is incomplete",
             complete=False,
         )
-    return Plan(1, f"the mission has {moving}: rung 0 does not model it, the linear spectral model does")
+    route = straight_route(params)
+    if route == SPECTRAL:
+        return Plan(1, f"the mission has {moving}: rung 0 does not model it, the linear spectral model does", route=route)
+    layer = boundary_layer(params)
+    why_exact = (f"boundary layers of {layer:.2g} L at the welded ends" if layer < LAYER_MIN
+                 else f"a nearly string-like weak axis (R = {params.R:.2g})")
+    if params.gamma <= 0:
+        return Plan(1, f"the mission has {moving} and {why_exact}: the straight tether's critical values come from "
+                    "the exact characteristic determinant, which answers divergence only; without damping flutter "
+                    "is possible, so the check is incomplete (give the tether a damping_time)", complete=False,
+                    route=route)
+    return Plan(1, f"the mission has {moving} and {why_exact}, too thin for collocation: the critical values come "
+                "from the exact characteristic determinant of the constant-coefficient straight tether "
+                "(with damping, stability is lost only where it vanishes: Kelvin-Tait-Chetaev)", route=route)

@@ -13,7 +13,7 @@ from etcheck import __version__
 from etcheck.input.mission import Mission
 
 #: version of the results.json layout (bump when a field changes meaning or moves)
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2  # 2: fidelity, plan.route, margin route
 
 
 def results_header(mission: Mission, schema_version: int = SCHEMA_VERSION) -> dict[str, Any]:

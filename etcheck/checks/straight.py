@@ -18,11 +18,13 @@ from typing import Any
 
 import numpy as np
 
+from etcheck.checks.plan import EXACT, SPECTRAL
 from etcheck.errors import SolverError
 from etcheck.jsonable import finite_or_none
 from etcheck.rod.analytic import critical_loads
 from etcheck.rod.convergence import accuracy_table
 from etcheck.rod.damped_critical import damped_critical
+from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import (
     THRESHOLD,
@@ -101,10 +103,11 @@ def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
             "message": f"first root of the static pencil ({root.model}), N = {root.N}", "N": root.N}
 
 
-def _damped_critical(p, options: WhirlOptions) -> tuple[dict, dict, bool]:
+def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, bool]:
     """Critical load at the operating spin and critical spin at the operating load of a damped
-    tether from the static pencils (exact, milliseconds), and whether the operating point is stable."""
-    dc = damped_critical(p, tol=options.tol)
+    tether from the static pencils or the exact determinant (milliseconds), and whether the
+    operating point is stable."""
+    dc = (exact_critical if route == EXACT else damped_critical)(p, tol=options.tol)
     if not dc.converged:
         raise SolverError(f"rung 1: {dc.message}")
     B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)
@@ -136,7 +139,19 @@ def _operating_spectrum(op, wc: float) -> dict[str, Any]:
     }
 
 
-def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) -> dict[str, Any]:
+def _exact_rows(p, w_rows, B_hi: float, rest: float, tol: float) -> list[list[float]]:
+    """Stable load interval [0, B_c(omega)) of each spin row, from the exact determinant (damped)."""
+    rows = []
+    for w in w_rows:
+        if w >= rest:
+            rows.append([])
+            continue
+        root = first_exact_root(p.with_(omega=float(w)), "B", tol)
+        rows.append([(0.0, min(root.value, B_hi))] if root.converged and root.value > 0 else [])
+    return rows
+
+
+def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL) -> dict[str, Any]:
     """All rung-1 answers for the scene, dimensionless and in SI.
 
     Returns a JSON-able dict: the operating spectrum (with two-resolution
@@ -150,12 +165,17 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     no stability windows; without damping they come from the spectral scan
     (flutter possible). ``options.draft`` answers the critical values and the
     operating point only (no spectrum when damped, no Campbell diagram, no map).
+    ``route`` "exact determinant" (damped only; boundary layers too thin for
+    collocation, see :func:`etcheck.checks.plan.straight_route`): the critical
+    values from :func:`etcheck.rod.exact_straight.exact_critical`, the map rows
+    from its first load roots, no spectrum and no Campbell diagram.
     """
+    exact = route == EXACT
     p, sc = scaled.params, scaled.scales
     wc = sc.frequency
     damped = p.gamma > 0
     op = None
-    if not (options.draft and damped):
+    if not ((options.draft and damped) or exact):
         op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
         if not op.converged:
             fix = " (raise [check] resolution or leave it out)" if options.N else ""
@@ -167,7 +187,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     windows: list = []
     scanned_to = None
     if damped:
-        load, spin, stable = _damped_critical(p, options)
+        load, spin, stable = _damped_critical(p, options, route)
     else:
         load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
         # one scan along the spin from rest gives the critical spin and all stable spin windows
@@ -180,7 +200,9 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
         stable = bool(op.stable)
 
     out = {
-        "model": "rung 1 (linear spectral)" + (", critical values from the static pencils" if damped else ""),
+        "model": ("rung 1, exact characteristic determinant" if exact else
+                  "rung 1 (linear spectral)" + (", critical values from the static pencils" if damped else "")),
+        "route": route,
         "threshold": THRESHOLD,
         "operating_stable": bool(stable),
         "operating_spectrum": _operating_spectrum(op, wc) if op else None,
@@ -201,6 +223,18 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS) ->
     }
     if options.draft:
         return out
+    if exact:
+        B_hi = 1.6 * max(load["value"] or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
+        w_hi = 1.6 * max(spin["value"] or 0.0, p.omega, math.sqrt(p.R))
+        rest = exact_critical(p.with_(B=0.0), tol=options.tol, spin=False).spin_at_rest.value
+        w_rows = np.linspace(0.0, w_hi, options.row_points)
+        rows = [{"omega": float(w), "spin_rpm": float(w * wc * RPM),
+                 "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
+                for w, iv in zip(w_rows, _exact_rows(p, w_rows, B_hi, rest, options.tol))]
+        return out | {"stability_map": {
+            "B": [0.0, B_hi], "omega": [0.0, w_hi], "IB0_N_per_m": [0.0, B_hi * sc.load],
+            "spin_rpm": [0.0, w_hi * wc * RPM], "max_growth": None, "stable_rows": rows,
+            "static_points": {"IB0_N_per_m": [], "spin_rpm": []}}}
 
     # ranges of the pictures: past the boundary and the operating point
     B_ref = load["value"] if load["kind"] in ("divergence", "flutter") else None

@@ -41,12 +41,14 @@ from scipy.optimize import brentq
 
 from etcheck import __version__
 from etcheck.checks.buckled import buckled_point
+from etcheck.checks.plan import EXACT, straight_route
 from etcheck.checks.results import results_header
 from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
 from etcheck.rod.damped_critical import damped_critical, first_root
+from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import critical_load, critical_spin
@@ -132,8 +134,10 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
                       "reason": f"P = {params.P:.3g} > {P_MAX}: the tether is too short for rod theory (P << 1)"}
     try:
         if params.gamma > 0:
-            d = damped_critical(params, tol, spin=spin)
-            out |= {"model": d.critical_load.model if params.omega == 0 and params.T == 0 else "rung 1 (static pencil)",
+            exact = straight_route(params) == EXACT  # boundary layers too thin for collocation
+            d = (exact_critical if exact else damped_critical)(params, tol, spin=spin)
+            pencil = "rung 1 (exact determinant)" if exact else "rung 1 (static pencil)"
+            out |= {"model": d.critical_load.model if params.omega == 0 and params.T == 0 else pencil,
                     "B_c": d.critical_load.value, "B_c_error": d.critical_load.error,
                     "omega_c": d.critical_spin.value, "omega_c_error": d.critical_spin.error,
                     "omega_rest": d.spin_at_rest.value, "stable": d.stable,
@@ -208,7 +212,7 @@ def critical_length(base: Scene, current: float, field: float, values: dict[str,
         if p.B == 0 and p.omega == 0:
             return 1.0
         if p.gamma > 0:  # exact: with damping, stable iff the ray root t* exceeds 1
-            t = first_root(p, "ray", tol)
+            t = (first_exact_root if straight_route(p) == EXACT else first_root)(p, "ray", tol)
             if not t.converged:
                 raise _NoAnswer(f"at L = {L:.6g} m: ray root not converged at N = {t.N} (error {t.error:.1e})")
             return math.log(t.value)

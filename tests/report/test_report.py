@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 from helpers import set_like
 
+from etcheck.checks.results import SCHEMA_VERSION
 from etcheck import check
 from etcheck.errors import ReportError
 from etcheck.report import render, write_reports
@@ -42,7 +43,7 @@ def test_html_has_the_engineering_content(set_results):
 def test_json_is_strict_and_round_trips(set_results):
     data = render(set_results, ("json",))["json"]
     loaded = json.loads(data)
-    assert loaded["schema_version"] == 1
+    assert loaded["schema_version"] == SCHEMA_VERSION
     assert loaded["straight_rod"]["critical_loads"][0]["B"] == pytest.approx(
         set_results["straight_rod"]["critical_loads"][0]["B"], rel=0, abs=0
     )

@@ -25,10 +25,11 @@ from etcheck.input.sweep_axes import parse_option
 from etcheck.report.sweep_files import read_csv, read_netcdf, to_csv, to_netcdf
 from etcheck.rod.analytic import critical_loads
 from etcheck.rod.damped_critical import damped_critical, first_root
+from etcheck.rod.exact_straight import string_limit_load
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.stability import critical_load, critical_spin
 from etcheck.scaling import scale, scene
-from etcheck.studies.sweep import STATUS_FAILED, STATUS_OK, STATUS_OUTSIDE, SweepOptions, solve_point, sweep
+from etcheck.studies.sweep import STATUS_OK, STATUS_OUTSIDE, SweepOptions, solve_point, sweep
 
 ROOT = Path(__file__).resolve().parents[2]
 SET = dict(P=1e-3, R=21 / 38, Gamma=0.76923, f=500.5639, gamma=0.04375)
@@ -232,9 +233,14 @@ def test_extremes_converge_and_agree_with_exact_shooting(kw):
         assert _sign_change_at(lambda b: static_determinant(b, *args, p.omega, p.T), r["B_c"])
 
 
-def test_unresolved_tension_is_a_failed_point_with_reason():
-    r = solve_point(RodParameters(**(SET | {"T": 1e4})), 1e-8)
-    assert r["status"] == STATUS_FAILED and "N = 128" in r["reason"] and r["stable"] is None
+def test_strong_tension_is_answered_by_the_exact_determinant():
+    """T = 1e4: boundary layers of 1e-3 L, beyond collocation at N = 128 (once a failed point);
+    the planner hands it to the exact determinant, which meets the string limit with its corrections."""
+    p = RodParameters(**(SET | {"T": 1e4}))
+    r = solve_point(p, 1e-8)
+    assert r["status"] == STATUS_OK and "exact determinant" in r["model"] and r["stable"] is True
+    assert r["B_c"] == pytest.approx(string_limit_load(p, order=2), rel=1e-6)
+    assert abs(r["B_c"] / (2 * np.pi * p.T) - 1) > 5e-4  # the boundary-layer correction (6.7e-4) is really there
 
 
 def test_long_and_short_lengths_in_one_sweep():

@@ -1,0 +1,63 @@
+"""Tethers as they fly (issue 16): strong tension and tapes go to the exact determinant, in milliseconds.
+
+The planner hands scenes whose end boundary layers are thinner than collocation resolves (or whose
+weak axis is nearly a string) to :mod:`etcheck.rod.exact_straight`; where both routes apply they agree.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import pytest
+from helpers import set_like
+
+from etcheck import check
+from etcheck.checks.plan import EXACT, LAYER_MIN, SPECTRAL, boundary_layer, straight_route
+from etcheck.rod.damped_critical import damped_critical
+from etcheck.rod.exact_straight import exact_critical, string_limit_load
+from etcheck.rod.parameters import RodParameters
+
+SET = dict(P=1e-3, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375)
+
+#: the issue's tape: 500 m aluminium, EI1 = 3.65 N m2, EI2 = 9.3e-6 N m2, 2.7 g/m, 1 A in 30 uT, 0.18 N
+TAPE = dict(length="500 m", bending_stiffness=["3.65 N m2", "9.3e-6 N m2"], mass_per_length="2.7 g/m",
+            rotary_inertia_ratio=1e-9, current="1 A", axial_field="30 uT", end_tension="0.18 N")
+
+
+def test_planner_routes_by_boundary_layer_width():
+    assert straight_route(RodParameters(**SET, T=1.0)) == SPECTRAL
+    assert boundary_layer(RodParameters(**SET, T=1e4)) < LAYER_MIN
+    assert straight_route(RodParameters(**SET, T=1e4)) == EXACT
+    assert straight_route(RodParameters(P=1e-9, R=2.5e-6, Gamma=0.75, gamma=0.01)) == EXACT  # string-like weak axis
+    assert boundary_layer(RodParameters(**SET)) == math.inf
+
+
+@pytest.mark.parametrize("T,omega", [(2.0, 0.0), (5.0, 0.3), (0.5, 0.5)])
+def test_both_routes_agree_where_both_apply(T, omega):
+    p = RodParameters(**SET, T=T, omega=omega, B=0.2)
+    a, b = damped_critical(p), exact_critical(p)
+    assert a.converged and b.converged
+    for x, y in ((a.critical_load, b.critical_load), (a.critical_spin, b.critical_spin)):
+        assert y.value == pytest.approx(x.value, rel=1e-9)
+
+
+def test_the_issue_tape_is_answered_by_the_exact_rung_fast():
+    t0 = time.perf_counter()
+    r = check(set_like(name="tape", check={"fidelity": "draft"}, **TAPE)).results
+    elapsed = time.perf_counter() - t0
+    assert r["plan"]["route"] == EXACT and r["verdict"] == "pass"
+    margin = r["margins"][0]
+    assert "exact characteristic determinant" in margin["model"]
+    # the string limit with its boundary-layer corrections: I B0 = B f EI1 / L^3, B -> 2 pi T (1 + ...)
+    p = RodParameters(**{k: r["scaled"][k] for k in ("P", "R", "Gamma", "f", "T", "gamma")})
+    critical = string_limit_load(p, order=2) * r["scales"]["load_N_per_m"]
+    assert margin["critical"] == pytest.approx(critical, rel=1e-5)
+    assert margin["critical"] == pytest.approx(2 * math.pi * 0.18 / 500, rel=2e-3)  # 2 pi T / L
+    assert margin["error"] < 1e-8
+    assert elapsed < 30  # minutes before (no answer); generous bound on a loaded machine, not a benchmark
+
+
+def test_undamped_thin_layers_are_incomplete_not_guessed():
+    r = check(set_like(name="tape", damping_time="0 s", **TAPE)).results
+    assert r["verdict"] == "incomplete" and "flutter" in r["plan"]["reason"]
