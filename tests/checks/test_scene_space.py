@@ -29,7 +29,7 @@ SET_IB0 = 1.1135e-2
 
 
 @st.composite
-def missions(draw, fidelity: str = "draft"):
+def missions(draw, fidelity: str = "draft", undamped: bool = True):
     length = 10 ** draw(st.floats(0.0, 5.0))  # 1 m .. 100 km
     EI1 = 10 ** draw(st.floats(-3.0, 3.0))
     R = draw(st.sampled_from([1.0, 0.5526, 0.1, 0.01]))
@@ -41,7 +41,7 @@ def missions(draw, fidelity: str = "draft"):
     current = ratio * critical / (field_uT * 1e-6)
     omega_c = math.sqrt(500.5639 * EI1 / (mass * length**4))  # reference frequency [rad/s]
     spin = draw(st.sampled_from([0.0, 0.1, 0.5, 1.0, 3.0, 10.0])) * math.sqrt(R) * omega_c  # x the critical spin
-    damping = draw(st.sampled_from([None, "0 s", "1e-9 s", "heavy"]))
+    damping = draw(st.sampled_from([None, "0 s", "1e-9 s", "heavy"] if undamped else [None, "heavy"]))
     tension = draw(st.sampled_from([0.0, 0.3, 30.0])) * 500.5639 * EI1 / length**2  # T-bar = 0, 0.3, 30
     data = set_like(name="scene", check={"fidelity": fidelity})
     data["tether"].update({"length": f"{length!r} m", "bending_stiffness": [f"{EI1!r} N m2", f"{EI1 * R!r} N m2"],
@@ -83,7 +83,7 @@ def _assert_well_formed(results: dict) -> None:
     assert "</html>" in html
 
 
-@settings(max_examples=30, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(missions())
 def test_every_draft_scene_is_answered_or_refused_clearly(data):
     results = _answer(data)
@@ -91,8 +91,8 @@ def test_every_draft_scene_is_answered_or_refused_clearly(data):
         _assert_well_formed(results)
 
 
-@settings(max_examples=4, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
-@given(missions(fidelity="auto"))
+@settings(max_examples=3, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@given(missions(fidelity="auto", undamped=False))  # undamped sign-off maps cost seconds each: one regression below
 def test_sign_off_scenes_are_answered_or_refused_clearly(data):
     results = _answer(data)
     if results is not None:

@@ -29,7 +29,7 @@ def test_heavy_damping_spectrum_converges_outside_the_cluster(gamma):
 def test_damping_does_not_move_the_divergence_load():
     # Kelvin-Tait-Chetaev: with damping, stability is lost where the static operator is singular
     ref = first_static_load(0.001, 0.5, F_CLAMPED, omega=0.2, B_max=1.0)
-    for gamma in (0.0, 0.04375, 1.0):
+    for gamma in (0.0, 1.0):  # undamped and heavily damped (the paper's 0.04375 is covered by the check tests)
         c = critical_load(RodParameters(P=0.001, R=0.5, Gamma=0.77, omega=0.2, gamma=gamma))
         assert c.kind == "divergence" and c.converged
         assert c.value == pytest.approx(ref, rel=1e-9)
