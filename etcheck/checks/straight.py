@@ -231,9 +231,11 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
         rows = [{"omega": float(w), "spin_rpm": float(w * wc * RPM),
                  "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
                 for w, iv in zip(w_rows, _exact_rows(p, w_rows, B_hi, rest, options.tol))]
+        B_grid = np.linspace(0.0, B_hi, options.map_points)
+        w_grid = np.linspace(0.0, w_hi, options.map_points)
         return out | {"stability_map": {
-            "B": [0.0, B_hi], "omega": [0.0, w_hi], "IB0_N_per_m": [0.0, B_hi * sc.load],
-            "spin_rpm": [0.0, w_hi * wc * RPM], "max_growth": None, "stable_rows": rows,
+            "B": B_grid.tolist(), "omega": w_grid.tolist(), "IB0_N_per_m": (B_grid * sc.load).tolist(),
+            "spin_rpm": (w_grid * wc * RPM).tolist(), "max_growth": None, "stable_rows": rows,
             "static_points": {"IB0_N_per_m": [], "spin_rpm": []}}}
 
     # ranges of the pictures: past the boundary and the operating point

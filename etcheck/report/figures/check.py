@@ -314,8 +314,10 @@ def _operating_mark(results: dict, op: dict | None):
 def figures(results: dict) -> dict[str, str]:
     """All figures the report shows, keyed by name."""
     out = {"chi": chi_plot(results), "mode": mode_plot(results)}
-    if (results.get("linear") or {}).get("campbell"):  # a draft has neither Campbell diagram nor map
+    lin = results.get("linear") or {}
+    if lin.get("campbell"):  # neither in a draft; no Campbell diagram on the exact-determinant route
         out["campbell"] = campbell_plot(results)
+    if lin.get("stability_map"):
         out["map"] = stability_map_plot(results)
     if (results.get("postbuckling") or {}).get("computed"):
         out |= postbuckling_plots(results)
