@@ -107,7 +107,10 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, 
     """Critical load at the operating spin and critical spin at the operating load of a damped
     tether from the static pencils or the exact determinant (milliseconds), and whether the
     operating point is stable."""
-    dc = (exact_critical if route == EXACT else damped_critical)(p, tol=options.tol)
+    if route == EXACT:  # root located to round-off; its estimate (two formulations) is judged by the mission's tolerance
+        dc = exact_critical(p, tol=max(options.tol, options.eig_tol))
+    else:
+        dc = damped_critical(p, tol=options.tol)
     if not dc.converged:
         raise SolverError(f"rung 1: {dc.message}")
     B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)

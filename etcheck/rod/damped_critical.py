@@ -37,7 +37,7 @@ from .parameters import RodParameters
 from .spectrum import check_resolution
 from .stability import _family
 
-__all__ = ["LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical"]
+__all__ = ["LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical", "critical_from_roots"]
 
 #: Chebyshev resolutions tried in turn until two resolutions agree.
 LADDER = (16, 24, 32, 48, 64, 96, 128)
@@ -143,19 +143,35 @@ def damped_critical(params: RodParameters, tol: float = 1e-8, ladder: tuple[int,
     """
     if not params.gamma > 0:
         raise ValueError("damped_critical needs gamma > 0 (Kelvin-Tait-Chetaev); use the spectral scan")
+
+    def root(p, axis, tol, sign=1.0, floor=0.0):
+        return first_root(p, axis, tol, sign=sign, ladder=ladder, floor=floor)
+
+    return critical_from_roots(params, tol, spin, root)
+
+
+def critical_from_roots(params: RodParameters, tol: float, spin: bool, root) -> DampedCritical:
+    """The damped straight rod's critical values from a first-root finder (dimensionless).
+
+    ``root(params, axis, tol, sign=1.0, floor=0.0) -> PencilRoot`` is the
+    smallest root of the static operator on ``axis`` (this module's pencils,
+    or the exact determinant of :mod:`etcheck.rod.exact_straight`): one
+    orchestration for both routes (compressive limit, spin at rest, static
+    load, load at the operating spin, spin at the operating load).
+    """
     p = params
     if p.T < 0:
-        comp = first_root(p.with_(B=0.0, omega=0.0), "T", tol, sign=-1.0, ladder=ladder)
+        comp = root(p.with_(B=0.0, omega=0.0), "T", tol, sign=-1.0)
         if not comp.converged:
             return _failed(comp, "the compressive limit did not converge")
         if p.T <= comp.value:
             zero = PencilRoot("B", 0.0, 0.0, comp.N, True, comp.model)
             return DampedCritical(zero, PencilRoot("omega", 0.0, 0.0, comp.N, True, comp.model), zero, False, True,
                                   f"the end compression exceeds the Euler limit T = {comp.value:.6g}")
-    rest = first_root(p.with_(B=0.0), "omega", tol, ladder=ladder)  # spin that destabilises the unloaded rod
+    rest = root(p.with_(B=0.0), "omega", tol)  # spin that destabilises the unloaded rod
     if not rest.converged:
         return _failed(rest, "the critical spin of the unloaded rod did not converge")
-    static = first_root(p.with_(omega=0.0), "B", tol, ladder=ladder)
+    static = root(p.with_(omega=0.0), "B", tol)
     if not static.converged:
         return _failed(static, "the static critical load did not converge")
     if p.omega == 0:
@@ -163,22 +179,25 @@ def damped_critical(params: RodParameters, tol: float = 1e-8, ladder: tuple[int,
     elif p.omega >= rest.value:
         load = PencilRoot("B", 0.0, 0.0, rest.N, True, rest.model)
     else:
-        load = first_root(p, "B", tol, ladder=ladder, floor=1e-2 * static.value)
+        load = root(p, "B", tol, floor=1e-2 * static.value)
     if not spin:
         crit = PencilRoot("omega", math.nan, math.nan, 0, True, "not asked")
     elif p.B >= static.value:
         crit = PencilRoot("omega", 0.0, 0.0, static.N, True, static.model)
     else:
-        crit = first_root(p, "omega", tol, ladder=ladder, floor=1e-2 * rest.value)
+        crit = root(p, "omega", tol, floor=1e-2 * rest.value)
     converged = load.converged and crit.converged
     stable = p.omega < rest.value and p.B < load.value
     msg = "converged" if converged else "; ".join(
-        f"{r.axis} root not converged at N = {r.N} (two-resolution error {r.error:.1e} > {tol:.0e})"
+        f"{r.axis} root not converged{_at(r)} (error estimate {r.error:.1e} > {tol:.0e})"
         for r in (load, crit) if not r.converged)
     return DampedCritical(load, crit, rest, bool(stable), converged, msg)
 
 
+def _at(root: PencilRoot) -> str:
+    return f" at N = {root.N}" if root.N else ""
+
+
 def _failed(root: PencilRoot, why: str) -> DampedCritical:
     nan = PencilRoot(root.axis, math.nan, root.error, root.N, False, root.model)
-    return DampedCritical(nan, nan, root, False, False,
-                          f"{why} at N = {root.N} (two-resolution error {root.error:.1e})")
+    return DampedCritical(nan, nan, root, False, False, f"{why}{_at(root)} (error estimate {root.error:.1e})")

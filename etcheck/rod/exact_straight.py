@@ -80,7 +80,7 @@ from scipy.linalg import lapack
 from scipy.optimize import brentq, minimize_scalar
 from threadpoolctl import ThreadpoolController
 
-from .damped_critical import DampedCritical, PencilRoot
+from .damped_critical import DampedCritical, PencilRoot, critical_from_roots
 from .parameters import RodParameters
 
 __all__ = [
@@ -815,44 +815,7 @@ def exact_critical(params: RodParameters, tol: float = 1e-8, spin: bool = True) 
     """
     if not params.gamma > 0:
         raise ValueError("exact_critical needs gamma > 0 (Kelvin-Tait-Chetaev); undamped rods can flutter")
-    p = params
-    if p.T < 0:
-        comp = first_exact_root(p.with_(B=0.0, omega=0.0), "T", tol, sign=-1.0)
-        if not comp.converged:
-            return _failed(comp, "the compressive limit did not converge")
-        if p.T <= comp.value:
-            zero = PencilRoot("B", 0.0, 0.0, comp.N, True, comp.model)
-            return DampedCritical(zero, PencilRoot("omega", 0.0, 0.0, comp.N, True, comp.model), zero, False, True,
-                                  f"the end compression exceeds the Euler limit T = {comp.value:.6g}")
-    rest = first_exact_root(p.with_(B=0.0), "omega", tol)
-    if not rest.converged:
-        return _failed(rest, "the critical spin of the unloaded rod did not converge")
-    static = first_exact_root(p.with_(omega=0.0), "B", tol)
-    if not static.converged:
-        return _failed(static, "the static critical load did not converge")
-    if p.omega == 0:
-        load = static
-    elif p.omega >= rest.value:
-        load = PencilRoot("B", 0.0, 0.0, rest.N, True, rest.model)
-    else:
-        load = first_exact_root(p, "B", tol, floor=1e-2 * static.value)
-    if not spin:
-        crit = PencilRoot("omega", math.nan, math.nan, 0, True, "not asked")
-    elif p.B >= static.value:
-        crit = PencilRoot("omega", 0.0, 0.0, static.N, True, static.model)
-    else:
-        crit = first_exact_root(p, "omega", tol, floor=1e-2 * rest.value)
-    converged = load.converged and crit.converged
-    stable = p.omega < rest.value and p.B < load.value
-    msg = "converged" if converged else "; ".join(
-        f"{r.axis} root not converged (error estimate {r.error:.1e} > {tol:.0e})"
-        for r in (load, crit) if not r.converged)
-    return DampedCritical(load, crit, rest, bool(stable), converged, msg)
-
-
-def _failed(root: PencilRoot, why: str) -> DampedCritical:
-    nan = PencilRoot(root.axis, math.nan, root.error, root.N, False, root.model)
-    return DampedCritical(nan, nan, root, False, False, f"{why} (error estimate {root.error:.1e})")
+    return critical_from_roots(params, tol, spin, first_exact_root)
 
 
 # --- the string limit ----------------------------------------------------------------------
