@@ -3,6 +3,9 @@
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
+
 OPERATION_KEYS = ("current", "axial_field", "spin_rate", "end_tension")
 
 
@@ -23,3 +26,12 @@ def set_like(name: str = "api", description: str = "", check: dict | None = None
     for key, value in fields.items():
         data["operation" if key in OPERATION_KEYS else "tether"][key] = value
     return data
+
+
+def tension_free(mission: Path, folder: Path) -> Path:
+    """A copy of a shipped flight mission (PMG, ProSEDS) in ``folder`` with its gravity-gradient tension
+    neglected, as the paper did (Sec. VII A): end_tension = 0 instead of end_masses and the orbit rate."""
+    text = re.sub(r"^(end_masses|orbit_rate|orbit_altitude) = .*$", "", mission.read_text(), flags=re.M)
+    path = folder / mission.name
+    path.write_text(text.replace("[operation]\n", '[operation]\nend_tension = "0 N"\n', 1))
+    return path

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from etcheck.checks.plan import Plan
+from etcheck.checks.plan import EXACT, Plan
 from etcheck.input.mission import Mission
 from etcheck.scaling import Scaled
 
@@ -31,7 +31,18 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: dict | None =
             "Rung 0 roots of chi(beta) are located to ~1e-15 relative (a-posteriori Newton step); "
             "the static loads do not depend on P, damping or mass per length."
         )
-    if chosen.rung == 1:
+    if chosen.rung == 1 and chosen.route == EXACT:
+        items += [
+            "The straight tether's linear problem (Sec. V B) has constant coefficients: its characteristic "
+            "determinant, with each growing or decaying exponential scaled at the end where it is small, is exact "
+            "at any tension and stiffness ratio. Critical values are its first roots (bracketed, then Brent's "
+            "method); each error estimate is the root's distance to that of a second, independent formulation.",
+            "With damping the straight tether loses stability only where its static operator is singular "
+            "(Kelvin-Tait-Chetaev), so those roots are the whole stability boundary; the map's stable rows run from "
+            "zero load to the first root at each spin. Frequencies (Campbell diagram, operating eigenvalues) are not "
+            "computed on this route.",
+        ]
+    elif chosen.rung == 1:
         items += [
             "Rung 1 linearises the full O(delta) equations (Sec. V B) about the straight tether and solves the "
             "damped gyroscopic eigenproblem by Chebyshev collocation; every eigenvalue and critical value is "
@@ -50,6 +61,15 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: dict | None =
                 "accumulation of heavily damped high modes) are not listed: they decay faster than the material "
                 "relaxation rate."
             )
+    gg = mission.gravity_gradient
+    if gg is not None:
+        items.append(
+            f"End tension from the gravity gradient (tether.end_masses, {gg.rate_source}): the tension varies along "
+            f"the tether from {gg.minimum:.4g} N at the {gg.minimum_at} to {gg.maximum:.4g} N at the centre of mass; "
+            f"the rod model has one constant tension and uses the SMALLEST, {gg.minimum:.4g} N. Tension stabilises "
+            "the straight tether, so this is conservative. Tether on the local vertical of a circular orbit, no "
+            "libration (at the extremes of a libration swing the tension is lower, by about cos² of the angle)."
+        )
     if p.P > 1e-2:
         items.append(f"P = {p.P:.3g} is large for a slender rod; rod theory assumes P << 1.")
     return items

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import astropy.units as u
 
 from etcheck.errors import MissionError
+from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
 from etcheck.input.orbit_field import check_one_field_source, orbit_axial_field, orbit_echo, orbit_notes
 from etcheck.input.sweep_axes import AXES, Axis, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
@@ -51,12 +52,15 @@ SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
         "youngs_modulus": ("pressure", False),
         "cross_section_area": ("area", False),
         "damping_time": ("time", False),
+        "end_masses": ("mass_pair", False),  # [upper, lower]: gravity-gradient tension (etcheck.input.gravity_gradient)
     },
     "operation": {
         "current": ("current_range", True),
         "axial_field": ("field_range", False),  # required unless [orbit] is given (exactly one of the two)
         "spin_rate": ("angular_rate", False),
         "end_tension": ("force", False),
+        "orbit_rate": ("angular_rate", False),  # with tether.end_masses; or orbit_altitude, or the [orbit] table
+        "orbit_altitude": ("length", False),
     },
     "sweep": {name: ("sweep_axis", False) for name in AXES},
     "orbit": {},  # its fields are checked by etcheck.orbit.spec.parse_orbit (imported only when given)
@@ -110,6 +114,8 @@ class Mission:
     # (env.worst, env.worst) T, the worst axial field over the orbit and the libration set
     orbit: OrbitSpec | None = None
     orbit_envelope: AxialFieldEnvelope | None = field(default=None, compare=False, repr=False)
+    # tether.end_masses + orbit rate: the tension profile; end_tension is then its minimum (conservative)
+    gravity_gradient: GravityGradient | None = None
 
     @property
     def slug(self) -> str:
@@ -164,6 +170,7 @@ class Mission:
                 "spin_rate": q(self.spin_rate),
                 "spin_rate_rpm": float(self.spin_rate.to(u.cycle / u.min).value),
                 "end_tension": q(self.end_tension),
+                "gravity_gradient": None if self.gravity_gradient is None else self.gravity_gradient.as_dict(),
             },
             "check": {
                 "required_margin": self.required_margin,
@@ -354,6 +361,10 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
             spin = -spin
             notes.append("spin_rate given negative: the direction of spin does not change stability; its magnitude is used")
     tension = get("operation", "end_tension", "force", o) if "end_tension" in o else 0.0 * u.N
+    gg = parse_gravity_gradient(t, o, orbit, float(length.to_value(u.m)), float(mass.to_value(u.kg / u.m)), source)
+    if gg is not None:  # the smallest tension along the tether: tension stabilises, so this is conservative
+        tension = gg.minimum * u.N
+        notes.append(gg.statement())
 
     required = number("check", "required_margin", c, 1.0, math.inf, hi_open=True) if "required_margin" in c else 2.0
     fidelity = text("check", "fidelity", c, "auto")
@@ -416,6 +427,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         uncertainty=uncertainty,
         orbit=orbit,
         orbit_envelope=envelope,
+        gravity_gradient=gg,
     )
 
 

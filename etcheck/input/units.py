@@ -29,6 +29,7 @@ KINDS = {
     "angular_rate": (u.rad / u.s, "a spin rate", '"2 rpm" or "0.2 rad/s"'),
     "force": (u.N, "a force", '"5 N"'),
     "angle": (u.rad, "an angle", '"51.6 deg"'),
+    "mass": (u.kg, "a mass", '"20 kg"'),
 }
 
 
@@ -118,4 +119,5 @@ _PINT_SI = {
     "rad / s": "rad/s",
     "N": "N",
     "rad": "radian",
+    "kg": "kg",
 }

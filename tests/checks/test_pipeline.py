@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from helpers import tension_free
 from independent import beta_ref
 
 import etcheck
@@ -156,8 +157,9 @@ def test_set_limits(set_result):
 
 
 @pytest.mark.parametrize("name", ["pmg.toml", "proseds.toml"])
-def test_flight_tethers_fail(name):
-    result = check(str(MISSIONS / name))
+def test_flight_tethers_fail(name, tmp_path):
+    """Without their gravity-gradient tension (as in the paper) the flight tethers buckle."""
+    result = check(str(tension_free(MISSIONS / name, tmp_path)))
     assert result.verdict == "fail"
     assert result.exit_code == 1
     json.dumps(result.results, allow_nan=False)
@@ -310,7 +312,7 @@ def test_cli_spin_or_tension_not_zero(tmp_path, capsys, changes):
 
 
 def test_cli_json_only_writes_json(tmp_path, capsys):
-    rc = run_main([str(MISSIONS / "proseds.toml"), "--out", str(tmp_path), "--format", "json"])
+    rc = run_main([str(tension_free(MISSIONS / "proseds.toml", tmp_path)), "--out", str(tmp_path), "--format", "json"])
     assert rc == 1
     files = sorted(p.name for p in (tmp_path / "proseds").iterdir())
     assert files == ["results.json"]
@@ -347,7 +349,8 @@ def test_subprocess_set_passes_and_writes_json(tmp_path):
 
 
 def test_subprocess_pmg_fails(tmp_path):
-    proc = etcheck_cli([str(MISSIONS / "pmg.toml"), "--out", str(tmp_path), "--format", "json"], cwd=tmp_path)
+    proc = etcheck_cli([str(tension_free(MISSIONS / "pmg.toml", tmp_path)), "--out", str(tmp_path), "--format", "json"],
+                       cwd=tmp_path)
     assert proc.returncode == 1, proc.stderr
     assert "Traceback" not in proc.stderr
     assert (tmp_path / "pmg" / "results.json").is_file()
