@@ -112,7 +112,7 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict |
     return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
 
 
-def _scene_dict(mission: Mission, sc: Scene) -> dict[str, float]:
+def _scene_dict(mission: Mission, sc: Scene) -> dict[str, Any]:
     return {
         "worst_current_A": float(mission.worst_current.to_value("A")),
         "worst_field_T": float(mission.worst_field.to_value("T")),
@@ -125,6 +125,8 @@ def _scene_dict(mission: Mission, sc: Scene) -> dict[str, float]:
         "load_N_per_m": sc.load,
         "spin_rate_rad_s": sc.spin_rate,
         "tension_N": sc.tension,
+        # tether.end_masses: the gravity-gradient profile (N); tension_N is its minimum (conservative)
+        "tension_profile": None if mission.gravity_gradient is None else mission.gravity_gradient.as_dict(),
         "damping_time_s": sc.damping_time,
         "f": sc.f,
     }
