@@ -15,7 +15,7 @@ from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
 from etcheck.checks.fidelity import fidelity_of
 from etcheck.checks.margins import FAIL, INCOMPLETE, PASS, buckled_margins, overall_verdict, straight_margins
 from etcheck.checks.orbit_load import orbit_results
-from etcheck.checks.plan import plan
+from etcheck.checks.plan import EXACT, plan
 from etcheck.checks.results import results_header
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, linear_stability
@@ -63,9 +63,10 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=())
-    if chosen.rung == 1:
-        linear = linear_stability(scaled, options)
-        accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N else None
+    if chosen.rung == 1 and chosen.complete:
+        linear = linear_stability(scaled, options, chosen.route)
+        # the spectral accuracy table says nothing about the exact determinant (no resolution to trade)
+        accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N and chosen.route != EXACT else None
     margins = straight_margins(mission, sc, scaled, chosen, static, linear)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
     if post and post.get("computed"):
@@ -80,7 +81,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
             "force_N": scaled.scales.force,
             "load_N_per_m": scaled.scales.load,
         },
-        "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete},
+        "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete,
+                 "route": chosen.route},
         "fidelity": fid.as_dict(),
         "straight_rod": static,
         "linear": linear,
