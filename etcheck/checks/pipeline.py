@@ -15,7 +15,7 @@ from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
 from etcheck.checks.fidelity import fidelity_of
 from etcheck.checks.margins import FAIL, INCOMPLETE, PASS, buckled_margins, overall_verdict, straight_margins
 from etcheck.checks.orbit_load import orbit_results
-from etcheck.checks.plan import EXACT, plan
+from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, plan
 from etcheck.checks.results import results_header
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, linear_stability
@@ -111,6 +111,12 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict |
         return {"computed": False, "B_c": 0.0, "load_ratio": None,
                 "reason": "the straight tether is unstable without any magnetic load at this spin and tension "
                 "(it whirls): no buckled branch grows from a stable straight state here"}
+    if linear is not None and linear.get("route") == EXACT:
+        layer = boundary_layer(p)
+        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c,
+                "reason": f"beyond rungs 2-3: the buckled tether's end boundary layers ({layer:.2g} of its length, "
+                f"or a string-like weak axis, R = {p.R:.2g}) are thinner than their Chebyshev collocation resolves "
+                f"(they need layers wider than {LAYER_MIN:g} of the length and R >= {R_MIN_SPECTRAL:g})"}
     return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
 
 

@@ -61,3 +61,11 @@ def test_the_issue_tape_is_answered_by_the_exact_rung_fast():
 def test_undamped_thin_layers_are_incomplete_not_guessed():
     r = check(set_like(name="tape", damping_time="0 s", **TAPE)).results
     assert r["verdict"] == "incomplete" and "flutter" in r["plan"]["reason"]
+
+
+def test_buckled_tape_is_beyond_rungs_2_3_and_says_why():
+    """Past its first critical load a tape's coil has boundary layers rung 2 cannot resolve: said, not attempted."""
+    r = check(set_like(name="tape", **(TAPE | {"current": "200 A"}))).results
+    post = r["postbuckling"]
+    assert r["verdict"] == "fail" and post is not None and post["computed"] is False
+    assert "beyond rungs 2-3" in post["reason"]
