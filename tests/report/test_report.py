@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 from helpers import set_like
 
-from etcheck.checks.results import SCHEMA_VERSION
 from etcheck import check
+from etcheck.checks.results import SCHEMA_VERSION
 from etcheck.errors import ReportError
 from etcheck.report import render, write_reports
 
