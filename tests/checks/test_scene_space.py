@@ -83,7 +83,7 @@ def _assert_well_formed(results: dict) -> None:
     assert "</html>" in html
 
 
-@settings(max_examples=25, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=18, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(missions())
 def test_every_draft_scene_is_answered_or_refused_clearly(data):
     results = _answer(data)
@@ -91,7 +91,7 @@ def test_every_draft_scene_is_answered_or_refused_clearly(data):
         _assert_well_formed(results)
 
 
-@settings(max_examples=3, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=2, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(missions(fidelity="auto", undamped=False))  # undamped sign-off maps cost seconds each: one regression below
 def test_sign_off_scenes_are_answered_or_refused_clearly(data):
     results = _answer(data)

@@ -1,0 +1,40 @@
+"""Draft or sign-off (issue 10): a draft answers the same margins, says what it left out, and is marked."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from etcheck import check, load_mission
+from etcheck.checks.fidelity import DRAFT_TOLERANCE, LEFT_OUT
+from etcheck.checks.straight import WhirlOptions
+from etcheck.report import render
+
+MISSIONS = Path(__file__).resolve().parents[2] / "missions"
+#: a sign-off with the smallest pictures: the margins do not depend on the map or Campbell grids
+SMALL = WhirlOptions(map_points=4, row_points=4, campbell_points=4, accuracy_N=())
+
+
+@pytest.mark.parametrize("name", ["set.toml", "set-static.toml"])
+def test_draft_margins_equal_sign_off_within_their_errors(name):
+    mission = load_mission(MISSIONS / name)
+    sign = check(mission, SMALL).results
+    draft = check(replace(mission, fidelity="draft")).results
+    assert sign["fidelity"] == {"name": "sign-off", "tolerance": mission.tolerance, "left_out": []}
+    assert draft["fidelity"]["name"] == "draft" and draft["fidelity"]["tolerance"] == DRAFT_TOLERANCE
+    assert draft["fidelity"]["left_out"] == list(LEFT_OUT)
+    assert draft["verdict"] == sign["verdict"]
+    for a, b in zip(draft["margins"], sign["margins"], strict=True):
+        assert a["name"] == b["name"] and a["verdict"] == b["verdict"]
+        assert a["value"] == pytest.approx(b["value"], rel=DRAFT_TOLERANCE + a["error"] + b["error"])
+
+
+def test_draft_leaves_out_the_pictures_and_says_so():
+    draft = check(replace(load_mission(MISSIONS / "set.toml"), fidelity="draft")).results
+    lin = draft["linear"]
+    assert lin["campbell"] is None and lin["stability_map"] is None and draft["accuracy"] is None
+    assert draft["postbuckling"] is None
+    html = render(draft, ("html",))["html"].decode()
+    assert "not for signature" in html and "Fidelity: draft" in html
