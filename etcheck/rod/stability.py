@@ -34,6 +34,7 @@ damping and zero without).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -441,6 +442,10 @@ def stable_rows(params: RodParameters, omega_grid, B_max: float, N: int = 24, k:
     if params.gamma <= 0:
         raise ValueError("stable_rows needs damping gamma > 0 (undamped rods can flutter between static points)")
     fam = _family(params, N)
+    # the piece touching B = 0 needs no eigenvalues: the static operator there is positive definite (stable,
+    # Kelvin-Tait-Chetaev) exactly below the first spin root of the unloaded rod
+    rest2 = fam.pencil_roots("omega", 0.0, 0.0, params.T)
+    rest = math.sqrt(float(np.min(rest2[rest2 > 0]))) if np.any(rest2 > 0) else math.inf
     rows = []
     for w in np.asarray(omega_grid, dtype=float):
         roots = fam.pencil_roots("B", 0.0, w, params.T)
@@ -448,7 +453,9 @@ def stable_rows(params: RodParameters, omega_grid, B_max: float, N: int = 24, k:
         edges = [0.0, *roots.tolist(), float(B_max)]
         stable: list = []
         for a, b in zip(edges[:-1], edges[1:]):
-            if fam.growth(0.5 * (a + b), w, params.T, k=k) > THRESHOLD:
+            unstable = (w >= rest if a == 0.0 and params.T >= 0 else
+                        fam.growth(0.5 * (a + b), w, params.T, k=k) > THRESHOLD)
+            if unstable:
                 continue
             if stable and stable[-1][1] == a:
                 stable[-1] = (stable[-1][0], b)
