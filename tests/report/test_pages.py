@@ -30,7 +30,8 @@ def _examples():
 
 EXAMPLES = _examples()
 # one of each kind plus the buckled tether keeps the suite fast; every example is laid out by the browser test
-CHEAP = [p for p in EXAMPLES if p.id in ("set-600-m/results.json", "set/results.json", "set/sweep/sweep.json",
+CHEAP = [p for p in EXAMPLES if p.id in ("set-600-m/results.json", "set/results.json", "proseds-orbit/results.json",
+                                         "set/sweep/sweep.json",
                                          "set/diagram-w0.25/diagram.json", "set/damping-map/damping.json")]
 
 
