@@ -3,12 +3,23 @@
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
+from enum import StrEnum
 
 from etcheck.checks.plan import EXACT, EXACT_MODEL, RUNG_NAMES, Plan
 from etcheck.input.mission import Mission
+from etcheck.rod.stability import CriticalKind
 from etcheck.scaling import RPM, Scaled, Scene
 
-PASS, FAIL, INCOMPLETE = "pass", "fail", "incomplete"
+
+class Verdict(StrEnum):
+    """The verdict of a margin or of a check (a str: written to JSON as its value)."""
+
+    PASS = "pass"
+    FAIL = "fail"
+    INCOMPLETE = "incomplete"  # a question the chosen model cannot answer: never a pass
+
+
+PASS, FAIL, INCOMPLETE = Verdict.PASS, Verdict.FAIL, Verdict.INCOMPLETE
 
 
 @dataclass(frozen=True)
@@ -137,9 +148,9 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) -> 
 
 def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
     kind = point["kind"]
-    if kind == "unstable at start":
+    if kind == CriticalKind.UNSTABLE_AT_START:
         return ratio_margin(name, unit, 0.0, operating, required, 1, 0.0, why_unstable)
-    if kind == "none found":
+    if kind == CriticalKind.NONE_FOUND:
         hi = point["bracket"][1] * scale_to_si
         return ratio_margin(
             name, unit, hi, operating, required, 1, 0.0,

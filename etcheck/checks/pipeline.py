@@ -21,6 +21,7 @@ from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, linear_stability
 from etcheck.checks.validity import validity
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
+from etcheck.rod.stability import CriticalKind
 from etcheck.scaling import Scaled, Scene, scale, scene
 
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1}
@@ -102,7 +103,8 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict |
     p = scaled.params
     if linear is not None:
         crit = linear["critical_load"]
-        B_c = crit["value"] if crit["kind"] in ("divergence", "flutter") else (0.0 if crit["kind"] == "unstable at start" else None)
+        kind = CriticalKind(crit["kind"])
+        B_c = crit["value"] if kind.located else (0.0 if kind == CriticalKind.UNSTABLE_AT_START else None)
     else:
         B_c = static["critical_loads"][0]["B"] if p.omega == 0 and p.T == 0 else None
     if B_c is None or not needs_postbuckling(p.B, B_c, mission.required_margin):

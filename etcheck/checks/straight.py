@@ -28,6 +28,7 @@ from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import (
     THRESHOLD,
+    CriticalKind,
     campbell,
     critical_load,
     scan_line,
@@ -73,7 +74,7 @@ DEFAULT_OPTIONS = WhirlOptions()
 
 def _critical(point, what: str) -> dict[str, Any]:
     """A CriticalPoint as data; refuses one whose location did not converge."""
-    located = point.kind in ("divergence", "flutter")
+    located = CriticalKind(point.kind).located
     if located and not point.converged:
         raise SolverError(f"rung 1: the {what} was not located to tolerance: {point.message}")
     return {
@@ -92,13 +93,13 @@ def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
         raise SolverError(f"rung 1: the {what} was not located to tolerance: two-resolution error "
                           f"{root.error:.1e} at N = {root.N}")
     if root.value == 0:
-        kind = "unstable at start"
+        kind = CriticalKind.UNSTABLE_AT_START
     elif math.isinf(root.value):
-        kind = "none found"
+        kind = CriticalKind.NONE_FOUND
     else:
-        kind = "divergence"  # with damping the straight rod loses stability only through lambda = 0
+        kind = CriticalKind.DIVERGENCE  # with damping the straight rod loses stability only through lambda = 0
     value = root.value if 0 < root.value < math.inf else None
-    return {"value": value, "kind": kind, "bracket": [0.0, float(hi)] if kind == "none found" else
+    return {"value": value, "kind": kind, "bracket": [0.0, float(hi)] if kind == CriticalKind.NONE_FOUND else
             [float(root.value), float(root.value)], "error": root.error * (value or 0.0),
             "message": f"first root of the static pencil ({root.model}), N = {root.N}", "N": root.N}
 
@@ -195,10 +196,10 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
         load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
         # one scan along the spin from rest gives the critical spin and all stable spin windows
         spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
-        if p.omega > 0 or spin_point.converged or spin_point.kind not in ("divergence", "flutter"):
+        if p.omega > 0 or spin_point.converged or not CriticalKind(spin_point.kind).located:
             spin = _critical(spin_point, "critical spin at the operating load")
         else:  # informative only for a mission without spin: say so instead of stopping the check
-            spin = {"value": None, "kind": "not located", "bracket": [float(b) for b in spin_point.bracket],
+            spin = {"value": None, "kind": CriticalKind.NOT_LOCATED, "bracket": [float(b) for b in spin_point.bracket],
                     "error": None, "message": spin_point.message, "N": N}
         stable = bool(op.stable)
 
@@ -242,8 +243,8 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
             "static_points": {"IB0_N_per_m": [], "spin_rpm": []}}}
 
     # ranges of the pictures: past the boundary and the operating point
-    B_ref = load["value"] if load["kind"] in ("divergence", "flutter") else None
-    w_ref = spin["value"] if spin["kind"] in ("divergence", "flutter") and spin["value"] else None
+    B_ref = load["value"] if CriticalKind(load["kind"]).located else None
+    w_ref = spin["value"] if CriticalKind(spin["kind"]).located and spin["value"] else None
     B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
     w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
 

@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from enum import StrEnum
 from functools import lru_cache
 
 import numpy as np
@@ -64,6 +65,21 @@ __all__ = [
     "static_curves",
     "stable_rows",
 ]
+
+class CriticalKind(StrEnum):
+    """How the straight rod loses stability along a line (a str: it is written to JSON as its value)."""
+
+    DIVERGENCE = "divergence"  # a real eigenvalue through 0: the tether buckles (or whirls) statically
+    FLUTTER = "flutter"  # a complex pair crosses: growing oscillation (undamped, Krein collision)
+    UNSTABLE_AT_START = "unstable at start"  # already unstable where the line starts: nothing to locate
+    NONE_FOUND = "none found"  # stable over the whole line scanned
+    NOT_LOCATED = "not located"  # informative only (e.g. a critical spin of a mission without spin)
+
+    @property
+    def located(self) -> bool:
+        """A crossing whose parameter value was located (divergence or flutter)."""
+        return self in (CriticalKind.DIVERGENCE, CriticalKind.FLUTTER)
+
 
 #: Re lambda above this counts as unstable (dimensionless growth rate).
 THRESHOLD = 1e-9
@@ -292,7 +308,7 @@ def _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=True):
         hit = [(v, e) for v, e in distinct if a < v < b]
         if len(hit) == 1 and (b - a) <= 2.5 * _DELTA * max(abs(hit[0][0]), 1e-3):
             v, e = hit[0]
-            changes.append(_Change(a, b, v, "divergence", e * max(abs(v), 1e-3), states[i + 1]))
+            changes.append(_Change(a, b, v, CriticalKind.DIVERGENCE, e * max(abs(v), 1e-3), states[i + 1]))
             continue
         a, b = _bisect(line, a, b, tol)
         x = 0.5 * (a + b)
@@ -310,7 +326,7 @@ def _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=True):
                 w *= 10
             else:
                 err = np.inf
-        changes.append(_Change(a, b, x, "flutter", err, states[i + 1]))
+        changes.append(_Change(a, b, x, CriticalKind.FLUTTER, err, states[i + 1]))
     return states[0], changes, line
 
 
@@ -344,10 +360,10 @@ def _scan(params: RodParameters, axis: str, tol: float, hi: float | None, N: int
         windows.append((float(cur), float(hi)))
     if start_unstable:
         g = line.growth(lo)
-        return CriticalPoint(axis, float(lo), "unstable at start", (lo, lo), 0.0, True,
+        return CriticalPoint(axis, float(lo), CriticalKind.UNSTABLE_AT_START, (lo, lo), 0.0, True,
                              f"already unstable at {axis} = {lo:g} (max Re lambda = {g:.3e})", N), windows, hi
     if not changes:
-        return CriticalPoint(axis, float("nan"), "none found", (lo, hi), float("nan"), False,
+        return CriticalPoint(axis, float("nan"), CriticalKind.NONE_FOUND, (lo, hi), float("nan"), False,
                              f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] "
                              f"({n_scan} scan points)", N), windows, hi
     c = changes[0]

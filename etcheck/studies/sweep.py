@@ -51,7 +51,7 @@ from etcheck.rod.damped_critical import damped_critical, first_root
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import spectrum
-from etcheck.rod.stability import critical_load, critical_spin
+from etcheck.rod.stability import CriticalKind, critical_load, critical_spin
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 
@@ -172,13 +172,13 @@ def _undamped(params: RodParameters, tol: float) -> dict[str, Any]:
     op = spectrum(params, k=10, tol=max(tol, 1e-8))
     out = {"model": "rung 1 (spectral scan, undamped)", "N": int(op.N)}
     for name, c in (("B_c", load), ("omega_c", spin)):
-        if c.kind == "unstable at start":
+        if c.kind == CriticalKind.UNSTABLE_AT_START:
             out |= {name: 0.0, f"{name}_error": 0.0}
-        elif c.kind == "none found":
+        elif c.kind == CriticalKind.NONE_FOUND:
             out |= {name: math.inf, f"{name}_error": 0.0}
         else:
             out |= {name: c.value, f"{name}_error": c.error / abs(c.value) if c.value else c.error}
-    converged = op.converged and all(c.converged or c.kind in ("unstable at start", "none found")
+    converged = op.converged and all(c.converged or c.kind in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND)
                                      for c in (load, spin))
     out["stable"] = bool(op.stable)
     if not converged:
