@@ -104,10 +104,10 @@ def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
             "message": f"first root of the static pencil ({root.model}), N = {root.N}", "N": root.N}
 
 
-def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, bool]:
+def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, bool, float]:
     """Critical load at the operating spin and critical spin at the operating load of a damped
     tether from the static pencils or the exact determinant (milliseconds), and whether the
-    operating point is stable."""
+    operating point is stable, and the spin that destabilises the unloaded tether (dimensionless)."""
     if route == EXACT:  # root located to round-off; its estimate (two formulations) is judged by the mission's tolerance
         dc = exact_critical(p, tol=max(options.tol, options.eig_tol))
     else:
@@ -118,7 +118,7 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, 
     w_hi = 1.6 * max(p.omega, math.sqrt(p.R))
     load = _pencil_critical(dc.critical_load, "critical load at the operating spin", B_hi)
     spin = _pencil_critical(dc.critical_spin, "critical spin at the operating load", w_hi)
-    return load, spin, dc.stable
+    return load, spin, dc.stable, dc.spin_at_rest.value
 
 
 def _operating_spectrum(op, wc: float) -> dict[str, Any]:
@@ -191,7 +191,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     windows: list = []
     scanned_to = None
     if damped:
-        load, spin, stable = _damped_critical(p, options, route)
+        load, spin, stable, rest = _damped_critical(p, options, route)
     else:
         load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
         # one scan along the spin from rest gives the critical spin and all stable spin windows
@@ -230,7 +230,6 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     if exact:
         B_hi = 1.6 * max(load["value"] or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
         w_hi = 1.6 * max(spin["value"] or 0.0, p.omega, math.sqrt(p.R))
-        rest = exact_critical(p.with_(B=0.0), tol=options.tol, spin=False).spin_at_rest.value
         w_rows = np.linspace(0.0, w_hi, options.row_points)
         rows = [{"omega": float(w), "spin_rpm": float(w * wc * RPM),
                  "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
