@@ -90,8 +90,8 @@ def _critical(point, what: str) -> dict[str, Any]:
 def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
     """A first pencil root (damped rod, Kelvin-Tait-Chetaev) as a critical point; refuses an unconverged one."""
     if not root.converged:
-        raise SolverError(f"rung 1: the {what} was not located to tolerance: two-resolution error "
-                          f"{root.error:.1e} at N = {root.N}")
+        raise SolverError(f"rung 1: the {what} was not located to tolerance ({root.model}): error estimate "
+                          f"{root.error:.1e}" + (f" at N = {root.N}" if root.N else ""))
     if root.value == 0:
         kind = CriticalKind.UNSTABLE_AT_START
     elif math.isinf(root.value):
@@ -101,7 +101,8 @@ def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
     value = root.value if 0 < root.value < math.inf else None
     return {"value": value, "kind": kind, "bracket": [0.0, float(hi)] if kind == CriticalKind.NONE_FOUND else
             [float(root.value), float(root.value)], "error": root.error * (value or 0.0),
-            "message": f"first root of the static pencil ({root.model}), N = {root.N}", "N": root.N}
+            "message": f"first root of the static operator ({root.model})" + (f", N = {root.N}" if root.N else ""),
+            "N": root.N}
 
 
 def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, bool, float]:
@@ -227,48 +228,39 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     }
     if options.draft:
         return out
-    if exact:
-        B_hi = 1.6 * max(load["value"] or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
-        w_hi = 1.6 * max(spin["value"] or 0.0, p.omega, math.sqrt(p.R))
-        w_rows = np.linspace(0.0, w_hi, options.row_points)
-        rows = [{"omega": float(w), "spin_rpm": float(w * wc * RPM),
-                 "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
-                for w, iv in zip(w_rows, _exact_rows(p, w_rows, B_hi, rest, options.tol))]
-        B_grid = np.linspace(0.0, B_hi, options.map_points)
-        w_grid = np.linspace(0.0, w_hi, options.map_points)
-        return out | {"stability_map": {
-            "B": B_grid.tolist(), "omega": w_grid.tolist(), "IB0_N_per_m": (B_grid * sc.load).tolist(),
-            "spin_rpm": (w_grid * wc * RPM).tolist(), "max_growth": None, "stable_rows": rows,
-            "static_points": {"IB0_N_per_m": [], "spin_rpm": []}}}
 
     # ranges of the pictures: past the boundary and the operating point
     B_ref = load["value"] if CriticalKind(load["kind"]).located else None
     w_ref = spin["value"] if CriticalKind(spin["kind"]).located and spin["value"] else None
     B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
     w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
-
-    omegas = np.linspace(0.0, w_hi, options.campbell_points)
-    cd = campbell(p, omegas, k=options.k, N=N)
     B_grid = np.linspace(0.0, B_hi, options.map_points)
     w_grid = np.linspace(0.0, w_hi, options.map_points)
-    curve_B, curve_w = static_curves(p, B_hi, w_hi, N=N)
-    growth = rows = None
-    if not damped:  # undamped: flutter can occur anywhere, sample a grid
-        growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
-    else:  # damped: stability changes only at static points, cut each row there exactly
-        w_rows = np.linspace(0.0, w_hi, options.row_points)
-        rows = [
-            {"omega": float(w), "spin_rpm": float(w * wc * RPM),
-             "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
-            for w, iv in zip(w_rows, stable_rows(p, w_rows, B_hi, N=N))
-        ]
-    return out | {
-        "campbell": {
+    w_rows = np.linspace(0.0, w_hi, options.row_points)
+    growth = cuts = campbell_data = None
+    curve_B = curve_w = np.array([])
+    if exact:  # no frequencies on this route; the damped rows end at the first determinant root
+        cuts = _exact_rows(p, w_rows, B_hi, rest, options.tol)
+    else:
+        omegas = np.linspace(0.0, w_hi, options.campbell_points)
+        cd = campbell(p, omegas, k=options.k, N=N)
+        campbell_data = {
             "omega": omegas.tolist(),
             "spin_rpm": (omegas * wc * RPM).tolist(),
             "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
             "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
-        },
+        }
+        curve_B, curve_w = static_curves(p, B_hi, w_hi, N=N)
+        if damped:  # stability changes only at static points: cut each row there exactly
+            cuts = stable_rows(p, w_rows, B_hi, N=N)
+        else:  # undamped: flutter can occur anywhere, sample a grid
+            growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
+    rows = None if cuts is None else [
+        {"omega": float(w), "spin_rpm": float(w * wc * RPM), "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
+        for w, iv in zip(w_rows, cuts)
+    ]
+    return out | {
+        "campbell": campbell_data,
         "stability_map": {
             "B": B_grid.tolist(),
             "omega": w_grid.tolist(),
