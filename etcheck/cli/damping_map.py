@@ -14,7 +14,6 @@ import math
 from pathlib import Path
 
 from etcheck.cli.common import add_output_options, formats, run_and_summarise
-from etcheck.rod.branch_stability import HOPF_GAMMAS
 
 NAME = "damping-map"
 FORMATS = ("html", "pdf", "json")
@@ -38,7 +37,7 @@ def add_parser(sub) -> None:
         epilog="exit codes: 0 written, 2 bad input, 3 a solve failed",
     )
     p.add_argument("mission", help="mission file (TOML)")
-    p.add_argument("--gammas", type=_floats, default=HOPF_GAMMAS,
+    p.add_argument("--gammas", type=_floats, default=None,
                    help="dimensionless Kelvin-Voigt dampings (default: the five of the paper's Fig. 11)")
     p.add_argument("--B-max", type=float, default=None,
                    help="largest dimensionless load B (default: 5 times b1's pitchfork at rest, 2.93 for SET)")
@@ -66,10 +65,11 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
         from etcheck.input.mission import load_mission
         from etcheck.report import write_reports
+        from etcheck.rod.branch_stability import HOPF_GAMMAS
         from etcheck.studies.damping_map import damping_results
 
         mission = load_mission(args.mission)
-        results = damping_results(mission, args.gammas, args.B_max, args.spin_max, n_B, n_w, args.N)
+        results = damping_results(mission, args.gammas or HOPF_GAMMAS, args.B_max, args.spin_max, n_B, n_w, args.N)
         return results, write_reports(results, Path(args.out) / mission.slug / "damping-map", fmts, kind="damping")
 
     return run_and_summarise(action, _summary)
