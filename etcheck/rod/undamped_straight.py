@@ -1,0 +1,596 @@
+"""Rung 1u: the undamped straight tether from its exact dynamic characteristic function.
+
+Without damping (gamma = 0) the linearisation about the straight rod (paper
+Sec. 6.1, eq. (86) with F = +T e3; docs/model.md, section 6) is gyroscopic,
+M q'' + G q' + K q = 0 with G skew: it loses stability by divergence (a pair
+lambda = +-i Omega through 0) or by flutter (two imaginary pairs collide and
+leave the axis), and it can regain it (stable windows). With normal modes
+(u, v) exp(lambda t) the bending equations (f-scaling of eq. (36), rotating
+frame, u along the weak axis e1) are
+
+    (R/f) u'''' - (a + P R lambda^2) u'' + (lambda^2 - omega^2) u - 2 omega lambda v - B v' = 0
+    (1/f) v'''' - (b + P   lambda^2) v'' + (lambda^2 - omega^2) v + 2 omega lambda u + B u' = 0
+    u = u' = v = v' = 0 at s = 0 and s = 1,   a = T + P R omega^2,  b = T + P omega^2
+
+(torsion decouples and is neutrally stable; for omega = T = 0, f = 1 this is
+eq. (87)). Constant coefficients: exponents k are the roots of the degree-8
+polynomial p(k) = Pu(k) Pv(k) + q(k)^2 with q = B k + 2 omega lambda, and
+the clamped determinant is known exactly, as for lambda = 0 in
+:mod:`etcheck.rod.exact_straight` (same scaled state, same D = det G
+exp(-sigma), G the map from y(0) to the boundary values).
+
+**A real function of mu = -lambda^2.** det G is real for every real mu: for
+mu < 0 (lambda real) the equations are real; for mu > 0 (lambda = i Omega)
+the map (u, v)(s) -> (conj u(1 - s), -conj v(1 - s)) takes solutions to
+solutions and gives conj(det G) det Phi(1) = det G with det Phi(1) = exp(sum
+k) = 1 (p has no k^7 term). The map (u, v)(s) -> (u(1 - s), -v(1 - s)),
+lambda -> -lambda makes D even in lambda. So
+
+    E(mu) = D(lambda = sqrt(-mu))
+
+is real-analytic in mu and in (B, omega, T), and its real roots are the
+real eigenvalues mu of the gyroscopic pencil: mu > 0 an oscillation
+Omega = sqrt(mu), mu < 0 a real pair (divergence). The rod is stable iff
+every root mu is real and positive (the spectrum is Hamiltonian). Complex
+roots mu come in conjugate pairs: flutter.
+
+**Counting.** The real roots below a cut mu_cut are counted exactly (sign
+changes, close pairs split by minimising |E|); no real root lies below the
+Rayleigh bound mu_lo of K / M (for real lambda the eigenvector is real and
+its Coriolis term vanishes). At omega = 0 the problem is self-adjoint (K q
+= mu M q): every root is real, so the number of roots below mu_cut there
+is the total; along a line from omega = 0 the number of complex pairs is
+(total - real roots) / 2, the total changing only when a real root crosses
+mu_cut (detected, with its direction). A flutter point is a fold of the
+real roots, E = dE/dmu = 0: it is located by Brent's method on the value of
+E at its local extremum in mu (smooth and with a simple zero at the fold),
+a divergence point by a root of E(0) = D_static.
+
+**Exact basis.** det W (initial data of the basis (q, Pu) exp(k s)) is
+det C V(k), C the 8 x 8 coefficient matrix of q k^m, Pu k^m (m < 4), a
+Sylvester-type matrix: det C = (R/f)^3 Res(q, Pu), Res(q, Pu) = B^4 Pu(-2
+omega lambda / B). Where the exponential basis does not apply (coincident
+exponents, B = 0 with omega lambda = 0) the ordered-Schur route of
+:mod:`etcheck.rod.exact_straight` takes over; it is also the second
+formulation behind every error estimate.
+
+Dimensionless and pure; numpy/scipy only.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq, minimize_scalar
+
+from . import exact_straight as _ex
+from .exact_straight import _assemble, _log_vandermonde, _schur
+from .parameters import RodParameters
+from .stability import CriticalKind
+
+__all__ = ["characteristic_mu"]
+
+_EPS = np.finfo(float).eps
+_BC_REAL = np.array([0, 1, 4, 5])
+#: Relative gap between two exponents below which the exponential basis is not used.
+_CONFLUENT = 1e-4
+
+
+def _lam(mu: np.ndarray) -> np.ndarray:
+    """lambda with lambda^2 = -mu (either branch: D is even in lambda)."""
+    return np.sqrt(-np.asarray(mu, dtype=complex))
+
+
+def _coefficients(P, R, f, B, omega, T, lam):
+    """Coefficient arrays of the u and v symbols: (a + P R lambda^2, b + P lambda^2, lambda^2 - omega^2, 2 omega lambda)."""
+    l2 = lam * lam
+    w2 = omega * omega
+    return T + P * R * w2 + P * R * l2, T + P * w2 + P * l2, l2 - w2, 2 * omega * lam
+
+
+def _wavenumbers(R, f, B, alpha, beta, c0, c1, factor):
+    """Continuous wavenumber scales (ku, kv) of the u and v exponents (>= 1), smooth in every
+    coefficient (a kink in a scale would put a kink into D, which is normalised in them)."""
+    B = np.abs(B)
+    kb = (f * B / math.sqrt(R)) ** (1.0 / 3.0)
+    c1sq = np.sqrt(np.abs(c1) ** 4 + 1.0)  # |c1|^2, smoothed where lambda = 0
+    kc = (f * np.sqrt(c1sq) * (B + 1.0) / math.sqrt(R)) ** 0.2
+    a2, b2, c02 = np.abs(alpha) ** 2, np.abs(beta) ** 2, np.abs(c0) ** 2
+    ku = 1.0 + (1.0 + f * f * a2 / R**2) ** 0.25 + (1.0 + f * f * c02 / R**2) ** 0.125 + kb + kc
+    kv = 1.0 + (1.0 + f * f * b2) ** 0.25 + (1.0 + f * f * c02) ** 0.125 + kb + kc
+    return factor * ku, factor * kv
+
+
+def _companion(R, f, B, alpha, beta, c0, c1, ku, kv) -> np.ndarray:
+    """8 x 8 first-order matrix of the scaled state (u, u'/ku, .., v, v'/kv, ..) at one point."""
+    A = np.zeros((8, 8), dtype=complex)
+    A[0, 1] = A[1, 2] = A[2, 3] = ku
+    A[4, 5] = A[5, 6] = A[6, 7] = kv
+    A[3, 0] = -f * c0 / (R * ku**3)
+    A[3, 2] = f * alpha / (R * ku)
+    A[3, 4] = f * c1 / (R * ku**3)
+    A[3, 5] = f * B * kv / (R * ku**3)
+    A[7, 4] = -f * c0 / kv**3
+    A[7, 6] = f * beta / kv
+    A[7, 0] = -f * c1 / kv**3
+    A[7, 1] = -f * B * ku / kv**3
+    return A
+
+
+def _exponents(c: np.ndarray) -> np.ndarray:
+    """Roots k of the degree-8 rows c (highest first). p(i z) is a real polynomial in z for
+    lambda imaginary and p(k) is real for lambda real, so the roots come from a real companion
+    matrix (4x cheaper than a complex one), then Newton steps on p (as :func:`_roots`)."""
+    n = c.shape[0]
+    powers = 1j ** np.arange(8, -1, -1)
+    rot = np.abs(c[:, 7].imag) > np.abs(c[:, 7].real)  # lambda imaginary: the k^1 coefficient is imaginary
+    d = np.where(rot[:, None], c * powers, c).real
+    C = np.zeros((n, 8, 8))
+    C[:, 0, :] = -d[:, 1:] / d[:, :1]
+    C[:, np.arange(1, 8), np.arange(7)] = 1.0
+    z = np.linalg.eigvals(C)
+    k = np.where(rot[:, None], 1j * z, z)
+    dc = c[:, :-1] * np.arange(8, 0, -1)
+    for _ in range(2):
+        p = np.zeros_like(k) + c[:, :1]
+        q = np.zeros_like(k) + dc[:, :1]
+        for j in range(1, 9):
+            p = p * k + c[:, j:j + 1]
+            if j < 8:
+                q = q * k + dc[:, j:j + 1]
+        step = np.where(q != 0, p / np.where(q != 0, q, 1.0), 0.0)
+        k = k - np.where(np.isfinite(step), step, 0.0)
+    return k
+
+
+def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0):
+    """D by the exponential basis for arrays (n,); NaN where it does not apply."""
+    n = B.size
+    lu, lv = R / f, 1.0 / f
+    # p(k) = Pu Pv + q^2, Pu = lu k^4 - alpha k^2 + c0, Pv = lv k^4 - beta k^2 + c0, q = B k + c1
+    c = np.stack([np.full(n, lu * lv, dtype=complex), np.zeros(n, dtype=complex), -(lu * beta + lv * alpha),
+                  np.zeros(n, dtype=complex), alpha * beta + c0 * (lu + lv), np.zeros(n, dtype=complex),
+                  -c0 * (alpha + beta) + B**2, 2 * B * c1, c0**2 + c1**2], axis=1)
+    with np.errstate(all="ignore"):
+        k = _exponents(c)
+        d = np.abs(k[:, :, None] - k[:, None, :])
+        scale = np.maximum(np.abs(k)[:, :, None], np.abs(k)[:, None, :])
+        d[:, np.arange(8), np.arange(8)] = np.inf
+        ok = np.all(d >= _CONFLUENT * scale, axis=(1, 2)) & np.all(np.isfinite(k), axis=1)
+        k2 = k * k
+        Pu = lu * k2 * k2 - alpha[:, None] * k2 + c0[:, None]
+        Pv = lv * k2 * k2 - beta[:, None] * k2 + c0[:, None]
+        q = B[:, None] * k + c1[:, None]
+        # Res(q, Pu) = B^4 Pu(-c1 / B), written to stay finite at B = 0
+        res = lu * c1**4 - alpha * c1**2 * B**2 + c0 * B**4
+        second = np.abs(Pv) > np.abs(Pu)  # (Pv, -q) = (Pv / q) (q, Pu) is the better null vector
+        u = np.where(second, Pv, q)
+        v = np.where(second, -q, Pu)
+        ratio = np.where(np.abs(q) >= np.abs(Pu), Pv / q, -q / Pu)
+        log_lam = np.sum(np.where(second, np.log(ratio), 0.0), axis=1)
+        logW = 3 * math.log(lu) + np.log(res) + _log_vandermonde(k) + log_lam - 6 * np.log(ku) - 6 * np.log(kv)
+        V = np.stack([u, u * k / ku[:, None], v, v * k / kv[:, None]], axis=1)
+        good = np.abs(res) > 1e-12 * (lu * np.abs(c1) ** 4 + np.abs(alpha) * np.abs(c1) ** 2 * B**2
+                                      + np.abs(c0) * B**4 + 1e-300)
+        ok &= good & np.all(np.isfinite(V), axis=(1, 2)) & np.isfinite(logW)
+        k = np.where(ok[:, None], k, 1.0 + np.arange(8))
+        V = np.where(ok[:, None, None], V, 1.0)
+        logW = np.where(ok, logW, 0.0)
+        value, _ = _assemble(k, V, logW, shift)
+        value = value * _smoothing(k)
+    return np.where(ok & np.isfinite(value), value, np.nan)
+
+
+def _smoothing(k: np.ndarray) -> np.ndarray:
+    """exp(sigma - sigma_s): replaces sigma = sum max(Re k, 0) = sum |Re k| / 2 (the sum of all
+    Re k is 0) of D by sigma_s = sum (Re k^4 + 1)^(1/4) / 2. Re k of a single exponent is not
+    analytic: it leaves the imaginary axis like sqrt(distance) where two exponents meet there (and
+    at lambda = 0, mu changing sign), so |Re k| puts a cusp into D; (x^4 + 1)^(1/4) = 1 + O(x^4)
+    leaves D continuously differentiable. The factor lies in [exp(-4), 1]: zeros and signs of D
+    are unchanged."""
+    x = k.real
+    return np.exp(0.5 * np.sum(np.abs(x) - (x**4 + 1.0) ** 0.25, axis=-1))
+
+
+def characteristic_mu(params: RodParameters, mu, B=None, omega=None, T=None, route: str = "auto",
+                      factor: float = 1.0, shift: int = 0) -> np.ndarray:
+    """E(mu; B, omega, T): the real characteristic function of the undamped straight rod.
+
+    ``mu`` = -lambda^2 (array); B, omega, T default to the parameters' values
+    and broadcast with mu. ``route``: "auto" (exponential basis, Schur where
+    it does not apply), "exponential" (NaN where it does not apply) or
+    "schur"; ``factor``, ``shift``: other wavenumber scales and split (a
+    second formulation). Dimensionless, real; zero exactly at the
+    eigenvalues lambda = +-sqrt(-mu).
+    """
+    B = params.B if B is None else B
+    omega = params.omega if omega is None else omega
+    T = params.T if T is None else T
+    mu, B, omega, T = np.broadcast_arrays(*(np.atleast_1d(np.asarray(x, dtype=float)) for x in (mu, B, omega, T)))
+    shape = mu.shape
+    mu, B, omega, T = (x.ravel() for x in (mu, B, omega, T))
+    lam = _lam(mu)
+    alpha, beta, c0, c1 = _coefficients(params.P, params.R, params.f, B, omega, T, lam)
+    ku, kv = _wavenumbers(params.R, params.f, B, alpha, beta, c0, c1, factor)
+    out = np.full(mu.size, np.nan, dtype=complex)
+    if route != "schur":
+        out = _exponential(params.R, params.f, B + 0j, alpha, beta, c0, c1, ku, kv, shift)
+    if route != "exponential":
+        for i in np.nonzero(~np.isfinite(out))[0]:
+            A = _companion(params.R, params.f, B[i], alpha[i], beta[i], c0[i], c1[i], ku[i], kv[i])
+            out[i] = _schur(A, _BC_REAL, shift).value * _smoothing(np.linalg.eigvals(A))
+    return out.real.reshape(shape)
+
+
+# --- the real roots in mu at one point of a line -------------------------------------------
+
+
+def _rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min: float) -> float:
+    """A lower bound of K / M over the line (no real root mu lies below it).
+
+    K >= (R/f) |u''|^2 + (1/f) |v''|^2 - t (|u'|^2 + |v'|^2) - omega^2 - |B| |u| |v'|
+    for |u|^2 + |v|^2 = 1 (M >= 1 there), t = max(-T, 0), |v'|^2 <= |v| |v''|:
+    minimised over X = |v''| and Y = |u''| in closed form or on a grid."""
+    R, f = params.R, params.f
+    t = max(-T_min, 0.0)
+    X = np.geomspace(1e-6, 1e6, 2001) * (1.0 + f * (abs(B_max) + t)) ** (2.0 / 3.0)
+    m_v = float(np.min(X**2 / f - t * X - abs(B_max) * np.sqrt(X)))
+    m_u = -t**2 * f / (4 * R)
+    return 1.1 * min(-omega_max**2 + m_u + m_v, 0.0) - 1e-6
+
+
+def _mode_count(params: RodParameters, mu: np.ndarray, T: float) -> np.ndarray:
+    """Weyl estimate of the number of clamped u and v modes with eigenvalue below mu >= 0
+    (sets the sample density: the roots are about one apart in this variable)."""
+    R, f, P = params.R, params.f, params.P
+    out = np.zeros_like(mu)
+    for c4, pc in ((R / f, P * R), (1.0 / f, P)):
+        c2 = max(T, 0.0) - pc * mu  # c4 k^4 + (T - pc mu) k^2 - mu = 0
+        k2 = (-c2 + np.sqrt(c2**2 + 4 * c4 * mu)) / (2 * c4)
+        out += np.sqrt(np.maximum(k2, 0.0)) / math.pi
+    return out
+
+
+def _coupling_wavenumber(params: RodParameters, B: float, omega: float, T: float) -> float:
+    """Wavenumber up to which load and spin reshape the modes: where B k (or omega^2) equals the
+    geometric mean of the u and v stiffness symbols (R/f k^4 + |a| k^2)(k^4/f + |b| k^2)."""
+    R, f, P = params.R, params.f, params.P
+    a, b = abs(T + P * R * omega**2), abs(T + P * omega**2)
+    k = np.geomspace(1e-2, 1e8, 801)
+    stiff = np.sqrt((R / f * k**4 + a * k**2) * (k**4 / f + b * k**2))
+    over = (abs(B) * k >= stiff) | (4 * omega**2 >= stiff)
+    return float(k[np.nonzero(over)[0][-1]]) if np.any(over) else 0.0
+
+
+@dataclass(frozen=True)
+class _Sample:
+    """Real roots of E(.; p) at one point p of a line: their approximate positions (sorted),
+    the counts below and above mu = 0 and the sign of E at the cut."""
+
+    p: float
+    roots: tuple[float, ...]
+    n_neg: int
+    n_pos: int
+    top: float
+
+
+class _Line:
+    """E along one axis ("B" or "omega"; T, P, R, f from params) on a fixed mu grid."""
+
+    def __init__(self, params: RodParameters, axis: str, lo: float, hi: float, route: str = "auto",
+                 factor: float = 1.0, shift: int = 0, density: float = 8.0):
+        self.params, self.axis, self.route, self.factor, self.shift = params, axis, route, factor, shift
+        ends = [params.with_(**{axis: x}) for x in (lo, hi)]
+        B_max = max(abs(e.B) for e in ends)
+        w_max = max(abs(e.omega) for e in ends)
+        self.mu_lo = _rayleigh_floor(params, B_max, w_max, params.T)
+        kc = max(3 * math.pi, 2.0 * max(_coupling_wavenumber(params, e.B, e.omega, params.T) for e in ends))
+        R, f, P, T = params.R, params.f, params.P, params.T
+        self.mu_cut = max(max((c4 * kc**4 + abs(T + pc * w_max**2) * kc**2 + w_max**2) / (1 + pc * kc**2)
+                              for c4, pc in ((R / f, P * R), (1.0 / f, P))), 16 * w_max**2)
+        # negative side: uniform in sqrt(-mu); positive side: uniform in the Weyl mode count
+        neg = -np.linspace(math.sqrt(-self.mu_lo), 0.0, 16, endpoint=False) ** 2
+        fine = np.concatenate([[0.0], np.geomspace(1e-9 * self.mu_cut, self.mu_cut, 4000)])
+        count = _mode_count(params, fine, T)
+        n = max(int(math.ceil(density * count[-1])), 16)
+        pos = np.interp(np.linspace(0.0, count[-1], n + 1), count, fine)
+        self.mu = np.unique(np.concatenate([neg, [0.0], pos[1:], [self.mu_cut]]))
+        self.evaluations = 0
+
+    def E(self, p, mu) -> np.ndarray:
+        """E at (axis = p, mu), broadcast."""
+        p, mu = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(mu, dtype=float))
+        self.evaluations += p.size
+        return characteristic_mu(self.params, mu, **{self.axis: p}, route=self.route, factor=self.factor,
+                                 shift=self.shift)
+
+    def samples(self, ps) -> list[_Sample]:
+        ps = np.atleast_1d(np.asarray(ps, dtype=float))
+        rows = self.E(ps[:, None], self.mu[None, :])
+        return [self._sample(p, row) for p, row in zip(ps, rows)]
+
+    def _sample(self, p: float, E: np.ndarray) -> _Sample:
+        mu = self.mu
+        if not np.all(np.isfinite(E)):
+            raise ArithmeticError(f"characteristic function not finite at {self.axis} = {p:.6g}")
+        s = np.sign(E)
+        roots = []
+        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
+            roots.append(mu[j] + (mu[j + 1] - mu[j]) * E[j] / (E[j] - E[j + 1]))
+        roots += [mu[j] for j in np.nonzero(s == 0)[0]]
+        # close pairs: a local minimum of |E| between samples of one sign
+        aE = np.abs(E)
+        for j in np.nonzero((s[:-2] == s[1:-1]) & (s[1:-1] == s[2:]) & (aE[1:-1] < aE[:-2])
+                            & (aE[1:-1] < aE[2:]))[0] + 1:
+            roots += self._close_pair(p, mu[j - 1], mu[j + 1], s[j], max(aE[j - 1], aE[j + 1]))
+        roots = np.sort(np.asarray(roots, dtype=float))
+        return _Sample(float(p), tuple(roots.tolist()), int(np.sum(roots < 0)), int(np.sum(roots > 0)),
+                       float(E[-1]))
+
+    def _close_pair(self, p: float, a: float, b: float, sg: float, size: float) -> list[float]:
+        """Two roots in (a, b) where sg E dips through (or touches) zero, else none."""
+        res = minimize_scalar(lambda m: sg * self.E(p, m).item(), bounds=(a, b), method="bounded",
+                              options={"xatol": 1e-12 * max(abs(a), abs(b), 1e-300)})
+        if sg * res.fun <= 0.0 or abs(res.fun) <= 1e3 * _EPS * size:
+            return [0.5 * (a + res.x), 0.5 * (res.x + b)]
+        return []
+
+    # --- bookkeeping along the line ----------------------------------------------------------
+
+    def cut_crossing(self, a: _Sample, b: _Sample) -> int:
+        """Change of the number of roots below mu_cut from a to b that comes through the cut
+        (+1: a root entered from above, -1: one left, 0: none)."""
+        if np.sign(a.top) == np.sign(b.top):
+            return 0
+        pc = brentq(lambda p: self.E(p, self.mu_cut).item(), a.p, b.p, xtol=1e-12 * max(abs(a.p), abs(b.p)))
+        hp = 1e-6 * max(abs(b.p - a.p), 1e-12)
+        hm = 1e-6 * self.mu_cut
+        e = self.E(np.array([pc - hp, pc + hp, pc, pc]), np.array([self.mu_cut, self.mu_cut, self.mu_cut - hm,
+                                                                   self.mu_cut + hm]))
+        dmu_dp = -((e[1] - e[0]) / (2 * hp)) / ((e[3] - e[2]) / (2 * hm))
+        return -1 if dmu_dp * np.sign(b.p - a.p) > 0 else 1
+
+    # --- a fold of the real roots: flutter ----------------------------------------------------
+
+    def extremum(self, p: float, mu0: float, sg: float, lo: float, hi: float) -> tuple[float, float]:
+        """(mu, sg E) at the local minimum of sg E(., p) next to mu0 in (lo, hi): Newton's method on
+        dE/dmu with central differences, bounded minimisation where the curvature has the wrong sign."""
+        h = 1e-5 * (hi - lo)
+        m = mu0
+        for _ in range(40):
+            e = sg * self.E(p, np.array([m - h, m, m + h]))
+            d1, d2 = (e[2] - e[0]) / (2 * h), (e[2] - 2 * e[1] + e[0]) / h**2
+            if not d2 > 0:
+                res = minimize_scalar(lambda x: sg * self.E(p, x).item(), bounds=(lo, hi), method="bounded",
+                                      options={"xatol": 1e-10 * (hi - lo)})
+                return float(res.x), float(res.fun)
+            new = min(max(m - d1 / d2, lo + h), hi - h)
+            if abs(new - m) <= 1e-9 * (hi - lo):
+                m = new
+                break
+            m = new
+        return m, sg * self.E(p, m).item()
+
+
+# --- stability along a line --------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """A change of stability of the undamped straight rod along a line (dimensionless).
+
+    ``value``: the axis value (B or omega); ``error``: absolute error
+    estimate (the distance to the same point from a second formulation of
+    E, doubled, plus the root-finder tolerance); ``kind``: "divergence" (a
+    root mu through 0) or "flutter" (a fold of two real roots, a Krein
+    collision at Omega = sqrt(mu), or its reverse); ``frequency``: Omega
+    at the point (0 for divergence); ``to_unstable``: the side past it.
+    """
+
+    value: float
+    error: float
+    kind: str
+    frequency: float
+    to_unstable: bool
+    bracket: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class StabilityLine:
+    """Stability of the undamped straight rod on [lo, hi] along ``axis`` (dimensionless).
+
+    ``unstable_at_start``: the state at lo; ``crossings``: every located
+    change, in order; ``windows``: the stable intervals (a window reaching
+    hi ends at hi); ``evaluations``: characteristic-function evaluations
+    spent. Changes closer together than the sample spacing (hi - lo) /
+    (samples - 1) can be missed in pairs (a window or an unstable gap
+    narrower than that), as in a scan.
+    """
+
+    axis: str
+    lo: float
+    hi: float
+    unstable_at_start: bool
+    crossings: tuple[Crossing, ...]
+    windows: tuple[tuple[float, float], ...]
+    evaluations: int
+
+    def unstable_at(self, x: float) -> bool:
+        """The state at x in [lo, hi] (at a crossing: the side past it)."""
+        state = self.unstable_at_start
+        for c in self.crossings:
+            if x >= c.value:
+                state = c.to_unstable
+        return state
+
+
+def _pairs(s: _Sample, N: int) -> int:
+    twice = N - s.n_neg - s.n_pos
+    if twice < 0 or twice % 2:
+        raise ArithmeticError(f"inconsistent root count at {s.p:.9g}: {N} roots in all, "
+                              f"{s.n_neg + s.n_pos} real")
+    return twice // 2
+
+
+def _unstable(s: _Sample, N: int) -> bool:
+    return s.n_neg > 0 or _pairs(s, N) > 0
+
+
+def _alternative_line(line: _Line, lo: float, hi: float) -> _Line:
+    """The second formulation: the Schur route while the exponents span less than 4 decades
+    (its error is eps times the largest), else other scales and another split."""
+    sep = _separation(line.params, line.axis, hi)
+    if sep < 1e4:
+        return _Line(line.params, line.axis, lo, hi, route="schur")
+    return _Line(line.params, line.axis, lo, hi, factor=1.37, shift=1)
+
+
+def _separation(params: RodParameters, axis: str, x: float) -> float:
+    p = params.with_(**{axis: x})
+    ku, kv = _wavenumbers(p.R, p.f, np.array([p.B]), *_coefficients(p.P, p.R, p.f, p.B, p.omega, p.T, 0.0), 1.0)
+    return float(max(ku[0], kv[0]) / max(2 * math.pi, 1.0))
+
+
+def _static_crossing(params: RodParameters, axis: str, a: float, b: float, rtol: float) -> tuple[float, float]:
+    """Root of D_static (= E(0)) in (a, b) along axis, and its absolute error (two formulations)."""
+    base = params.with_(**{axis: 0.0})
+    fn, mult = _ex._function(base, axis, 1.0)
+    g = _ex._Counter(fn)
+    x = brentq(g, a, b, xtol=1e-300, rtol=rtol, maxiter=200)
+    route = _ex._route_at(base, axis, x, mult)
+    g2 = _ex._Counter(_ex._alternative(base, axis, 1.0, x, route))
+    x2 = _ex._second_opinion(g2, x, rtol)
+    return x, (2.0 * (abs(x - x2) + 2 * rtol * abs(x)) if math.isfinite(x2) else math.inf)
+
+
+def _vanishing_pair(rich: _Sample, poor: _Sample) -> int:
+    """Index j of the adjacent pair (j, j + 1) of rich's roots that poor lacks."""
+    r, q = np.asarray(rich.roots), np.asarray(poor.roots)
+    best, jbest = math.inf, 0
+    for j in range(len(r) - 1):
+        rest = np.delete(r, [j, j + 1])
+        if rest.size != q.size:
+            continue
+        cost = float(np.sum(np.abs(rest - q))) + 1e-3 * (r[j + 1] - r[j])
+        if cost < best:
+            best, jbest = cost, j
+    return jbest
+
+
+def _fold_point(line: _Line, a: _Sample, b: _Sample, rtol: float) -> tuple[float, float, tuple]:
+    """The fold (E = dE/dmu = 0) between samples a and b: Brent on the extremum value."""
+    rich, poor = (a, b) if len(a.roots) > len(b.roots) else (b, a)
+    j = _vanishing_pair(rich, poor)
+    r = rich.roots
+    lo = 0.5 * (r[j - 1] + r[j]) if j > 0 else line.mu_lo
+    hi = 0.5 * (r[j + 1] + r[j + 2]) if j + 2 < len(r) else line.mu_cut
+    lo, hi = (max(lo, 0.0), hi) if r[j] > 0 else (lo, min(hi, 0.0))  # E is only C^1 at mu = 0
+    mu0 = 0.5 * (r[j] + r[j + 1])
+    sg = -float(np.sign(line.E(rich.p, mu0).item()))  # sg E: negative between the pair, positive past the fold
+    state = [mu0]
+
+    def e(p: float) -> float:
+        m, v = line.extremum(p, state[0], sg, lo, hi)
+        state[0] = m
+        return v
+
+    p = brentq(e, a.p, b.p, xtol=1e-300, rtol=rtol, maxiter=200)
+    return p, state[0], (sg, lo, hi)
+
+
+def _fold_crossing(line: _Line, a: _Sample, b: _Sample, rtol: float) -> tuple[float, float, float]:
+    """(value, absolute error, mu) of a fold between a and b, with a second formulation."""
+    p, mu, (sg, lo, hi) = _fold_point(line, a, b, rtol)
+    alt = _alternative_line(line, min(a.p, b.p), max(a.p, b.p))
+    state = [mu]
+
+    def e2(x: float) -> float:
+        m, v = alt.extremum(x, state[0], sg, lo, hi)
+        state[0] = m
+        return v
+
+    d = 1e-13 * max(abs(p), 1e-300)
+    x2 = math.nan
+    for _ in range(12):
+        pa, pb = max(p - d, min(a.p, b.p)), min(p + d, max(a.p, b.p))
+        ea, eb = e2(pa), e2(pb)
+        if np.sign(ea) != np.sign(eb):
+            x2 = brentq(e2, pa, pb, xtol=max(1e-2 * d, 4 * _EPS * abs(p)), rtol=rtol, maxiter=200)
+            break
+        d *= 10.0
+    line.evaluations += alt.evaluations
+    err = 2.0 * (abs(p - x2) + 2 * rtol * abs(p)) if math.isfinite(x2) else math.inf
+    return p, err, mu
+
+
+#: Bisections of a fold's bracket before Brent's method (the extremum must stay in its window).
+_SHRINK = 5
+
+
+def _locate(line: _Line, a: _Sample, Na: int, b: _Sample, Nb: int, rtol: float, depth: int = 0) -> Crossing:
+    """The change of stability between samples a and b (bisecting until it is a single event)."""
+    ca, cb = _pairs(a, Na), _pairs(b, Nb)
+    dneg, dpos, dc = b.n_neg - a.n_neg, b.n_pos - a.n_pos, cb - ca
+    to_unstable = _unstable(b, Nb)
+    bracket = (a.p, b.p)
+    if dc == 0 and dneg == -dpos and 0 < abs(dneg) <= 2:
+        x, err = _static_crossing(line.params, line.axis, min(a.p, b.p), max(a.p, b.p), rtol)
+        return Crossing(x, err, CriticalKind.DIVERGENCE, 0.0, to_unstable, bracket)
+    fold = abs(dc) == 1 and ((dneg == -2 * dc and dpos == 0) or (dpos == -2 * dc and dneg == 0))
+    if fold and depth >= _SHRINK:
+        x, err, mu = _fold_crossing(line, a, b, rtol)
+        return Crossing(x, err, CriticalKind.FLUTTER, math.sqrt(abs(mu)), to_unstable, bracket)
+    if depth > 60:
+        raise ArithmeticError(f"could not isolate the change of stability in [{a.p:.12g}, {b.p:.12g}]")
+    m = line.samples([0.5 * (a.p + b.p)])[0]
+    Nm = Na + line.cut_crossing(a, m)
+    if _unstable(m, Nm) != _unstable(a, Na):
+        return _locate(line, a, Na, m, Nm, rtol, depth + 1)
+    return _locate(line, m, Nm, b, Nb, rtol, depth + 1)
+
+
+def stability_line(params: RodParameters, axis: str, lo: float, hi: float, anchor: float | None = None,
+                   pairs: int = 0, samples: int = 25, rtol: float = 4 * _EPS) -> StabilityLine:
+    """Every change of stability of the undamped straight rod on [lo, hi] along ``axis``.
+
+    ``axis``: "B" or "omega" (the other values, T, P, R, f from params;
+    gamma is ignored: undamped). ``anchor``: a point of the line where the
+    number of complex pairs of roots mu (flutter pairs) is known,
+    ``pairs`` (default: lo with none, true at omega = 0 where the problem is
+    self-adjoint). Samples the real roots of E on ``samples`` equally
+    spaced points, follows the total number of roots below the cut, and
+    locates each change of stability between samples exactly: a divergence
+    point as a root of E(0) = D_static, a flutter point as the zero of the
+    extremum value of E (a fold, E = dE/dmu = 0). Dimensionless.
+    """
+    if axis not in ("B", "omega"):
+        raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
+    if not hi > lo:
+        raise ValueError("the line needs hi > lo")
+    anchor = lo if anchor is None else float(anchor)
+    ps = np.unique(np.concatenate([np.linspace(lo, hi, samples), [anchor]]))
+    line = _Line(params, axis, lo, hi)
+    smp = line.samples(ps)
+    ia = int(np.nonzero(ps == anchor)[0][0])
+    N = [0] * len(smp)
+    N[ia] = smp[ia].n_neg + smp[ia].n_pos + 2 * pairs
+    for i in range(ia + 1, len(smp)):
+        N[i] = N[i - 1] + line.cut_crossing(smp[i - 1], smp[i])
+    for i in range(ia - 1, -1, -1):
+        N[i] = N[i + 1] + line.cut_crossing(smp[i + 1], smp[i])
+    flags = [_unstable(s, n) for s, n in zip(smp, N)]
+    crossings = [_locate(line, smp[i], N[i], smp[i + 1], N[i + 1], rtol)
+                 for i in range(len(smp) - 1) if flags[i] != flags[i + 1]]
+    windows, start = [], None if flags[0] else lo
+    for c in crossings:
+        if c.to_unstable and start is not None:
+            windows.append((float(start), float(c.value)))
+            start = None
+        elif not c.to_unstable and start is None:
+            start = c.value
+    if start is not None:
+        windows.append((float(start), float(hi)))
+    return StabilityLine(axis, float(lo), float(hi), bool(flags[0]), tuple(crossings), tuple(windows),
+                         line.evaluations)
