@@ -39,38 +39,67 @@ DEFAULT_GAMMA = 0.04375
 
 FIDELITIES = ("auto", "draft", "analytic", "linear")
 
-# table -> field -> (kind or "number"/"text"/..., required)
-SCHEMA: dict[str, dict[str, tuple[str, bool]]] = {
-    "mission": {"name": ("text", True), "description": ("text", False), "source": ("text", False)},
+
+@dataclass(frozen=True)
+class Field:
+    """How one field of a mission table is read and checked.
+
+    ``kind`` is a quantity kind of :data:`etcheck.input.units.KINDS` (the value
+    is converted to SI; ``sign`` "positive" asks > 0, "non-negative" >= 0),
+    ``"number"`` (a plain number in [lo, hi], an end excluded where ``lo_open``
+    or ``hi_open``), ``"text"`` (one of ``choices`` where given),
+    ``"chebyshev_points"`` (a whole number in [lo, hi]) or a structured kind
+    read by its own parser (stiffness_pair, mass_pair, current_range,
+    field_range, sweep_axis, uncertainty). ``default`` is the value of a field
+    left out.
+    """
+
+    kind: str
+    required: bool = False
+    default: Any = None
+    lo: float = -math.inf
+    hi: float = math.inf
+    lo_open: bool = False
+    hi_open: bool = False
+    sign: str = ""
+    choices: tuple[str, ...] = ()
+
+
+#: table -> field -> how it is read. [orbit] fields are checked by etcheck.orbit.spec.parse_orbit
+#: (imported only when the table is given); tether.end_masses and operation.orbit_rate/orbit_altitude by
+#: etcheck.input.gravity_gradient; [sweep] by etcheck.input.sweep_axes; [uncertainty] by etcheck.input.uncertainty.
+SCHEMA: dict[str, dict[str, Field]] = {
+    "mission": {"name": Field("text", required=True, default=""), "description": Field("text", default=""),
+                "source": Field("text", default="")},
     "tether": {
-        "length": ("length", True),
-        "bending_stiffness": ("stiffness_pair", True),
-        "poisson_ratio": ("number", False),
-        "torsional_stiffness": ("torsional_stiffness", False),
-        "mass_per_length": ("mass_per_length", True),
-        "rotary_inertia_ratio": ("number", False),
-        "youngs_modulus": ("pressure", False),
-        "cross_section_area": ("area", False),
-        "damping_time": ("time", False),
-        "end_masses": ("mass_pair", False),  # [upper, lower]: gravity-gradient tension (etcheck.input.gravity_gradient)
+        "length": Field("length", required=True, sign="positive"),
+        "bending_stiffness": Field("stiffness_pair", required=True),
+        "poisson_ratio": Field("number", lo=-1.0, hi=0.5, lo_open=True),
+        "torsional_stiffness": Field("torsional_stiffness", sign="positive"),
+        "mass_per_length": Field("mass_per_length", required=True, sign="positive"),
+        "rotary_inertia_ratio": Field("number", lo=0.0, hi=1.0),
+        "youngs_modulus": Field("pressure", sign="positive"),
+        "cross_section_area": Field("area", sign="positive"),
+        "damping_time": Field("time", sign="non-negative"),
+        "end_masses": Field("mass_pair"),  # [upper, lower]: gravity-gradient tension
     },
     "operation": {
-        "current": ("current_range", True),
-        "axial_field": ("field_range", False),  # required unless [orbit] is given (exactly one of the two)
-        "spin_rate": ("angular_rate", False),
-        "end_tension": ("force", False),
-        "orbit_rate": ("angular_rate", False),  # with tether.end_masses; or orbit_altitude, or the [orbit] table
-        "orbit_altitude": ("length", False),
+        "current": Field("current_range", required=True),
+        "axial_field": Field("field_range"),  # required unless [orbit] is given (exactly one of the two)
+        "spin_rate": Field("angular_rate", default=0.0 * u.rad / u.s),
+        "end_tension": Field("force", default=0.0 * u.N),
+        "orbit_rate": Field("angular_rate"),  # with tether.end_masses; or orbit_altitude, or the [orbit] table
+        "orbit_altitude": Field("length"),
     },
-    "sweep": {name: ("sweep_axis", False) for name in AXES},
-    "orbit": {},  # its fields are checked by etcheck.orbit.spec.parse_orbit (imported only when given)
-    "uncertainty": {name: ("uncertainty", False) for name in UNCERTAIN_INPUTS},
+    "sweep": {name: Field("sweep_axis") for name in AXES},
+    "orbit": {},
+    "uncertainty": {name: Field("uncertainty") for name in UNCERTAIN_INPUTS},
     "check": {
-        "required_margin": ("number", False),
-        "fidelity": ("text", False),
-        "scaling_constant": ("number", False),
-        "resolution": ("number", False),
-        "tolerance": ("number", False),
+        "required_margin": Field("number", default=2.0, lo=1.0, hi_open=True),
+        "fidelity": Field("text", default="auto", choices=FIDELITIES),
+        "scaling_constant": Field("number", default=F_CLAMPED, lo=0.0, lo_open=True, hi_open=True),
+        "resolution": Field("chebyshev_points", lo=8, hi=128),
+        "tolerance": Field("number", default=1e-8, lo=1e-13, hi=1e-3),
     },
 }
 
@@ -219,189 +248,33 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
 
     Values may be strings (``"100 m"``), astropy or pint quantities; pint is
     converted through SI at this edge. Raises MissionError naming the field.
+    Fields are read in a fixed order, so a file with several problems always
+    reports the same one first.
     """
     _check_tables(data, source)
-    notes: list[str] = []
-    t = data.get("tether", {})
-    o = data.get("operation", {})
-    c = data.get("check", {})
-    m = data.get("mission", {})
-
-    def err(fld: str, problem: str, fix: str = "") -> MissionError:
-        return MissionError(source, fld, problem, fix)
-
-    def get(table: str, key: str, kind: str, tbl: dict) -> Any:
-        fld = f"{table}.{key}"
-        value = tbl[key]
-        try:
-            return to_quantity(value, kind)
-        except QuantityProblem as exc:
-            raise err(fld, str(exc)) from None
-
-    def positive(table: str, key: str, kind: str, tbl: dict) -> u.Quantity:
-        q = get(table, key, kind, tbl)
-        if q.value <= 0:
-            raise err(f"{table}.{key}", f"must be positive, got {tbl[key]!r}")
-        return q
-
-    def number(table: str, key: str, tbl: dict, lo: float, hi: float, lo_open=False, hi_open=False) -> float:
-        fld = f"{table}.{key}"
-        value = tbl[key]
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise err(fld, f"expected a plain number, got {value!r}")
-        value = float(value)
-        if not math.isfinite(value):
-            raise err(fld, f"must be a finite number, got {value!r}")
-        below = value <= lo if lo_open else value < lo
-        above = value >= hi if hi_open else value > hi
-        if below or above:
-            lb = "(" if lo_open else "["
-            hb = ")" if hi_open else "]"
-            raise err(fld, f"must lie in {lb}{lo:g}, {hi:g}{hb}, got {value:g}")
-        return value
-
-    def text(table: str, key: str, tbl: dict, default: str = "") -> str:
-        value = tbl.get(key, default)
-        if not isinstance(value, str):
-            raise err(f"{table}.{key}", f"expected text in quotes, got {value!r}")
-        return value
-
-    name = text("mission", "name", m).strip()
-    if not name:
-        raise err("mission.name", "is empty", 'give the mission a name, e.g. name = "SET"')
-
-    length = positive("tether", "length", "length", t)
-
-    # bending stiffness: [EI1, EI2] or one value (isotropic)
-    bs = t["bending_stiffness"]
-    items = bs if isinstance(bs, list) else [bs]
-    if len(items) not in (1, 2):
-        raise err("tether.bending_stiffness", f"expected one value or [EI1, EI2], got {len(items)} values")
-    stiff = []
-    for item in items:
-        try:
-            q = to_quantity(item, "bending_stiffness")
-        except QuantityProblem as exc:
-            raise err("tether.bending_stiffness", str(exc)) from None
-        if q.value <= 0:
-            raise err("tether.bending_stiffness", f"must be positive, got {item!r}")
-        stiff.append(q)
-    EI1, EI2 = (stiff[0], stiff[0]) if len(stiff) == 1 else (stiff[0], stiff[1])
-    if EI2 > EI1:
-        raise err(
-            "tether.bending_stiffness",
-            f"EI2 = {EI2} is larger than EI1 = {EI1}: the axes are swapped",
-            "list the stiff axis first, [EI1, EI2] with EI1 >= EI2 (d1 is the stiff axis)",
-        )
-
-    # torsion
-    has_nu, has_gj = "poisson_ratio" in t, "torsional_stiffness" in t
-    if has_nu == has_gj:
-        raise err(
-            "tether.poisson_ratio",
-            "give exactly one of poisson_ratio or torsional_stiffness" + (" (both given)" if has_nu else ""),
-            "e.g. poisson_ratio = 0.3",
-        )
-    nu = None
-    if has_nu:
-        nu = number("tether", "poisson_ratio", t, -1.0, 0.5, lo_open=True)
-        # GJ = G (I1 + I2) = E (I1 + I2) / (2 (1 + nu))
-        GJ = (EI1 + EI2) / (2.0 * (1.0 + nu))
-        notes.append(f"torsional stiffness GJ = (EI1 + EI2) / (2 (1 + nu)) = {GJ.value:.4g} N m2 (solid symmetric section)")
-    else:
-        GJ = positive("tether", "torsional_stiffness", "torsional_stiffness", t)
-
-    mass = positive("tether", "mass_per_length", "mass_per_length", t)
-
-    # rotary inertia
-    E = A = None
-    has_p = "rotary_inertia_ratio" in t
-    has_section = "youngs_modulus" in t or "cross_section_area" in t
-    if has_p and has_section:
-        raise err(
-            "tether.rotary_inertia_ratio",
-            "give either rotary_inertia_ratio or youngs_modulus + cross_section_area, not both",
-        )
-    if has_p:
-        P = number("tether", "rotary_inertia_ratio", t, 0.0, 1.0)
-    elif has_section:
-        for key in ("youngs_modulus", "cross_section_area"):
-            if key not in t:
-                raise err(f"tether.{key}", "missing", "give youngs_modulus and cross_section_area together")
-        E = positive("tether", "youngs_modulus", "pressure", t)
-        A = positive("tether", "cross_section_area", "area", t)
-        P = float(((EI1 / E) / (A * length**2)).to(u.one).value)
-        notes.append(f"rotary inertia ratio P = EI1 / (E A L^2) = {P:.4g} from youngs_modulus and cross_section_area")
-    else:
-        raise err(
-            "tether.rotary_inertia_ratio",
-            "missing",
-            "give rotary_inertia_ratio (P = I1/(A L^2)) or youngs_modulus and cross_section_area",
-        )
-
-    damping = None
-    if "damping_time" in t:
-        damping = get("tether", "damping_time", "time", t)
-        if damping.value < 0:
-            raise err("tether.damping_time", f"must be >= 0, got {t['damping_time']!r}")
-
-    current = _range(o, "operation", "current", "current", err)
-    check_one_field_source(o, data, source)
-    orbit = envelope = None
-    if "orbit" in data:  # the field along the orbit (IGRF), evaluated once here: its worst case is the load's field
-        orbit, envelope = orbit_axial_field(data["orbit"], source)
-        bfield = (envelope.worst * u.T, envelope.worst * u.T)
-        notes.extend(orbit_notes(orbit, envelope))
-    else:
-        bfield = _range(o, "operation", "axial_field", "field", err)
-    spin = 0.0 * u.rad / u.s
-    if "spin_rate" in o:
-        spin = get("operation", "spin_rate", "angular_rate", o)
-        if spin.value < 0:
-            spin = -spin
-            notes.append("spin_rate given negative: the direction of spin does not change stability; its magnitude is used")
-    tension = get("operation", "end_tension", "force", o) if "end_tension" in o else 0.0 * u.N
-    gg = parse_gravity_gradient(t, o, orbit, float(length.to_value(u.m)), float(mass.to_value(u.kg / u.m)), source)
-    if gg is not None:  # the smallest tension along the tether: tension stabilises, so this is conservative
-        tension = gg.minimum * u.N
-        notes.append(gg.statement())
-
-    required = number("check", "required_margin", c, 1.0, math.inf, hi_open=True) if "required_margin" in c else 2.0
-    fidelity = text("check", "fidelity", c, "auto")
-    if fidelity not in FIDELITIES:
-        raise err("check.fidelity", f"unknown fidelity {fidelity!r}", f"use one of {', '.join(FIDELITIES)}")
-    f = number("check", "scaling_constant", c, 0.0, math.inf, lo_open=True, hi_open=True) if "scaling_constant" in c else F_CLAMPED
-
-    resolution = None
-    if "resolution" in c:
-        value = c["resolution"]
-        if isinstance(value, bool) or not isinstance(value, int) or not 8 <= value <= 128:
-            raise err("check.resolution", f"expected a whole number of Chebyshev points in [8, 128], got {value!r}",
-                      "leave it out to let etcheck choose the resolution for the tolerance")
-        resolution = value
-    tolerance = number("check", "tolerance", c, 1e-13, 1e-3) if "tolerance" in c else 1e-8
-
-    if current[0] != current[1] or bfield[0] != bfield[1]:
-        notes.append("current and/or field given as a range: the check uses the worst case |I| x |B0|")
-    uncertainty = None
-    if "uncertainty" in data:
-        nominal = {"EI1": EI1, "EI2": EI2, "torsional_stiffness": GJ, "mass_per_length": mass, "length": length,
-                   "current": max(abs(current[0]), abs(current[1])), "axial_field": max(abs(bfield[0]), abs(bfield[1])),
-                   "spin_rate": spin, "end_tension": tension, "damping_time": damping}
-        fixed = {"torsional_stiffness": "GJ follows from poisson_ratio and the bending stiffnesses; give "
-                 "[tether] torsional_stiffness instead of poisson_ratio to vary it"} if nu is not None else {}
-        uncertainty = parse_uncertainty(data["uncertainty"], source, nominal, fixed)
-        notes.extend(uncertainty.notes)
-    if damping is None:
-        notes.append(
-            f"no damping_time given: dimensionless damping gamma = {DEFAULT_GAMMA} assumed "
-            "(the paper's estimate for a real tether, Sec. VII B)"
-        )
-
+    t, o, c, m = (data.get(table, {}) for table in ("tether", "operation", "check", "mission"))
+    name = _name(m, source)
+    length = read_field(t, "tether", "length", source)
+    EI1, EI2 = _bending_stiffness(t["bending_stiffness"], source)
+    GJ, nu, torsion_notes = _torsion(t, EI1, EI2, source)
+    mass = read_field(t, "tether", "mass_per_length", source)
+    P, E, A, inertia_notes = _rotary_inertia(t, EI1, length, source)
+    damping = read_field(t, "tether", "damping_time", source)
+    current = _range(o, "operation", "current", "current", source)
+    bfield, orbit, envelope, field_notes = _axial_field(o, data, source)
+    spin, spin_notes = _spin_rate(o, source)
+    tension, gg, tension_notes = _tension(t, o, orbit, length, mass, source)
+    settings = {key: read_field(c, "check", key, source) for key in SCHEMA["check"]}
+    nominal = {"EI1": EI1, "EI2": EI2, "torsional_stiffness": GJ, "mass_per_length": mass, "length": length,
+               "current": max(abs(current[0]), abs(current[1])), "axial_field": max(abs(bfield[0]), abs(bfield[1])),
+               "spin_rate": spin, "end_tension": tension, "damping_time": damping}
+    uncertainty, uncertainty_notes = _uncertainty(data, source, nominal, gj_derived=nu is not None)
+    notes = (*torsion_notes, *inertia_notes, *field_notes, *spin_notes, *tension_notes,
+             *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping))
     return Mission(
         name=name,
-        description=text("mission", "description", m),
-        source=text("mission", "source", m),
+        description=read_field(m, "mission", "description", source),
+        source=read_field(m, "mission", "source", source),
         length=length,
         bending_stiffness=(EI1, EI2),
         torsional_stiffness=GJ,
@@ -415,14 +288,10 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         axial_field=bfield,
         spin_rate=spin,
         end_tension=tension,
-        required_margin=required,
-        fidelity=fidelity,
-        resolution=resolution,
-        tolerance=tolerance,
-        scaling_constant=f,
+        **settings,
         file=source,
         sha256=sha256,
-        notes=tuple(notes),
+        notes=notes,
         sweep=parse_table(data["sweep"], source) if data.get("sweep") else (),
         uncertainty=uncertainty,
         orbit=orbit,
@@ -431,18 +300,202 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     )
 
 
-def _range(tbl: dict, table: str, key: str, kind: str, err) -> tuple[u.Quantity, u.Quantity]:
+def read_field(tbl: dict[str, Any], table: str, key: str, source: str) -> Any:
+    """The value of ``[table] key`` read as :data:`SCHEMA` says (its default when the field is left out).
+
+    For the scalar kinds: quantities (astropy, SI), numbers (float), text and
+    Chebyshev point counts (int). Raises MissionError naming ``table.key``.
+    """
+    spec = SCHEMA[table][key]
+    if key not in tbl:
+        return spec.default
+    reader = _READERS.get(spec.kind, _quantity)
+    return reader(tbl[key], spec, f"{table}.{key}", source)
+
+
+def _quantity(value: Any, spec: Field, fld: str, source: str) -> u.Quantity:
+    try:
+        q = to_quantity(value, spec.kind)
+    except QuantityProblem as exc:
+        raise MissionError(source, fld, str(exc)) from None
+    if spec.sign == "positive" and q.value <= 0:
+        raise MissionError(source, fld, f"must be positive, got {value!r}")
+    if spec.sign == "non-negative" and q.value < 0:
+        raise MissionError(source, fld, f"must be >= 0, got {value!r}")
+    return q
+
+
+def _number(value: Any, spec: Field, fld: str, source: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise MissionError(source, fld, f"expected a plain number, got {value!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise MissionError(source, fld, f"must be a finite number, got {value!r}")
+    below = value <= spec.lo if spec.lo_open else value < spec.lo
+    above = value >= spec.hi if spec.hi_open else value > spec.hi
+    if below or above:
+        lb = "(" if spec.lo_open else "["
+        hb = ")" if spec.hi_open else "]"
+        raise MissionError(source, fld, f"must lie in {lb}{spec.lo:g}, {spec.hi:g}{hb}, got {value:g}")
+    return value
+
+
+def _text(value: Any, spec: Field, fld: str, source: str) -> str:
+    if not isinstance(value, str):
+        raise MissionError(source, fld, f"expected text in quotes, got {value!r}")
+    if spec.choices and value not in spec.choices:
+        raise MissionError(source, fld, f"unknown {fld.split('.')[-1]} {value!r}", f"use one of {', '.join(spec.choices)}")
+    return value
+
+
+def _chebyshev_points(value: Any, spec: Field, fld: str, source: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not spec.lo <= value <= spec.hi:
+        raise MissionError(source, fld, f"expected a whole number of Chebyshev points in [{spec.lo:g}, {spec.hi:g}], "
+                           f"got {value!r}", "leave it out to let etcheck choose the resolution for the tolerance")
+    return value
+
+
+_READERS = {"number": _number, "text": _text, "chebyshev_points": _chebyshev_points}
+
+
+def _name(m: dict[str, Any], source: str) -> str:
+    name = read_field(m, "mission", "name", source).strip()
+    if not name:
+        raise MissionError(source, "mission.name", "is empty", 'give the mission a name, e.g. name = "SET"')
+    return name
+
+
+def _bending_stiffness(value: Any, source: str) -> tuple[u.Quantity, u.Quantity]:
+    """tether.bending_stiffness: [EI1, EI2] or one value (isotropic), N m^2, EI1 >= EI2."""
+    items = value if isinstance(value, list) else [value]
+    if len(items) not in (1, 2):
+        raise MissionError(source, "tether.bending_stiffness",
+                           f"expected one value or [EI1, EI2], got {len(items)} values")
+    stiff = [_quantity(item, _STIFFNESS, "tether.bending_stiffness", source) for item in items]
+    EI1, EI2 = stiff[0], stiff[-1]
+    if EI2 > EI1:
+        raise MissionError(
+            source,
+            "tether.bending_stiffness",
+            f"EI2 = {EI2} is larger than EI1 = {EI1}: the axes are swapped",
+            "list the stiff axis first, [EI1, EI2] with EI1 >= EI2 (d1 is the stiff axis)",
+        )
+    return EI1, EI2
+
+
+_STIFFNESS = Field("bending_stiffness", sign="positive")
+
+
+def _torsion(t: dict[str, Any], EI1: u.Quantity, EI2: u.Quantity, source: str) -> tuple[u.Quantity, float | None, list[str]]:
+    """GJ (N m^2) given, or from the Poisson ratio nu: GJ = (EI1 + EI2) / (2 (1 + nu)); (GJ, nu or None, notes)."""
+    has_nu, has_gj = "poisson_ratio" in t, "torsional_stiffness" in t
+    if has_nu == has_gj:
+        raise MissionError(
+            source,
+            "tether.poisson_ratio",
+            "give exactly one of poisson_ratio or torsional_stiffness" + (" (both given)" if has_nu else ""),
+            "e.g. poisson_ratio = 0.3",
+        )
+    if has_gj:
+        return read_field(t, "tether", "torsional_stiffness", source), None, []
+    nu = read_field(t, "tether", "poisson_ratio", source)
+    # GJ = G (I1 + I2) = E (I1 + I2) / (2 (1 + nu))
+    GJ = (EI1 + EI2) / (2.0 * (1.0 + nu))
+    return GJ, nu, [f"torsional stiffness GJ = (EI1 + EI2) / (2 (1 + nu)) = {GJ.value:.4g} N m2 (solid symmetric section)"]
+
+
+def _rotary_inertia(t: dict[str, Any], EI1: u.Quantity, length: u.Quantity, source: str):
+    """P given, or P = EI1 / (E A L^2) from youngs_modulus and cross_section_area; (P, E or None, A or None, notes)."""
+    has_p = "rotary_inertia_ratio" in t
+    has_section = "youngs_modulus" in t or "cross_section_area" in t
+    if has_p and has_section:
+        raise MissionError(
+            source,
+            "tether.rotary_inertia_ratio",
+            "give either rotary_inertia_ratio or youngs_modulus + cross_section_area, not both",
+        )
+    if has_p:
+        return read_field(t, "tether", "rotary_inertia_ratio", source), None, None, []
+    if not has_section:
+        raise MissionError(
+            source,
+            "tether.rotary_inertia_ratio",
+            "missing",
+            "give rotary_inertia_ratio (P = I1/(A L^2)) or youngs_modulus and cross_section_area",
+        )
+    for key in ("youngs_modulus", "cross_section_area"):
+        if key not in t:
+            raise MissionError(source, f"tether.{key}", "missing", "give youngs_modulus and cross_section_area together")
+    E = read_field(t, "tether", "youngs_modulus", source)
+    A = read_field(t, "tether", "cross_section_area", source)
+    P = float(((EI1 / E) / (A * length**2)).to(u.one).value)
+    return P, E, A, [f"rotary inertia ratio P = EI1 / (E A L^2) = {P:.4g} from youngs_modulus and cross_section_area"]
+
+
+def _axial_field(o: dict[str, Any], data: dict[str, Any], source: str):
+    """operation.axial_field, or the worst field over the [orbit] (IGRF), evaluated once here: (field range in T,
+    OrbitSpec or None, envelope or None, notes)."""
+    check_one_field_source(o, data, source)
+    if "orbit" not in data:
+        return _range(o, "operation", "axial_field", "field", source), None, None, []
+    orbit, envelope = orbit_axial_field(data["orbit"], source)
+    return (envelope.worst * u.T, envelope.worst * u.T), orbit, envelope, orbit_notes(orbit, envelope)
+
+
+def _spin_rate(o: dict[str, Any], source: str) -> tuple[u.Quantity, list[str]]:
+    """Its magnitude (rad/s): the direction of spin does not change stability."""
+    spin = read_field(o, "operation", "spin_rate", source)
+    if spin.value >= 0:
+        return spin, []
+    return -spin, ["spin_rate given negative: the direction of spin does not change stability; its magnitude is used"]
+
+
+def _tension(t: dict[str, Any], o: dict[str, Any], orbit: OrbitSpec | None, length: u.Quantity, mass: u.Quantity,
+             source: str) -> tuple[u.Quantity, GravityGradient | None, list[str]]:
+    """operation.end_tension (N), or the smallest gravity-gradient tension along the tether (tension stabilises,
+    so this is conservative); (tension, profile or None, notes)."""
+    tension = read_field(o, "operation", "end_tension", source)
+    gg = parse_gravity_gradient(t, o, orbit, float(length.to_value(u.m)), float(mass.to_value(u.kg / u.m)), source)
+    if gg is None:
+        return tension, None, []
+    return gg.minimum * u.N, gg, [gg.statement()]
+
+
+def _range_notes(current: tuple[u.Quantity, u.Quantity], bfield: tuple[u.Quantity, u.Quantity]) -> list[str]:
+    if current[0] != current[1] or bfield[0] != bfield[1]:
+        return ["current and/or field given as a range: the check uses the worst case |I| x |B0|"]
+    return []
+
+
+def _uncertainty(data: dict[str, Any], source: str, nominal: dict[str, Any],
+                 gj_derived: bool) -> tuple[Uncertainty | None, tuple[str, ...]]:
+    """The [uncertainty] table about the nominal values (None without it) and its notes."""
+    if "uncertainty" not in data:
+        return None, ()
+    fixed = {"torsional_stiffness": "GJ follows from poisson_ratio and the bending stiffnesses; give "
+             "[tether] torsional_stiffness instead of poisson_ratio to vary it"} if gj_derived else {}
+    uncertainty = parse_uncertainty(data["uncertainty"], source, nominal, fixed)
+    return uncertainty, uncertainty.notes
+
+
+def _damping_notes(damping: u.Quantity | None) -> list[str]:
+    if damping is not None:
+        return []
+    return [f"no damping_time given: dimensionless damping gamma = {DEFAULT_GAMMA} assumed "
+            "(the paper's estimate for a real tether, Sec. VII B)"]
+
+
+def _range(tbl: dict, table: str, key: str, kind: str, source: str) -> tuple[u.Quantity, u.Quantity]:
+    """One value or a [min, max] range of quantities of ``kind`` (SI)."""
     fld = f"{table}.{key}"
     value = tbl[key]
     items = value if isinstance(value, list) else [value, value]
     if len(items) != 2:
-        raise err(fld, f"expected one value or a [min, max] range, got {len(items)} values")
-    try:
-        lo, hi = (to_quantity(x, kind) for x in items)
-    except QuantityProblem as exc:
-        raise err(fld, str(exc)) from None
+        raise MissionError(source, fld, f"expected one value or a [min, max] range, got {len(items)} values")
+    spec = Field(kind)
+    lo, hi = (_quantity(x, spec, fld, source) for x in items)
     if lo > hi:
-        raise err(fld, f"range [{items[0]}, {items[1]}] has min > max", "write it as [min, max]")
+        raise MissionError(source, fld, f"range [{items[0]}, {items[1]}] has min > max", "write it as [min, max]")
     return lo, hi
 
 
@@ -464,8 +517,8 @@ def _check_tables(data: dict[str, Any], source: str) -> None:
                     f"fields of [{table}] are {', '.join(SCHEMA[table])}",
                 )
     for table, fields in SCHEMA.items():
-        for key, (_, required) in fields.items():
-            if required and key not in data.get(table, {}):
+        for key, spec in fields.items():
+            if spec.required and key not in data.get(table, {}):
                 raise MissionError(source, f"{table}.{key}", "missing required field", _example(table, key))
 
 
