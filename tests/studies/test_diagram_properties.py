@@ -1,0 +1,125 @@
+"""Property tests of the bifurcation diagram (``etcheck diagram``, issue 11) over valid scenes.
+
+Scenes from :mod:`scene_missions` (R 0.01 - 1, P 1e-9 - 0.1, tension T 0 - 30, spin 0 - 10 times
+critical, damping 0 / tiny / the paper's / heavy, 1 m - 100 km tethers) through
+:func:`etcheck.studies.diagram.diagram_study` and the diagram renderers (HTML, JSON). Properties: the
+study answers or refuses with an etcheck error (never a failed solve or another exception); its JSON
+is strict and every number in it finite; the first pitchfork of the diagram is the straight tether's
+first critical load at that spin (rung 1, the check's value); at R = 1 the primary pitchforks are
+double (b1 and b2 start at the same load, Sec. VII A); a branch lifts off exactly when the damped
+straight tether is already unstable at rest. Low resolution (N = 16) and a load range just past the
+second pitchfork keep each example at about a second.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import example, given
+from hypothesis import strategies as st
+from scene_missions import THOROUGH, assert_all_finite, mission_dict, profile, scenes, strict_json
+
+from etcheck import check
+from etcheck.checks.buckled import DiagramOptions
+from etcheck.errors import EtcheckError
+from etcheck.input.mission import mission_from_dict
+from etcheck.report import render
+from etcheck.rod.stability import divergence_loads
+from etcheck.scaling import scale, scene
+from etcheck.studies.diagram import diagram_study
+
+#: a small operating load (dimensionless B) so that the check has a load margin to report
+B_OPERATING = 1e-3
+#: Chebyshev resolution of the drawn diagrams (the CLI's smallest)
+N = 16
+#: largest |pitchfork - critical load| / critical load measured at N = 16 over the thorough profile
+#: (strong tension, T = 30: 6e-4). The diagram states no error for its pitchfork loads (see the
+#: xfail below), so this measured bound stands in for one.
+PITCHFORK_RTOL_N16 = 2e-3
+
+
+def _critical_load(results: dict) -> tuple[float | None, float, str]:
+    """The check's first critical load (dimensionless B), its absolute error and its kind."""
+    margin = results["margins"][0]
+    lin = results.get("linear") or {}
+    kind = str((lin.get("critical_load") or {}).get("kind", ""))
+    if margin["critical"] is None:
+        return None, math.nan, kind
+    B_c = margin["critical"] / results["scales"]["load_N_per_m"]
+    return B_c, margin["error"] * B_c, kind
+
+
+def _diagram(s: dict, branches: int, stability: bool, N: int = N, margin: float = 1.03):
+    """The mission of scene ``s`` and its diagram from B = 0 to just past its ``branches``-th static load."""
+    mission = mission_from_dict(mission_dict(s, B=B_OPERATING))
+    p = scale(scene(mission)).params
+    loads = divergence_loads(p, n=branches)
+    B_max = margin * float(loads[-1]) if loads.size else None
+    options = DiagramOptions(branches=branches, B_max=B_max, N=N, stability=stability, connect=False)
+    return mission, diagram_study(mission, None, None, options)
+
+
+def _well_formed(results: dict) -> dict:
+    """The rendered JSON (strict, every number finite) and, in the thorough profile, HTML of a diagram
+    (the default run draws its HTML once, through the CLI in tests/cli); the parsed JSON."""
+    out = render(results, ("json", "html") if THOROUGH else ("json",), kind="diagram")
+    data = strict_json(out["json"].decode())
+    assert_all_finite(data)
+    if THOROUGH:
+        assert "</html>" in out["html"].decode()
+    d = data["diagram"]
+    assert d["branches"] or d["lifted_off"]
+    for b in d["branches"]:
+        assert b["points"] == len(b["values"]) >= 2
+        assert b["measure1_error"] is not None and b["measure1_error"] >= 0
+        if "stable" in b:
+            assert len(b["stable"]) == b["points"]
+    return d
+
+
+#: SET's stiffness ratio spun past b1's lift-off (omega 0.746) but below b2's (1.006)
+S_LIFTED = dict(R=0.5526, P=1e-3, T=0.0, gamma=0.04375, omega_factor=1.2, omega=1.2 * math.sqrt(0.5526), length=100.0)
+
+
+@profile(default=1, thorough=60)
+@given(scenes(), st.sampled_from([2, 1]), st.booleans())
+@example(S_LIFTED, 1, False)
+def test_diagram_of_a_valid_scene(s, branches, stability):
+    mission = mission_from_dict(mission_dict(s, B=B_OPERATING))
+    checked = check(mission).results
+    try:
+        _, results = _diagram(s, branches, stability)
+    except EtcheckError as exc:
+        assert exc.exit_code == 2 and str(exc), f"exit {exc.exit_code}: {exc}"
+        return
+    d = _well_formed(results)
+    attached = {b["label"]: b["pitchfork_B"] for b in d["branches"] if b.get("pitchfork_B") is not None}
+    B_c, err, kind = _critical_load(checked)
+    if s["gamma"] > 0:
+        # with damping the straight tether loses stability only at its static points (Kelvin-Tait-Chetaev):
+        # unstable at rest exactly when a branch has already lifted off at this spin
+        assert (B_c == 0.0 or kind == "unstable at start") == bool(d["lifted_off"]), (B_c, kind, d["lifted_off"])
+    if attached and B_c:
+        first = min(attached.values())
+        # no branch starts below the first critical load; with damping, and the lowest branch of each symmetry
+        # class drawn (b1 and b2, none lifted off), the first pitchfork is that load (undamped, the tether
+        # may whirl before it buckles)
+        assert first >= B_c * (1 - PITCHFORK_RTOL_N16) - err, (first, B_c, err)
+        if s["gamma"] > 0 and {"b1", "b2"} <= set(attached) and not d["lifted_off"]:
+            assert abs(first - B_c) <= err + PITCHFORK_RTOL_N16 * B_c, (first, B_c, err)
+    if s["R"] == 1.0 and {"b1", "b2"} <= set(attached):
+        # isotropic rod: one double root of the pencil at this N, equal to the eigen-solver's precision
+        assert attached["b1"] == pytest.approx(attached["b2"], rel=1e-9)
+
+
+@pytest.mark.xfail(strict=True, reason="the diagram's pitchfork loads carry no error estimate: at T = 30, "
+                   "R = 0.1, omega = 0 b2's pitchfork at the default N = 32 is 189.76155, the straight "
+                   "tether's critical load 189.74785 (relative 7.2e-5), and the CLI prints it to 10 digits")
+def test_pitchfork_load_states_an_error_that_covers_the_critical_load():
+    s = dict(R=0.1, P=1e-5, T=30.0, gamma=0.04375, omega_factor=0.0, omega=0.0, length=1.0)
+    mission, results = _diagram(s, branches=2, stability=False, N=32, margin=1.001)
+    B_c, err, _ = _critical_load(check(mission).results)
+    first = min(results["diagram"]["branches"], key=lambda b: b["pitchfork_B"])
+    stated = first.get("pitchfork_error")
+    assert stated is not None and abs(first["pitchfork_B"] - B_c) <= err + stated
