@@ -51,6 +51,8 @@ from functools import lru_cache
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
 from ..numerics.continuation import (
     ContinuationOptions,
@@ -135,7 +137,13 @@ def reflect(state: eq.Equilibrium, which: str) -> eq.Equilibrium:
 
 @dataclass(frozen=True, eq=False)
 class SymmetryBases:
-    """Orthonormal bases of the +/-1 eigenspaces of S (columns V) and of S_row^T (columns L).
+    """Orthonormal bases of the +/-1 eigenspaces of S (columns of V) and of S_row^T (rows of L).
+
+    V and L are sparse (``scipy.sparse``): S and S_row are block diagonal with
+    blocks of one or two unknowns (rows) except the axial-displacement block
+    (the tension row), and each basis is built block by block, so that the
+    restricted Jacobians L J V cost two sparse-dense products instead of two
+    dense matrix products.
 
     ``equivariance`` is ||J S - S_row J|| / ||J|| at a second (curved-free)
     check state: rounding level when the row action is state independent.
@@ -152,27 +160,51 @@ class SymmetryBases:
     equivariance: float
 
 
+def _components(A: np.ndarray) -> list[np.ndarray]:
+    """Index sets of the diagonal blocks of A (connected components of the pattern of A + A^T)."""
+    pattern = sp.csr_array((A != 0) | (A.T != 0))
+    n, labels = connected_components(pattern, directed=False)
+    order = np.argsort(labels, kind="stable")
+    return np.split(order, np.cumsum(np.bincount(labels, minlength=n))[:-1])
+
+
+def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sp.csc_array:
+    """Orthonormal basis (columns) of ker(A - sign I) for A block diagonal on ``blocks``:
+    one small SVD per block, so the basis is as sparse as A's blocks (most are 1 x 1 or
+    2 x 2: the signed permutation s -> 1 - s)."""
+    rows, cols, vals, k = [], [], [], 0
+    for idx in blocks:
+        Z = sla.null_space(A[np.ix_(idx, idx)] - sign * np.eye(idx.size), rcond=1e-9, lapack_driver="gesvd")
+        Z[np.abs(Z) < 1e-15] = 0.0
+        r, c = np.nonzero(Z)
+        rows.append(idx[r])
+        cols.append(c + k)
+        vals.append(Z[r, c])
+        k += Z.shape[1]
+    return sp.csc_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(A.shape[0], k))
+
+
 @lru_cache(maxsize=16)
 def _bases(N: int, which: str, P: float, R: float, Gamma: float, f: float) -> SymmetryBases:
     S = symmetry_matrix(N, which)
     p = RodParameters(P=P, R=R, Gamma=Gamma, f=f, B=0.37 * 7.33**3 * math.sqrt(R) / f, omega=0.3, T=0.1)
     J0 = eq.jacobian(p, eq.straight_state(p, N))
-    # S_row = J0 S J0^{-1}; its left eigenvectors are y J0^{-1} with y a left eigenvector of S
+    # S_row = J0 S J0^{-1}: a signed permutation on the collocation rows (t_k -> t_{N-1-k}) and on the
+    # boundary rows, except the sliding-end tension row F3(0) - T, which maps to F3(1) - T = that row plus
+    # the quadrature of the F3' rows; entries below rounding are the zeros of that structure
     S_row = np.linalg.solve(J0.T, (J0 @ S).T).T
+    S_row[np.abs(S_row) < 1e-12 * np.max(np.abs(S_row))] = 0.0
+    S_row.setflags(write=False)
     p2 = p.with_(B=0.9 * p.B, omega=0.7, T=-0.05)
     J2 = eq.jacobian(p2, eq.straight_state(p2, N))
     equiv = float(np.max(np.abs(J2 @ S - S_row @ J2)) / np.max(np.abs(J2)))
     n = S.shape[0]
-    eye = np.eye(n)
-    Vp = sla.null_space(S - eye, rcond=1e-9, lapack_driver="gesvd")
-    Vm = sla.null_space(S + eye, rcond=1e-9, lapack_driver="gesvd")
-    Yp = sla.null_space(S.T - eye, rcond=1e-9, lapack_driver="gesvd")
-    Ym = sla.null_space(S.T + eye, rcond=1e-9, lapack_driver="gesvd")
-    Lp = np.linalg.qr(np.linalg.solve(J0.T, Yp))[0]
-    Lm = np.linalg.qr(np.linalg.solve(J0.T, Ym))[0]
+    cols, rows = _components(S), _components(S_row)
+    Vp, Vm = _eigenspace(S, 1.0, cols), _eigenspace(S, -1.0, cols)
+    Lp, Lm = _eigenspace(S_row.T, 1.0, rows), _eigenspace(S_row.T, -1.0, rows)
     if Vp.shape[1] != Lp.shape[1] or Vm.shape[1] != Lm.shape[1] or Vp.shape[1] + Vm.shape[1] != n:
         raise RuntimeError(f"symmetry bases inconsistent: {Vp.shape}, {Vm.shape}, {Lp.shape}, {Lm.shape}")
-    return SymmetryBases(which, N, S, S_row, Vp, Vm, Lp.T, Lm.T, equiv)
+    return SymmetryBases(which, N, S, S_row, Vp, Vm, Lp.T.tocsr(), Lm.T.tocsr(), equiv)
 
 
 def symmetry_bases(params: RodParameters, N: int, which: str) -> SymmetryBases:

@@ -262,72 +262,97 @@ def _skew(v: np.ndarray) -> np.ndarray:
     return np.einsum("...i,iab->...ab", v, _SKEW_BASIS)
 
 
+def _levi_civita() -> np.ndarray:
+    e = np.zeros((3, 3, 3))
+    for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
+        e[i, j, k], e[i, k, j] = 1.0, -1.0
+    return e
+
+
+# axial(antisym(A^T skew(e_i) B))_m = sum over (r q), (s p) of A_rq B_sp _CURV[(r q), m, i, (s p)]:
+# (A^T E_i B)_qp = -(A_q x B_p)_i (columns), axial_m = 1/2 eps_mpq (.)_qp
+_EPS = _levi_civita()
+_CURV = (-0.5 * np.einsum("mpq,irs->rqmisp", _EPS, _EPS)).reshape(9, 9, 9)
+
+
+def _curvature_sensitivity(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """G[k, j, m, i] = axial(antisym(A_k^T skew(e_i) B_j))_m for A (n, 3, 3), B (n', 3, 3);
+    shape (n, n', 3, 3). Bilinear in (A, B): two BLAS products with the constant tensor _CURV."""
+    X = (A.reshape(-1, 9) @ _CURV.reshape(9, 81)).reshape(-1, 9, 9)  # (k, (m i), (s p))
+    G = X.reshape(-1, 9) @ B.reshape(-1, 9).T  # ((k m i), j)
+    return G.reshape(A.shape[0], 3, 3, B.shape[0]).transpose(0, 3, 1, 2)
+
+
 def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
+    """Exact derivative of :func:`residual` (module docstring, "Which Jacobian").
+
+    Every ODE block is a sum of terms W[k, j] C[k, j] (W = P or PD, the
+    resampling and differentiation matrices; C a 3 x 3 coefficient at
+    first-kind point t_k and node j), assembled with broadcasting and BLAS
+    products (the curvature term through :func:`_curvature_sensitivity`).
+    """
     N = state.N
     n1 = N + 1
     col = collocation(N)
     P, PD = col.P, col.PD
     D, F = state.D, state.F
-    Dt = np.einsum("kj,jab->kab", P, D)
-    Dp = np.einsum("kj,jab->kab", PD, D)
+    Dt = (P @ D.reshape(n1, 9)).reshape(N, 3, 3)
+    Dp = (PD @ D.reshape(n1, 9)).reshape(N, 3, 3)
     Ft = P @ F
     K = stiffness_diag(params)
     kb = _axial(Dt, Dp)
     w = params.omega * _E3
     J = np.zeros((NFIELDS, N, NFIELDS, n1))
-    eye = np.eye(3)
 
     def put(rg: int, cg: int, T: np.ndarray) -> None:
         """Add T of shape (N, N+1, 3, 3) [k, j, row comp, col comp] to block (rg, cg)."""
         J[3 * rg:3 * rg + 3, :, 3 * cg:3 * cg + 3, :] += T.transpose(2, 0, 3, 1)
 
-    def diag_t(C: np.ndarray, M: np.ndarray) -> np.ndarray:
-        """T[k, j] = M[k, j] C[k] for C of shape (N, 3, 3) and M (N, N+1)."""
-        return M[:, :, None, None] * C[:, None, :, :]
+    def put_identity(rg: int, cg: int, W: np.ndarray, sign: float = 1.0) -> None:
+        """Add sign W[k, j] I to block (rg, cg)."""
+        for a in range(3):
+            J[3 * rg + a, :, 3 * cg + a, :] += sign * W
 
-    # d(d_i(t_k)) / d a_j = P_kj (-skew(d_i,j)):  a_j x d_ij = -skew(d_ij) a_j
-    def dd(i: int) -> np.ndarray:  # (N, N+1, 3, 3)
-        return -P[:, :, None, None] * _skew(D[:, :, i])[None, :, :, :]
+    def weighted(W: np.ndarray, C: np.ndarray) -> np.ndarray:
+        """W[k, j] C[k, j] with C broadcastable to (N, N+1, 3, 3)."""
+        return W[:, :, None, None] * C
 
-    dd3 = dd(2)
+    # d(d_i(t_k)) / d a_j = P_kj (a_j x d_i,j) = -P_kj skew(d_i,j) a_j
+    skew_d = [_skew(D[:, :, i]) for i in range(3)]  # (N+1, 3, 3) each
+    dd3 = weighted(P, -skew_d[2][None])
     # x rows: PD xi - d(d3)
-    put(0, 0, diag_t(np.broadcast_to(eye, (N, 3, 3)), PD))
+    put_identity(0, 0, PD)
     put(0, 1, -dd3)
     # constitutive rows: d(Dt) K kb + Dt K dkb - P m
-    v = np.einsum("b,kb->kb", K, kb)  # (N, 3) body vector K kb
+    v = kb * K[None, :]  # (N, 3) body vector K kb
     Dv = np.einsum("jab,kb->kja", D, v)  # D_j (K kb_k)
-    T = -P[:, :, None, None] * _skew(Dv)  # d/da_j of (a_j x D_j v_k) weighted by P_kj
+    T = weighted(P, -_skew(Dv))  # d/da_j of (a_j x D_j v_k) weighted by P_kj
     # dkb: axial(antisym(-P_kj D_j^T E_i Dp_k + PD_kj Dt_k^T E_i D_j)) for a_j = e_i
-    G1 = np.einsum("jba,ibc->jiac", D, _SKEW_BASIS)  # D_j^T E_i
-    G2 = np.einsum("ibc,jcd->jibd", _SKEW_BASIS, D)  # E_i D_j
-    X = -P[:, :, None, None, None] * np.einsum("jiac,kcd->kjiad", G1, Dp, optimize=True)
-    X += PD[:, :, None, None, None] * np.einsum("kba,jibd->kjiad", Dt, G2, optimize=True)
-    X = 0.5 * (X - np.swapaxes(X, -1, -2))
-    dkb = np.stack([X[..., 2, 1], X[..., 0, 2], X[..., 1, 0]], axis=-1)  # (k, j, i, body comp)
-    T = T + np.einsum("kab,kjib->kjai", Dt * K[None, None, :], dkb, optimize=True)
+    dkb = -P[:, :, None, None] * _curvature_sensitivity(D, Dp).transpose(1, 0, 2, 3)
+    dkb += PD[:, :, None, None] * _curvature_sensitivity(Dt, D)
+    T += np.matmul((Dt * K[None, None, :])[:, None], dkb)
     put(1, 1, T)
-    put(1, 3, diag_t(np.broadcast_to(-eye, (N, 3, 3)), P))
+    put_identity(1, 3, P, -1.0)
     # force rows: PD phi + B d(d3) x e3 - w x (w x P xi)
-    put(2, 2, diag_t(np.broadcast_to(eye, (N, 3, 3)), PD))
-    e3x = _skew(_E3)
-    put(2, 1, -params.B * np.einsum("ab,kjbc->kjac", e3x, dd3))
+    put_identity(2, 2, PD)
+    put(2, 1, -params.B * np.matmul(_skew(_E3), dd3))
     ww = _skew(w) @ _skew(w)
-    put(2, 0, diag_t(np.broadcast_to(-ww, (N, 3, 3)), P))
+    put(2, 0, weighted(P, -ww[None, None]))
     # moment rows: PD m + d(d3) x Ft + d3t x P phi - rotary terms
-    put(3, 3, diag_t(np.broadcast_to(eye, (N, 3, 3)), PD))
-    put(3, 1, -np.einsum("kab,kjbc->kjac", _skew(Ft), dd3))
-    put(3, 2, diag_t(_skew(Dt[:, :, 2]), P))
+    put_identity(3, 3, PD)
+    put(3, 1, -np.matmul(_skew(Ft)[:, None], dd3))
+    put(3, 2, weighted(P, _skew(Dt[:, :, 2])[:, None]))
     if params.omega != 0.0:
         for ci, i in ((params.P * params.R, 0), (params.P, 1)):
             if ci == 0.0:
                 continue
             di = Dt[:, :, i]
-            ddi = dd(i)
+            ddi = weighted(P, -skew_d[i][None])
             # d[(w.d)(d x w)] = (w.dd)(d x w) + (w.d)(dd x w)
-            t1 = np.einsum("ka,b,kjbc->kjac", np.cross(di, w), w, ddi)
-            t2 = -(di @ w)[:, None, None, None] * np.einsum("ab,kjbc->kjac", _skew(w), ddi)
+            t1 = np.cross(di, w)[:, None, :, None] * (w @ ddi)[:, :, None, :]
+            t2 = -(di @ w)[:, None, None, None] * np.matmul(_skew(w), ddi)
             put(3, 1, -ci * (t1 + t2))
-    out = np.zeros((NFIELDS * n1, NFIELDS * n1))
+    out = np.empty((NFIELDS * n1, NFIELDS * n1))
     out[: NFIELDS * N] = J.reshape(NFIELDS * N, NFIELDS * n1)
     out[NFIELDS * N:] = boundary_rows(state, N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
     return out
