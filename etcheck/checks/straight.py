@@ -26,16 +26,8 @@ from etcheck.rod.convergence import accuracy_table
 from etcheck.rod.damped_critical import damped_critical
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.spectrum import spectrum
-from etcheck.rod.stability import (
-    THRESHOLD,
-    CriticalKind,
-    campbell,
-    critical_load,
-    scan_line,
-    stability_map,
-    stable_rows,
-    static_curves,
-)
+from etcheck.rod.stability import THRESHOLD, CriticalKind, campbell, critical_load, scan_line, stability_map
+from etcheck.rod.static_map import stable_rows, static_curves
 from etcheck.scaling import RPM, Scaled
 
 
@@ -250,9 +242,10 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
             "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
             "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
         }
-        curve_B, curve_w = static_curves(p, B_hi, w_hi, N=N)
+        curves = static_curves(p, B_hi, w_hi, omega_rows=w_rows, N=N)
+        curve_B, curve_w = curves.B, curves.omega_points
         if damped:  # stability changes only at static points: cut each row there exactly
-            cuts = stable_rows(p, w_rows, B_hi, N=N)
+            cuts = stable_rows(p, curves, B_hi)
         else:  # undamped: flutter can occur anywhere, sample a grid
             growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
     rows = None if cuts is None else [

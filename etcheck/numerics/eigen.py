@@ -86,8 +86,13 @@ class StaticElimination:
     keep: np.ndarray
     drop: np.ndarray
     Q1: np.ndarray
+    Q2: np.ndarray
     R: np.ndarray
     A: tuple
+
+    def reduce(self, A: np.ndarray) -> np.ndarray:
+        """Q2^T A[:, keep]: the reduced form of another matrix that does not meet the dropped unknowns."""
+        return self.Q2.T @ A[:, self.keep]
 
     def recover(self, lam: complex, y_keep: np.ndarray) -> np.ndarray:
         """Full eigenvector from the reduced one at eigenvalue lam."""
@@ -127,6 +132,7 @@ def eliminate_static(A0, A1, A2, drop) -> StaticElimination:
         keep=keep,
         drop=drop,
         Q1=Q1,
+        Q2=Q2,
         R=R[:r],
         A=(A0, A1, A2),
     )

@@ -181,7 +181,7 @@ def _frequency_scale(P: float, R: float, Gamma: float, f: float, n: int) -> floa
 
 
 def nearest_eigenvalues(A0, A1, A2, nev: int, gamma: float, vectors: bool = False, past_cluster: bool = True,
-                        dense: bool = False):
+                        dense: bool = False, reduced: bool = False):
     """The nev eigenvalues of the QEP nearest SIGMA (dimensionless).
 
     With ``past_cluster`` the Kelvin-Voigt cluster near -1/gamma
@@ -191,10 +191,10 @@ def nearest_eigenvalues(A0, A1, A2, nev: int, gamma: float, vectors: bool = Fals
     eigenvalues (``dense``, see :func:`prefers_dense`) ARPACK converges slowly
     on its degenerate members: then all eigenvalues are computed densely (QZ
     after eliminating the lambda-free unknowns phi, m), ~0.05 s at N = 24 and
-    ~0.3 s at N = 48.
+    ~0.3 s at N = 48. ``reduced``: phi, m are already eliminated (no vectors then).
     """
     if dense:
-        lam, V = _dense(A0, A1, A2, vectors)
+        lam, V = (qep_dense(A0, A1, A2), None) if reduced else _dense(A0, A1, A2, vectors)
         keep = ~damping_cluster(lam, gamma) if past_cluster else np.ones(lam.size, dtype=bool)
         idx = np.nonzero(keep)[0]
         idx = idx[np.argsort(np.abs(lam[idx] - SIGMA), kind="stable")][:nev]

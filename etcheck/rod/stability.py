@@ -34,7 +34,6 @@ damping and zero without).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from enum import StrEnum
 from functools import lru_cache
@@ -62,8 +61,6 @@ __all__ = [
     "scan_line",
     "stability_map",
     "campbell",
-    "static_curves",
-    "stable_rows",
 ]
 
 class CriticalKind(StrEnum):
@@ -95,6 +92,10 @@ class StraightFamily:
 
     A0 = A00 + B AB + T AT + omega^2 Aw,  A1 = A10 + omega A1w,  A2 fixed, at
     resolution N (P, R, Gamma, f, gamma from ``params``); dimensionless.
+    The lambda-free unknowns phi, m enter A0 through columns that none of
+    B, omega, T touches, so one QR eliminates them for the whole family: every
+    block is also kept reduced (``reduced``: Q2^T A[:, keep], size 6(N+1)),
+    on which the eigenvalue solves and the static pencils run.
     """
 
     def __init__(self, params: RodParameters, N: int):
@@ -113,15 +114,18 @@ class StraightFamily:
         self.A1w = A1w - A10
         n = self.N + 1
         self.static_cols = np.arange(6 * n, NFIELDS * n)
+        el = eliminate_static(A00, A10, A2, self.static_cols)
+        self.reduced = {name: el.reduce(getattr(self, name)) for name in ("A00", "AB", "AT", "Aw", "A10", "A1w", "A2")}
 
-    def operator(self, B: float, omega: float, T: float):
-        """(A0, A1, A2) at the given load, spin and tension."""
-        A0 = self.A00 + B * self.AB + T * self.AT + omega**2 * self.Aw
-        A1 = self.A10 + omega * self.A1w
-        return A0, A1, self.A2
+    def operator(self, B: float, omega: float, T: float, reduced: bool = False):
+        """(A0, A1, A2) at the given load, spin and tension (``reduced``: phi, m eliminated)."""
+        r = self.reduced if reduced else self.__dict__
+        A0 = r["A00"] + B * r["AB"] + T * r["AT"] + omega**2 * r["Aw"]
+        A1 = r["A10"] + omega * r["A1w"]
+        return A0, A1, r["A2"]
 
     def eigenvalues(self, B: float, omega: float, T: float, nev: int, past_cluster: bool = False) -> np.ndarray:
-        """The nev eigenvalues nearest the shift.
+        """The nev eigenvalues nearest the shift (solved on the reduced operator).
 
         ``past_cluster=True`` removes the Kelvin-Voigt damping cluster and asks
         for more until nev lie outside it (for display). The stability
@@ -129,9 +133,9 @@ class StraightFamily:
         >= 1/gamma, and with damping the only way to lose stability is through
         lambda = 0, next to the shift (Kelvin-Tait-Chetaev).
         """
-        A0, A1, A2 = self.operator(B, omega, T)
+        A0, A1, A2 = self.operator(B, omega, T, reduced=True)
         return nearest_eigenvalues(A0, A1, A2, nev, self.params.gamma, past_cluster=past_cluster,
-                                   dense=prefers_dense(self.params, nev))
+                                   dense=prefers_dense(self.params, nev), reduced=True)
 
     def growth(self, B: float, omega: float, T: float, k: int = K_MODES) -> float:
         """max Re lambda over the k least-|lambda| pairs."""
@@ -143,20 +147,19 @@ class StraightFamily:
 
         Returns values of B (or T) or of omega^2 (axis "omega"). ``axis =
         "ray"`` gives the values t where A0(t B, sqrt(t) omega, T) is singular
-        (load and spin squared scaled together from zero).
+        (load and spin squared scaled together from zero). One QZ of the
+        reduced pencil (phi, m eliminated once for the family).
         """
+        r = self.reduced
         vals = {"B": B, "omega": omega, "T": T}
         if axis == "ray":
-            n0 = B * self.AB + omega**2 * self.Aw
+            n0 = B * r["AB"] + omega**2 * r["Aw"]
             vals["B"] = vals["omega"] = 0.0
         else:
-            n0 = {"B": self.AB, "T": self.AT, "omega": self.Aw}[axis]
+            n0 = r[{"B": "AB", "T": "AT", "omega": "Aw"}[axis]]
             vals[axis] = 0.0
-        A0, _, _ = self.operator(vals["B"], vals["omega"], vals["T"])
-        # The lambda-free unknowns (phi, m) do not meet the parameter, so one
-        # QR elimination reduces both matrices of the pencil A0 + x n0.
-        el = eliminate_static(A0, n0, np.zeros_like(A0), self.static_cols)
-        alpha, beta = sla.eig(el.B0, -el.B1, right=False, homogeneous_eigvals=True)
+        A0 = self.operator(vals["B"], vals["omega"], vals["T"], reduced=True)[0]
+        alpha, beta = sla.eig(A0, -n0, right=False, homogeneous_eigvals=True, check_finite=False)
         ok = np.abs(beta) > 1e-13 * np.abs(alpha)
         x = alpha[ok] / beta[ok]
         real = np.abs(x.imag) <= 1e-8 * np.maximum(np.abs(x), 1e-300)
@@ -445,42 +448,6 @@ def stability_map(params: RodParameters, B_grid, omega_grid, N: int = 16, k: int
     return out
 
 
-@single_blas_thread
-def stable_rows(params: RodParameters, omega_grid, B_max: float, N: int = 24, k: int = K_MODES) -> list:
-    """Stable intervals of B in [0, B_max] at each spin of ``omega_grid`` (damped rod).
-
-    Dimensionless. With damping gamma > 0 stability changes only where the
-    static operator is singular (Kelvin-Tait-Chetaev), so each row is cut at
-    the exact pencil roots in B and each piece is classified by one growth
-    evaluation at its middle: the boundaries are exact, not grid-limited.
-    Returns one list of (start, end) per spin.
-    """
-    if params.gamma <= 0:
-        raise ValueError("stable_rows needs damping gamma > 0 (undamped rods can flutter between static points)")
-    fam = _family(params, N)
-    # the piece touching B = 0 needs no eigenvalues: the static operator there is positive definite (stable,
-    # Kelvin-Tait-Chetaev) exactly below the first spin root of the unloaded rod
-    rest2 = fam.pencil_roots("omega", 0.0, 0.0, params.T)
-    rest = math.sqrt(float(np.min(rest2[rest2 > 0]))) if np.any(rest2 > 0) else math.inf
-    rows = []
-    for w in np.asarray(omega_grid, dtype=float):
-        roots = fam.pencil_roots("B", 0.0, w, params.T)
-        roots = np.unique(np.round(roots[(roots > 0) & (roots < B_max)], 12))
-        edges = [0.0, *roots.tolist(), float(B_max)]
-        stable: list = []
-        for a, b in zip(edges[:-1], edges[1:]):
-            unstable = (w >= rest if a == 0.0 and params.T >= 0 else
-                        fam.growth(0.5 * (a + b), w, params.T, k=k) > THRESHOLD)
-            if unstable:
-                continue
-            if stable and stable[-1][1] == a:
-                stable[-1] = (stable[-1][0], b)
-            else:
-                stable.append((a, b))
-        rows.append(stable)
-    return rows
-
-
 @dataclass(frozen=True)
 class Campbell:
     """Eigenvalues of the straight rod versus spin (dimensionless).
@@ -517,29 +484,3 @@ def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24) -> Cam
     for i, r in enumerate(rows):
         out[i, : r.size] = r
     return Campbell(omega=omega_grid, eigenvalues=out)
-
-
-@single_blas_thread
-def static_curves(params: RodParameters, B_max: float, omega_max: float, n: int = 60,
-                  N: int = 24) -> tuple[np.ndarray, np.ndarray]:
-    """Points (B, omega) of the static-point set det A0(B, omega) = 0 in the box.
-
-    Dimensionless; T, P, R, Gamma, f from ``params`` (gamma plays no part at
-    lambda = 0). Exact at resolution N: for n spins the B-pencil roots, and
-    for n loads the omega^2-pencil roots, so curves are sampled evenly in both
-    directions. With damping these curves are the whole stability boundary of
-    the straight rod (Kelvin-Tait-Chetaev).
-    """
-    fam = _family(params, N)
-    Bs, ws = [], []
-    for w in np.linspace(0.0, omega_max, n):
-        r = fam.pencil_roots("B", 0.0, w, params.T)
-        r = r[(r >= 0) & (r <= B_max)]
-        Bs.extend(r)
-        ws.extend([w] * r.size)
-    for b in np.linspace(0.0, B_max, n):
-        r = fam.pencil_roots("omega", b, 0.0, params.T)
-        r = np.sqrt(r[(r >= 0) & (r <= omega_max**2)])
-        Bs.extend([b] * r.size)
-        ws.extend(r)
-    return np.asarray(Bs, dtype=float), np.asarray(ws, dtype=float)

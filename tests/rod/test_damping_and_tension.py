@@ -10,7 +10,8 @@ from independent import first_static_load
 
 from etcheck.rod.parameters import F_CLAMPED, RodParameters
 from etcheck.rod.spectrum import damping_cluster, spectrum
-from etcheck.rod.stability import critical_load
+from etcheck.rod.stability import THRESHOLD, _family, critical_load
+from etcheck.rod.static_map import plane, stable_rows, static_curves
 
 
 @pytest.mark.parametrize("gamma", [0.2, 0.5, 2.0])
@@ -45,11 +46,9 @@ def test_strong_tension_raises_the_critical_load():
 
 
 def test_damped_map_rows_end_at_the_critical_load():
-    from etcheck.rod.stability import stable_rows
-
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375)
     spins = [0.0, 0.25, 0.5, 0.8]
-    rows = stable_rows(p, spins, B_max=1.0)
+    rows = stable_rows(p, static_curves(p, 1.0, 1.0, omega_rows=spins, n_loads=4), B_max=1.0)
     for w, row in zip(spins, rows):
         c = critical_load(p.with_(omega=w))
         if c.kind == "unstable at start":  # above the critical spin: no stable load at all
@@ -57,6 +56,42 @@ def test_damped_map_rows_end_at_the_critical_load():
         else:
             assert row[0][0] == 0.0
             assert row[0][1] == pytest.approx(c.value, rel=1e-9)
+
+
+@pytest.mark.parametrize("T", [0.0, 0.3])
+def test_crossing_count_classifies_like_the_growth_rate(T):
+    # the map's pieces are classified by counting crossing directions, no eigenvalue solve; an
+    # independent growth evaluation at each piece's middle must agree, also past the second root
+    p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375, T=T)
+    spins, B_max = [0.0, 0.3, 0.9], 4.5
+    curves = static_curves(p, B_max, 1.0, omega_rows=spins, n_loads=4, N=16)
+    fam = _family(p, 16)
+    for w, roots, row in zip(spins, curves.loads, stable_rows(p, curves, B_max)):
+        edges = [0.0, *roots[roots > 0], B_max]
+        assert len(edges) >= 4  # at least two roots crossed
+        for a, b in zip(edges[:-1], edges[1:]):
+            if b - a <= 1e-9 * b:
+                continue  # between the members of a double root (omega = 0): no piece
+            x = 0.5 * (a + b)
+            counted_stable = any(lo <= x <= hi for lo, hi in row)
+            assert counted_stable == (fam.growth(x, w, T) <= THRESHOLD), (w, a, b)
+
+
+def test_plane_roots_are_the_pencil_roots():
+    p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375, T=0.2)
+    fam, pl = _family(p, 24), plane(p, 24)
+    for w in (0.0, 0.4, 1.1):
+        qz = fam.pencil_roots("B", 0.0, w, p.T)
+        small = pl.roots("B", w * w)[0]
+        qz, small = qz[np.abs(qz) < 5], small[np.abs(small) < 5]
+        assert small.size == qz.size and small.size > 0
+        assert np.allclose(small, qz, rtol=1e-10, atol=0)
+    for B in (0.0, 0.5):
+        qz = fam.pencil_roots("omega", B, 0.0, p.T)
+        small = pl.roots("w", B)[0]
+        qz, small = qz[np.abs(qz) < 5], small[np.abs(small) < 5]
+        assert small.size == qz.size and small.size > 0
+        assert np.allclose(small, qz, rtol=1e-10, atol=0)
 
 
 def test_no_rotary_inertia_with_damping():
