@@ -46,6 +46,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from etcheck.errors import MissionError
+from etcheck.input.units import QuantityProblem, to_quantity
 
 if TYPE_CHECKING:
     from etcheck.orbit.spec import OrbitSpec
@@ -190,65 +191,78 @@ def parse_gravity_gradient(tether: dict, operation: dict, orbit: OrbitSpec | Non
     end masses without an orbit rate, a rate without end masses, two rate
     sources, malformed, negative or non-finite values.
     """
-    from etcheck.input.units import QuantityProblem, to_quantity
-
-    def err(fld: str, problem: str, fix: str = "") -> MissionError:
-        return MissionError(source, fld, problem, fix)
-
     rate_keys = [k for k in ("orbit_rate", "orbit_altitude") if k in operation]
     if "end_masses" not in tether:
         if rate_keys:
-            raise err(f"operation.{rate_keys[0]}", "given without tether.end_masses: it is used only for the "
-                      "gravity-gradient tension", 'add end_masses = ["20 kg", "1.5 kg"] (upper, lower) under [tether], '
-                      f"or remove operation.{rate_keys[0]}")
+            raise MissionError(source, f"operation.{rate_keys[0]}", "given without tether.end_masses: it is used only "
+                               "for the gravity-gradient tension", 'add end_masses = ["20 kg", "1.5 kg"] (upper, lower) '
+                               f"under [tether], or remove operation.{rate_keys[0]}")
         return None
     if "end_tension" in operation:
-        raise err("operation.end_tension", "both operation.end_tension and tether.end_masses given",
-                  "give either end_tension (a fixed end force) or end_masses with the orbit rate "
-                  "(the tension is then computed from the gravity gradient), not both")
-    value = tether["end_masses"]
+        raise MissionError(source, "operation.end_tension", "both operation.end_tension and tether.end_masses given",
+                           "give either end_tension (a fixed end force) or end_masses with the orbit rate "
+                           "(the tension is then computed from the gravity gradient), not both")
+    upper, lower = _end_masses(tether["end_masses"], source)
+    rate, how = _orbit_rate(operation, orbit, rate_keys, source)
+    return GravityGradient(upper, lower, length, mass_per_length, rate, how)
+
+
+def _end_masses(value: Any, source: str) -> tuple[float, float]:
+    """tether.end_masses = [upper, lower] -> kg, each >= 0."""
     if not isinstance(value, list) or len(value) != 2:
-        raise err("tether.end_masses", f"expected two masses [upper, lower], got {value!r}",
-                  'e.g. end_masses = ["20 kg", "1.5 kg"]: the body at the upper end first, then the lower')
+        raise MissionError(source, "tether.end_masses", f"expected two masses [upper, lower], got {value!r}",
+                           'e.g. end_masses = ["20 kg", "1.5 kg"]: the body at the upper end first, then the lower')
     masses = []
     for item in value:
         try:
             m = to_quantity(item, "mass").value
         except QuantityProblem as exc:
-            raise err("tether.end_masses", str(exc)) from None
+            raise MissionError(source, "tether.end_masses", str(exc)) from None
         if not m >= 0.0:
-            raise err("tether.end_masses", f"masses must be >= 0, got {item!r}")
+            raise MissionError(source, "tether.end_masses", f"masses must be >= 0, got {item!r}")
         masses.append(float(m))
+    return masses[0], masses[1]
 
+
+def _orbit_rate(operation: dict, orbit: OrbitSpec | None, rate_keys: list[str], source: str) -> tuple[float, str]:
+    """The orbit rate (rad/s) from exactly one source (operation.orbit_rate, operation.orbit_altitude or the
+    [orbit] table) and a line saying which."""
     if len(rate_keys) == 2:
-        raise err("operation.orbit_altitude", "both operation.orbit_rate and operation.orbit_altitude given",
-                  "give one of them")
+        raise MissionError(source, "operation.orbit_altitude", "both operation.orbit_rate and operation.orbit_altitude "
+                           "given", "give one of them")
     if rate_keys and orbit is not None:
-        raise err(f"operation.{rate_keys[0]}", "given together with an [orbit] table",
-                  "leave it out: the orbit rate is then taken from the [orbit] table (at apogee, conservative)")
+        raise MissionError(source, f"operation.{rate_keys[0]}", "given together with an [orbit] table",
+                           "leave it out: the orbit rate is then taken from the [orbit] table (at apogee, conservative)")
     if "orbit_rate" in operation:
-        try:
-            rate = to_quantity(operation["orbit_rate"], "angular_rate").value
-        except QuantityProblem as exc:
-            raise err("operation.orbit_rate", str(exc)) from None
-        if not rate > 0:
-            raise err("operation.orbit_rate", f"must be positive, got {operation['orbit_rate']!r}")
-        how = "operation.orbit_rate"
-    elif "orbit_altitude" in operation:
-        try:
-            h = to_quantity(operation["orbit_altitude"], "length").value
-        except QuantityProblem as exc:
-            raise err("operation.orbit_altitude", str(exc)) from None
-        if not 100e3 <= h <= 100000e3:
-            raise err("operation.orbit_altitude", f"must lie between 100 km and 100000 km, got {operation['orbit_altitude']!r}")
-        rate, how = circular_rate(h), f"circular orbit at operation.orbit_altitude = {h / 1e3:.6g} km, mean motion"
-    elif orbit is not None:
-        rate, how = orbit_rate_of(orbit)
-    else:
-        raise err("operation.orbit_rate", "tether.end_masses given without the orbit rate",
-                  'add orbit_rate = "1.1e-3 rad/s" or orbit_altitude = "350 km" under [operation], '
-                  "or an [orbit] table")
-    return GravityGradient(masses[0], masses[1], length, mass_per_length, float(rate), how)
+        return _operation_value(operation, "orbit_rate", "angular_rate", source), "operation.orbit_rate"
+    if "orbit_altitude" in operation:
+        h = _operation_value(operation, "orbit_altitude", "length", source)
+        return circular_rate(h), f"circular orbit at operation.orbit_altitude = {h / 1e3:.6g} km, mean motion"
+    if orbit is not None:
+        return orbit_rate_of(orbit)
+    raise MissionError(source, "operation.orbit_rate", "tether.end_masses given without the orbit rate",
+                       'add orbit_rate = "1.1e-3 rad/s" or orbit_altitude = "350 km" under [operation], '
+                       "or an [orbit] table")
+
+
+#: operation.KEY -> (accepted, problem when not): an orbit rate (rad/s) is positive, a circular altitude (m)
+#: lies between 100 km and 100000 km
+_RATE_LIMITS = {
+    "orbit_rate": (lambda x: x > 0, "must be positive, got {!r}"),
+    "orbit_altitude": (lambda x: 100e3 <= x <= 100000e3, "must lie between 100 km and 100000 km, got {!r}"),
+}
+
+
+def _operation_value(operation: dict, key: str, kind: str, source: str) -> float:
+    """operation.KEY as an SI float within its limits (:data:`_RATE_LIMITS`)."""
+    try:
+        value = float(to_quantity(operation[key], kind).value)
+    except QuantityProblem as exc:
+        raise MissionError(source, f"operation.{key}", str(exc)) from None
+    accepted, problem = _RATE_LIMITS[key]
+    if not accepted(value):
+        raise MissionError(source, f"operation.{key}", problem.format(operation[key]))
+    return value
 
 
 __all__ = ["GravityGradient", "apogee_rate", "circular_rate", "orbit_rate_of", "parse_gravity_gradient"]

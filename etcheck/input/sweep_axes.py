@@ -11,22 +11,35 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
 from etcheck.errors import MissionError
 from etcheck.input.units import QuantityProblem, to_quantity
 
-#: axis name -> (kind in units.KINDS, SI unit text, display unit, factor SI -> display, label)
+
+class AxisKind(NamedTuple):
+    """What a sweep axis varies: ``kind`` of :data:`etcheck.input.units.KINDS`, the SI unit of its values, the
+    display unit, the factor SI -> display and a label."""
+
+    kind: str
+    si_unit: str
+    unit: str
+    to_display: float
+    label: str
+
+
+#: axis name -> what it varies
 AXES = {
-    "length": ("length", "m", "m", 1.0, "tether length"),
-    "spin_rate": ("angular_rate", "rad/s", "rpm", 60.0 / (2.0 * math.pi), "spin rate"),
-    "current": ("current", "A", "A", 1.0, "current"),
-    "axial_field": ("field", "T", "uT", 1e6, "axial field"),
-    "end_tension": ("force", "N", "N", 1.0, "end tension"),
+    "length": AxisKind("length", "m", "m", 1.0, "tether length"),
+    "spin_rate": AxisKind("angular_rate", "rad/s", "rpm", 60.0 / (2.0 * math.pi), "spin rate"),
+    "current": AxisKind("current", "A", "A", 1.0, "current"),
+    "axial_field": AxisKind("field", "T", "uT", 1e6, "axial field"),
+    "end_tension": AxisKind("force", "N", "N", 1.0, "end tension"),
     # orbit axes (need the mission's [orbit] table): the axial field of each point is the worst case over that orbit
-    "altitude": ("length", "m", "km", 1e-3, "orbit altitude"),
-    "inclination": ("angle", "rad", "deg", 180.0 / math.pi, "orbit inclination"),
+    "altitude": AxisKind("length", "m", "km", 1e-3, "orbit altitude"),
+    "inclination": AxisKind("angle", "rad", "deg", 180.0 / math.pi, "orbit inclination"),
 }
 #: command-line option -> axis name
 OPTIONS = {"length": "length", "spin": "spin_rate", "current": "current", "field": "axial_field",
@@ -52,22 +65,10 @@ class Axis:
             return np.geomspace(self.start, self.stop, self.points)
         return np.linspace(self.start, self.stop, self.points)
 
-    @property
-    def si_unit(self) -> str:
-        return AXES[self.name][1]
-
-    @property
-    def unit(self) -> str:
-        """Display unit (rpm for spin rates, uT for fields)."""
-        return AXES[self.name][2]
-
-    @property
-    def to_display(self) -> float:
-        return AXES[self.name][3]
-
-    @property
-    def label(self) -> str:
-        return AXES[self.name][4]
+    si_unit = property(lambda self: AXES[self.name].si_unit, doc="SI unit of ``values``")
+    unit = property(lambda self: AXES[self.name].unit, doc="Display unit (rpm for spin rates, uT for fields)")
+    to_display = property(lambda self: AXES[self.name].to_display, doc="Factor SI -> display unit")
+    label = property(lambda self: AXES[self.name].label, doc="What the axis varies, in words")
 
     def as_dict(self) -> dict:
         return {"name": self.name, "label": self.label, "si_unit": self.si_unit, "unit": self.unit,
@@ -77,33 +78,36 @@ class Axis:
 
 def make_axis(name: str, start, stop, points, spacing: str, source: str, where: str) -> Axis:
     """Validate one axis; errors name ``where`` (a field or an option)."""
-
-    def err(problem: str, fix: str = "") -> MissionError:
-        return MissionError(source, where, problem, fix)
-
     if name not in AXES:
-        raise err(f"cannot sweep {name!r}", f"sweep any of {', '.join(AXES)}")
-    kind = AXES[name][0]
+        raise MissionError(source, where, f"cannot sweep {name!r}", f"sweep any of {', '.join(AXES)}")
     try:
-        lo, hi = (float(to_quantity(v, kind).value) for v in (start, stop))
+        lo, hi = (float(to_quantity(v, AXES[name].kind).value) for v in (start, stop))
     except QuantityProblem as exc:
-        raise err(str(exc)) from None
+        raise MissionError(source, where, str(exc)) from None
     if isinstance(points, bool) or not isinstance(points, int) or not 2 <= points <= MAX_POINTS:
-        raise err(f"points must be a whole number in [2, {MAX_POINTS}], got {points!r}")
+        raise MissionError(source, where, f"points must be a whole number in [2, {MAX_POINTS}], got {points!r}")
     if spacing not in ("linear", "log"):
-        raise err(f"unknown spacing {spacing!r}", 'use "linear" or "log"')
-    if not lo < hi:
-        raise err(f"start {start!r} must be below stop {stop!r}", "write START:STOP with START < STOP")
-    if lo < 0 or (name == "length" and lo <= 0):
-        raise err(f"start {start!r} must be {'positive' if name == 'length' else 'zero or positive'}")
-    if spacing == "log" and lo <= 0:
-        raise err("log spacing needs a positive start", "start above zero, or use linear spacing")
-    if name == "altitude" and lo < MIN_ORBIT_ALTITUDE:
-        raise err(f"start {start!r} is below {MIN_ORBIT_ALTITUDE / 1e3:.0f} km: the atmosphere would decay the orbit",
-                  "sweep altitudes of at least 150 km above the equatorial radius")
-    if name == "inclination" and hi > math.pi * (1 + 1e-15):
-        raise err(f"stop {stop!r} is above 180 deg", "sweep inclinations within 0-180 deg")
+        raise MissionError(source, where, f"unknown spacing {spacing!r}", 'use "linear" or "log"')
+    _check_span(name, start, stop, lo, hi, spacing, source, where)
     return Axis(name, lo, hi, points, spacing)
+
+
+def _check_span(name: str, start, stop, lo: float, hi: float, spacing: str, source: str, where: str) -> None:
+    """START < STOP (SI ``lo``, ``hi``) within what the swept quantity and the spacing allow."""
+    problem, fix = "", ""
+    if not lo < hi:
+        problem, fix = f"start {start!r} must be below stop {stop!r}", "write START:STOP with START < STOP"
+    elif lo < 0 or (name == "length" and lo <= 0):
+        problem = f"start {start!r} must be {'positive' if name == 'length' else 'zero or positive'}"
+    elif spacing == "log" and lo <= 0:
+        problem, fix = "log spacing needs a positive start", "start above zero, or use linear spacing"
+    elif name == "altitude" and lo < MIN_ORBIT_ALTITUDE:
+        problem = f"start {start!r} is below {MIN_ORBIT_ALTITUDE / 1e3:.0f} km: the atmosphere would decay the orbit"
+        fix = "sweep altitudes of at least 150 km above the equatorial radius"
+    elif name == "inclination" and hi > math.pi * (1 + 1e-15):
+        problem, fix = f"stop {stop!r} is above 180 deg", "sweep inclinations within 0-180 deg"
+    if problem:
+        raise MissionError(source, where, problem, fix)
 
 
 def parse_option(option: str, text: str) -> Axis:

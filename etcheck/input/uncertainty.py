@@ -208,9 +208,7 @@ def parse_uncertainty(table: Any, source: str, nominal: dict[str, Any], fixed: d
     for key, value in table.items():
         fld = f"uncertainty.{key}"
         if key not in INPUTS:
-            close = difflib.get_close_matches(key, list(INPUTS), n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise MissionError(source, fld, "unknown input" + hint, f"inputs are {', '.join(INPUTS)}")
+            raise MissionError(source, fld, "unknown input" + _suggest(key, INPUTS), f"inputs are {', '.join(INPUTS)}")
         if key in fixed:
             raise MissionError(source, fld, f"cannot vary on its own: {fixed[key]}", "")
         d, note = _parse_one(key, value, source, nominal, fld)
@@ -220,149 +218,222 @@ def parse_uncertainty(table: Any, source: str, nominal: dict[str, Any], fixed: d
     return Uncertainty(tuple(out), tuple(notes))
 
 
-def _parse_one(key: str, value: Any, source: str, nominal: dict[str, Any], fld: str) -> tuple[Distribution, str]:
-    kind, what, limit, strict = INPUTS[key]
+@dataclass(frozen=True)
+class _Entry:
+    """One [uncertainty] entry being read: its input, its nominal value (SI, or 1 for a factor) and where
+    errors point (``source``, ``fld``)."""
 
-    def err(problem: str, fix: str = "") -> MissionError:
-        return MissionError(source, fld, problem, fix)
+    key: str
+    kind: str | None  # None: bending_stiffness, one common factor on EI1 and EI2
+    nominal: Any  # the mission's astropy quantity, or None (not given: relative entries only)
+    source: str
+    fld: str
 
-    q0 = nominal.get(key) if kind else None
-    as_factor = kind is None or q0 is None
-    unit = "" if as_factor else KINDS[kind][0].to_string()
-    x0 = 1.0 if as_factor else float(q0.to_value(KINDS[kind][0]))
-    example = KINDS[kind][2] if kind else '"10 %"'
+    @property
+    def as_factor(self) -> bool:
+        return self.kind is None or self.nominal is None
 
-    def amount(v: Any, part: str, signed: bool = False) -> tuple[float, bool]:
+    @property
+    def unit(self) -> str:
+        return "" if self.as_factor else KINDS[self.kind][0].to_string()
+
+    @property
+    def x0(self) -> float:
+        return 1.0 if self.as_factor else float(self.nominal.to_value(KINDS[self.kind][0]))
+
+    @property
+    def example(self) -> str:
+        return KINDS[self.kind][2] if self.kind else '"10 %"'
+
+    def err(self, problem: str, fix: str = "") -> MissionError:
+        return MissionError(self.source, self.fld, problem, fix)
+
+    def amount(self, v: Any, part: str) -> tuple[float, bool]:
         """(value, relative?) of a percentage or a quantity; relative values are fractions."""
         if isinstance(v, bool) or not isinstance(v, str):
-            raise err(f"{part}: expected a percentage such as \"10 %\" or a quantity such as {example}, got {v!r}")
+            raise self.err(f"{part}: expected a percentage such as \"10 %\" or a quantity such as {self.example}, "
+                           f"got {v!r}")
         m = _PCT.match(v)
         if m:
             frac = float(m.group(1)) / 100.0
             if not math.isfinite(frac):
-                raise err(f"{part}: {v!r} is not a finite number")
+                raise self.err(f"{part}: {v!r} is not a finite number")
             return frac, True
-        if kind is None:
-            raise err(f"{part}: {v!r} is not a percentage; the common factor of both stiffnesses is relative",
-                      'write e.g. "±15 %" (or give EI1/EI2 separately in N m2)')
-        if q0 is None:
-            raise err(f"{part}: {v!r} is absolute, but the mission gives no {key} (a default is used)",
-                      f"give a relative value such as \"50 %\", or state {key} in the mission")
+        if self.kind is None:
+            raise self.err(f"{part}: {v!r} is not a percentage; the common factor of both stiffnesses is relative",
+                           'write e.g. "±15 %" (or give EI1/EI2 separately in N m2)')
+        if self.nominal is None:
+            raise self.err(f"{part}: {v!r} is absolute, but the mission gives no {self.key} (a default is used)",
+                           f"give a relative value such as \"50 %\", or state {self.key} in the mission")
         try:
-            q = to_quantity(v, kind)
+            q = to_quantity(v, self.kind)
         except QuantityProblem as exc:
-            raise err(f"{part}: {exc}") from None
-        return float(q.to_value(KINDS[kind][0])), False
+            raise self.err(f"{part}: {exc}") from None
+        return float(q.to_value(KINDS[self.kind][0])), False
 
-    def deviation(v: Any, part: str) -> float:
+    def deviation(self, v: Any, part: str) -> float:
         """A tolerance or sigma: positive, finite, absolute SI (or factor)."""
-        a, rel = amount(v, part)
+        a, rel = self.amount(v, part)
         if not a > 0:
-            raise err(f"{part} must be positive, got {v!r}", "leave the input out of [uncertainty] to keep it exact")
-        if rel:
-            if x0 == 0:
-                raise err(f"{part}: a percentage of a zero {key} is zero", f"give an absolute value such as {example}")
-            return a * abs(x0)
-        return a
+            raise self.err(f"{part} must be positive, got {v!r}", "leave the input out of [uncertainty] to keep it exact")
+        if not rel:
+            return a
+        if self.x0 == 0:
+            raise self.err(f"{part}: a percentage of a zero {self.key} is zero",
+                           f"give an absolute value such as {self.example}")
+        return a * abs(self.x0)
 
-    def bound(v: Any, part: str) -> float:
-        a, rel = amount(v, part, signed=True)
-        return x0 * (1.0 + a) if rel else a
+    def bound(self, v: Any, part: str) -> float:
+        a, rel = self.amount(v, part)
+        return self.x0 * (1.0 + a) if rel else a
 
-    text = value if isinstance(value, str) else repr(value)
-    note = ""
-    lower, upper = -math.inf, math.inf
+
+#: (shape, a, b, lower, upper) of a Distribution, before the physical limits
+_Shape = tuple[str, float, float, float, float]
+
+
+def _parse_one(key: str, value: Any, source: str, nominal: dict[str, Any], fld: str) -> tuple[Distribution, str]:
+    kind = INPUTS[key][0]
+    e = _Entry(key, kind, nominal.get(key) if kind else None, source, fld)
     if isinstance(value, str):
-        m = _TOL.match(value)
-        if not m:
-            raise err(f"cannot read {value!r} as a tolerance",
-                      'write a tolerance as "±10 %" or "±0.5 m", or a table such as '
-                      '{ distribution = "normal", sigma = "10 %" }')
-        t = deviation(m.group(2), "tolerance")
-        shape, a, b = "uniform", x0 - t, x0 + t
+        shape, a, b, lower, upper = _tolerance(e, value)
     elif isinstance(value, dict):
-        for k in value:
-            if k not in _KEYS:
-                close = difflib.get_close_matches(k, list(_KEYS), n=1)
-                hint = f" (did you mean {close[0]!r}?)" if close else ""
-                raise err(f"unknown key {k!r}" + hint, f"keys are {', '.join(sorted(_KEYS))}")
-        shape = value.get("distribution")
-        if shape not in DISTRIBUTIONS:
-            close = difflib.get_close_matches(str(shape), list(DISTRIBUTIONS), n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise err(f"distribution {shape!r} is not known" + hint, f"use one of {', '.join(DISTRIBUTIONS)}")
-        bnds = value.get("bounds")
-        if bnds is not None:
-            if not isinstance(bnds, list) or len(bnds) != 2:
-                raise err(f"bounds: expected [lo, hi], got {bnds!r}", 'e.g. bounds = ["-20 %", "+20 %"]')
-            lower, upper = bound(bnds[0], "bounds[0]"), bound(bnds[1], "bounds[1]")
-            if not lower < upper:
-                raise err(f"bounds {bnds!r}: lo must be below hi", "write them as [lo, hi]")
-            if not lower <= x0 <= upper:
-                raise err(f"bounds {bnds!r} do not contain the mission's value", "the nominal value must be possible")
-        extra = {"uniform": {"sigma", "factor"}, "normal": {"factor"}, "lognormal": {"factor"},
-                 "log-uniform": {"sigma"}}[shape] & set(value)
-        if extra:
-            raise err(f"{', '.join(sorted(extra))} does not apply to a {shape} distribution",
-                      {"uniform": "give bounds = [lo, hi]", "log-uniform": "give bounds = [lo, hi] or factor = 10"}.get(
-                          shape, "give sigma (and optional bounds)"))
-        if shape in ("normal", "lognormal"):
-            if "sigma" not in value:
-                raise err(f"a {shape} distribution needs sigma", 'e.g. sigma = "10 %"')
-            if shape == "normal":
-                a, b = x0, deviation(value["sigma"], "sigma")
-            else:
-                s = value["sigma"]
-                if isinstance(s, (int, float)) and not isinstance(s, bool):
-                    b = float(s)
-                elif isinstance(s, str) and _PCT.match(s):
-                    b = float(_PCT.match(s).group(1)) / 100.0
-                else:
-                    raise err(f"sigma of a lognormal is the standard deviation of ln(x): a number or a percentage, got {s!r}",
-                              'e.g. sigma = "30 %" or sigma = 0.3')
-                if not (math.isfinite(b) and b > 0):
-                    raise err(f"sigma must be a positive finite number, got {s!r}")
-                if x0 <= 0:
-                    raise err(f"a lognormal needs a positive {key}, the mission gives {x0:g}", "use a normal distribution")
-                a = math.log(x0)
-        elif shape == "uniform":
-            if bnds is None:
-                raise err("a uniform distribution needs bounds = [lo, hi]", 'e.g. bounds = ["-10 %", "+10 %"] or a tolerance "±10 %"')
-            a, b = lower, upper
-        else:  # log-uniform
-            if (bnds is None) == ("factor" not in value):
-                raise err("a log-uniform distribution needs bounds = [lo, hi] or factor (not both)", "e.g. factor = 10")
-            if "factor" in value:
-                fct = value["factor"]
-                if isinstance(fct, bool) or not isinstance(fct, (int, float)) or not math.isfinite(fct) or fct <= 1:
-                    raise err(f"factor must be a number > 1, got {fct!r}", "e.g. factor = 10 (nominal/10 ... nominal x 10)")
-                if x0 <= 0:
-                    raise err(f"a log-uniform needs a positive {key}, the mission gives {x0:g}")
-                a, b = x0 / fct, x0 * fct
-            else:
-                a, b = lower, upper
-            if not a > 0:
-                raise err(f"a log-uniform distribution needs a positive lower bound, got {a:g}")
+        shape, a, b, lower, upper = _distribution(e, value)
     else:
-        raise err(f"expected a tolerance such as \"±10 %\" or a distribution table, got {value!r}",
-                  'e.g. { distribution = "normal", sigma = "10 %" }')
-
-    # physical limits: positive inputs and magnitudes cannot go below zero
-    if limit is not None:
-        reach = a if shape in ("uniform", "log-uniform") else -math.inf if shape == "normal" else 0.0
-        reach = max(reach, lower)
-        if reach < limit or (strict and reach == limit and shape == "uniform"):
-            if shape == "uniform":
-                raise err(f"the range reaches {reach:g}{'' if as_factor else ' ' + unit}, but {what} is "
-                          f"{'positive' if strict else 'not negative'}", "narrow the tolerance")
-            if shape == "normal" and lower < limit:
-                from scipy import stats
-
-                lower = limit
-                cut = float(stats.norm.cdf((limit - a) / b))
-                note = (f"[uncertainty] {key}: the normal distribution is truncated at {limit:g} ({what} cannot be "
-                        f"negative); the probability cut off is {cut:.2e}")
-    d = Distribution(key, shape, x0, float(a), float(b), float(lower), float(upper), as_factor, unit, text)
+        raise e.err(f"expected a tolerance such as \"±10 %\" or a distribution table, got {value!r}",
+                    'e.g. { distribution = "normal", sigma = "10 %" }')
+    lower, note = _physical_limit(e, shape, a, b, lower)
+    text = value if isinstance(value, str) else repr(value)
+    d = Distribution(key, shape, e.x0, float(a), float(b), float(lower), float(upper), e.as_factor, e.unit, text)
     if not d.mass() > 0:
-        raise err("the bounds leave no probability", "widen the bounds")
+        raise e.err("the bounds leave no probability", "widen the bounds")
     return d, note
+
+
+def _tolerance(e: _Entry, value: str) -> _Shape:
+    """``"±10 %"`` or ``"±0.5 m"``: uniform over nominal ± tolerance."""
+    m = _TOL.match(value)
+    if not m:
+        raise e.err(f"cannot read {value!r} as a tolerance",
+                    'write a tolerance as "±10 %" or "±0.5 m", or a table such as '
+                    '{ distribution = "normal", sigma = "10 %" }')
+    t = e.deviation(m.group(2), "tolerance")
+    return "uniform", e.x0 - t, e.x0 + t, -math.inf, math.inf
+
+
+def _distribution(e: _Entry, value: dict) -> _Shape:
+    """``{ distribution = ..., sigma / bounds / factor }``."""
+    for k in value:
+        if k not in _KEYS:
+            raise e.err(f"unknown key {k!r}" + _suggest(k, _KEYS), f"keys are {', '.join(sorted(_KEYS))}")
+    shape = value.get("distribution")
+    if shape not in DISTRIBUTIONS:
+        raise e.err(f"distribution {shape!r} is not known" + _suggest(str(shape), DISTRIBUTIONS),
+                    f"use one of {', '.join(DISTRIBUTIONS)}")
+    lower, upper = _bounds(e, value.get("bounds"))
+    extra = _NOT_FOR[shape] & set(value)
+    if extra:
+        raise e.err(f"{', '.join(sorted(extra))} does not apply to a {shape} distribution",
+                    {"uniform": "give bounds = [lo, hi]", "log-uniform": "give bounds = [lo, hi] or factor = 10"}.get(
+                        shape, "give sigma (and optional bounds)"))
+    a, b = _PARAMETERS[shape](e, value, lower, upper)
+    return shape, a, b, lower, upper
+
+
+#: keys of an entry that a distribution does not take
+_NOT_FOR = {"uniform": {"sigma", "factor"}, "normal": {"factor"}, "lognormal": {"factor"}, "log-uniform": {"sigma"}}
+
+
+def _suggest(word: str, options) -> str:
+    close = difflib.get_close_matches(word, list(options), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def _bounds(e: _Entry, bnds: Any) -> tuple[float, float]:
+    """``bounds = [lo, hi]`` (quantities or percentages of the nominal value) -> SI; unbounded when absent."""
+    if bnds is None:
+        return -math.inf, math.inf
+    if not isinstance(bnds, list) or len(bnds) != 2:
+        raise e.err(f"bounds: expected [lo, hi], got {bnds!r}", 'e.g. bounds = ["-20 %", "+20 %"]')
+    lower, upper = e.bound(bnds[0], "bounds[0]"), e.bound(bnds[1], "bounds[1]")
+    if not lower < upper:
+        raise e.err(f"bounds {bnds!r}: lo must be below hi", "write them as [lo, hi]")
+    if not lower <= e.x0 <= upper:
+        raise e.err(f"bounds {bnds!r} do not contain the mission's value", "the nominal value must be possible")
+    return lower, upper
+
+
+def _sigma_needed(e: _Entry, value: dict, shape: str) -> Any:
+    if "sigma" not in value:
+        raise e.err(f"a {shape} distribution needs sigma", 'e.g. sigma = "10 %"')
+    return value["sigma"]
+
+
+def _normal(e: _Entry, value: dict, lower: float, upper: float) -> tuple[float, float]:
+    """(mean, sigma): mean the mission's value."""
+    return e.x0, e.deviation(_sigma_needed(e, value, "normal"), "sigma")
+
+
+def _lognormal(e: _Entry, value: dict, lower: float, upper: float) -> tuple[float, float]:
+    """(ln median, sigma of ln x): median the mission's value, sigma a plain number or a percentage."""
+    s = _sigma_needed(e, value, "lognormal")
+    if isinstance(s, (int, float)) and not isinstance(s, bool):
+        b = float(s)
+    elif isinstance(s, str) and _PCT.match(s):
+        b = float(_PCT.match(s).group(1)) / 100.0
+    else:
+        raise e.err(f"sigma of a lognormal is the standard deviation of ln(x): a number or a percentage, got {s!r}",
+                    'e.g. sigma = "30 %" or sigma = 0.3')
+    if not (math.isfinite(b) and b > 0):
+        raise e.err(f"sigma must be a positive finite number, got {s!r}")
+    if e.x0 <= 0:
+        raise e.err(f"a lognormal needs a positive {e.key}, the mission gives {e.x0:g}", "use a normal distribution")
+    return math.log(e.x0), b
+
+
+def _uniform(e: _Entry, value: dict, lower: float, upper: float) -> tuple[float, float]:
+    if value.get("bounds") is None:
+        raise e.err("a uniform distribution needs bounds = [lo, hi]",
+                    'e.g. bounds = ["-10 %", "+10 %"] or a tolerance "±10 %"')
+    return lower, upper
+
+
+def _log_uniform(e: _Entry, value: dict, lower: float, upper: float) -> tuple[float, float]:
+    """(lo, hi) from the bounds or nominal / factor ... nominal x factor."""
+    if (value.get("bounds") is None) == ("factor" not in value):
+        raise e.err("a log-uniform distribution needs bounds = [lo, hi] or factor (not both)", "e.g. factor = 10")
+    a, b = lower, upper
+    if "factor" in value:
+        fct = value["factor"]
+        if isinstance(fct, bool) or not isinstance(fct, (int, float)) or not math.isfinite(fct) or fct <= 1:
+            raise e.err(f"factor must be a number > 1, got {fct!r}", "e.g. factor = 10 (nominal/10 ... nominal x 10)")
+        if e.x0 <= 0:
+            raise e.err(f"a log-uniform needs a positive {e.key}, the mission gives {e.x0:g}")
+        a, b = e.x0 / fct, e.x0 * fct
+    if not a > 0:
+        raise e.err(f"a log-uniform distribution needs a positive lower bound, got {a:g}")
+    return a, b
+
+
+_PARAMETERS = {"normal": _normal, "lognormal": _lognormal, "uniform": _uniform, "log-uniform": _log_uniform}
+
+
+def _physical_limit(e: _Entry, shape: str, a: float, b: float, lower: float) -> tuple[float, str]:
+    """Positive inputs and magnitudes cannot go below zero: a uniform range reaching the limit is an error,
+    a normal is truncated there (with a note); (lower bound, note)."""
+    _, what, limit, strict = INPUTS[e.key]
+    if limit is None:
+        return lower, ""
+    reach = max(a if shape in ("uniform", "log-uniform") else -math.inf if shape == "normal" else 0.0, lower)
+    if not (reach < limit or (strict and reach == limit and shape == "uniform")):
+        return lower, ""
+    if shape == "uniform":
+        raise e.err(f"the range reaches {reach:g}{'' if e.as_factor else ' ' + e.unit}, but {what} is "
+                    f"{'positive' if strict else 'not negative'}", "narrow the tolerance")
+    if shape != "normal" or lower >= limit:
+        return lower, ""
+    from scipy import stats  # scipy.stats is slow to import: only missions with a truncated normal need it here
+
+    cut = float(stats.norm.cdf((limit - a) / b))
+    return limit, (f"[uncertainty] {e.key}: the normal distribution is truncated at {limit:g} ({what} cannot be "
+                   f"negative); the probability cut off is {cut:.2e}")

@@ -25,7 +25,7 @@ def _axis(results: dict, k: int) -> tuple[np.ndarray, str, bool]:
 def _operating(results: dict, k: int) -> float:
     """The mission's value of the k-th swept quantity, in display units."""
     a = results["axes"][k]
-    return results["operating"][a["name"]] * AXES[a["name"]][3]
+    return results["operating"][a["name"]] * AXES[a["name"]].to_display
 
 
 def _log_margin(results: dict, field: str) -> np.ndarray:
