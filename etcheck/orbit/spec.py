@@ -32,6 +32,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 import astropy.units as u
+from astropy.time import Time
 
 from etcheck.errors import MissionError
 from etcheck.input.units import QuantityProblem, to_quantity
@@ -175,76 +176,115 @@ def parse_orbit(table: Mapping, source: str = "mission") -> OrbitSpec:
     ``source`` names the file in error messages. Raises
     :class:`etcheck.errors.MissionError` with field ``orbit.KEY``.
     """
+    _check_keys(table, source)
+    duration, step = _window(table, source)
+    start = _epoch(table, source)
+    if "tle" in table:
+        orbit, start = _tle_and_start(table, start, source)
+    else:
+        orbit = _elements(table, start, source)
+    _check_model_validity(table, start, duration, source)
+    return OrbitSpec(
+        orbit=orbit,
+        start=frames.iso(start),
+        duration=duration,
+        step=step,
+        libration_in_plane=_libration(table, "libration_in_plane", source),
+        libration_out_of_plane=_libration(table, "libration_out_of_plane", source),
+    )
+
+
+def _check_keys(table: Mapping, source: str) -> None:
+    """A table of known keys, with either a TLE or orbital elements."""
     if not isinstance(table, Mapping):
         raise MissionError(source, "orbit", "must be a table", "write it as [orbit] followed by its fields")
     for key in table:
         if key not in KEYS:
             raise MissionError(source, f"orbit.{key}", "unknown field" + _suggest(str(key)), f"fields of [orbit] are {', '.join(KEYS)}")
-
     given = [k for k in ELEMENT_KEYS if k in table]
     if "tle" in table and given:
         raise _err(source, given[0], f"both tle and orbital elements ({', '.join(given)}) given",
                    "give either tle or the orbital elements, not both")
 
+
+def _window(table: Mapping, source: str) -> tuple[float, float | None]:
+    """(duration, step) in s; step None: halved until the worst case converges."""
     duration = _quantity(table, "duration", "time", source) if "duration" in table else DEFAULT_DURATION
     if not 0 < duration <= MAX_DURATION:
         raise _err(source, "duration", f"must be > 0 and at most {MAX_DURATION / 86400:.0f} d, got {table['duration']!r}",
                    "a day covers the field's pattern under a LEO orbit; e.g. duration = \"1 d\"")
-    step = None
-    if "step" in table:
-        step = _quantity(table, "step", "time", source)
-        if not 0 < step <= duration:
-            raise _err(source, "step", f"must be > 0 and at most the duration, got {table['step']!r}")
-        if duration / step + 1 > MAX_SAMPLES:
-            raise _err(source, "step", f"{table['step']!r} gives more than {MAX_SAMPLES} samples over the duration",
-                       "use a longer step or leave it out")
+    if "step" not in table:
+        return duration, None
+    step = _quantity(table, "step", "time", source)
+    if not 0 < step <= duration:
+        raise _err(source, "step", f"must be > 0 and at most the duration, got {table['step']!r}")
+    if duration / step + 1 > MAX_SAMPLES:
+        raise _err(source, "step", f"{table['step']!r} gives more than {MAX_SAMPLES} samples over the duration",
+                   "use a longer step or leave it out")
+    return duration, step
 
-    start = None
-    if "epoch" in table:
-        try:
-            start = frames.parse_utc(table["epoch"])
-        except ValueError as exc:
-            raise _err(source, "epoch", str(exc)) from None
 
-    if "tle" in table:
-        orbit = _tle(table, source)
-        if start is None:
-            start = frames.parse_utc(orbit.epoch)
-        else:
-            days = float(abs((start - frames.parse_utc(orbit.epoch)).to_value(u.d)))
-            if days > MAX_TLE_AGE_DAYS:
-                raise _err(source, "epoch", f"the window starts {days:.0f} days from the TLE epoch {orbit.epoch[:10]}; "
-                           f"SGP4 errors grow by km per day", f"use a TLE within {MAX_TLE_AGE_DAYS:.0f} days of the window, or leave epoch out")
-    else:
-        if "inclination" not in table:
-            raise _err(source, "inclination", "missing", f"add it under [orbit]: {EXAMPLES['inclination']}")
-        if start is None:
-            raise _err(source, "epoch", "missing", f"add it under [orbit]: {EXAMPLES['epoch']}")
-        has_circ = "altitude" in table
-        has_ell = [k for k in ("perigee_altitude", "apogee_altitude") if k in table]
-        if has_circ and has_ell:
-            raise _err(source, has_ell[0], "both altitude (circular) and perigee/apogee altitudes given",
-                       "give either altitude or perigee_altitude and apogee_altitude")
-        if has_circ:
-            hp = ha = _altitude(table, "altitude", source)
-        elif len(has_ell) == 2:
-            hp = _altitude(table, "perigee_altitude", source)
-            ha = _quantity(table, "apogee_altitude", "length", source)
-            if ha < hp:
-                raise _err(source, "apogee_altitude", f"{table['apogee_altitude']!r} is below the perigee altitude {table['perigee_altitude']!r}",
-                           "the apogee altitude must be at least the perigee altitude (swap them?)")
-        elif has_ell:
-            other = ({"perigee_altitude", "apogee_altitude"} - set(has_ell)).pop()
-            raise _err(source, other, "missing", f"give both perigee_altitude and apogee_altitude: {EXAMPLES[other]}")
-        else:
-            raise _err(source, "altitude", "missing", f"add {EXAMPLES['altitude']} (circular) or perigee_altitude and apogee_altitude")
-        inc = _angle(table, "inclination", source)
-        if not 0.0 <= inc <= math.pi * (1 + 1e-15):
-            raise _err(source, "inclination", f"{table['inclination']!r} is outside 0-180 deg",
-                       "give the inclination between 0 and 180 deg (retrograde above 90)")
-        angles = {k: _angle(table, k, source) % (2 * math.pi) for k in ("raan", "argument_of_perigee", "mean_anomaly") if k in table}
-        orbit = KeplerianElements(hp, ha, min(inc, math.pi), epoch=frames.iso(start), **angles)
+def _epoch(table: Mapping, source: str) -> Time | None:
+    if "epoch" not in table:
+        return None
+    try:
+        return frames.parse_utc(table["epoch"])
+    except ValueError as exc:
+        raise _err(source, "epoch", str(exc)) from None
 
+
+def _tle_and_start(table: Mapping, start: Time | None, source: str) -> tuple[TwoLineElements, Time]:
+    """The TLE and the start of the window: its epoch unless given, at most MAX_TLE_AGE_DAYS from it."""
+    orbit = _tle(table, source)
+    if start is None:
+        return orbit, frames.parse_utc(orbit.epoch)
+    days = float(abs((start - frames.parse_utc(orbit.epoch)).to_value(u.d)))
+    if days > MAX_TLE_AGE_DAYS:
+        raise _err(source, "epoch", f"the window starts {days:.0f} days from the TLE epoch {orbit.epoch[:10]}; "
+                   f"SGP4 errors grow by km per day", f"use a TLE within {MAX_TLE_AGE_DAYS:.0f} days of the window, or leave epoch out")
+    return orbit, start
+
+
+def _elements(table: Mapping, start: Time | None, source: str) -> KeplerianElements:
+    """Keplerian elements at ``start`` (the epoch, required); angles in rad, altitudes in m."""
+    if "inclination" not in table:
+        raise _err(source, "inclination", "missing", f"add it under [orbit]: {EXAMPLES['inclination']}")
+    if start is None:
+        raise _err(source, "epoch", "missing", f"add it under [orbit]: {EXAMPLES['epoch']}")
+    hp, ha = _perigee_apogee(table, source)
+    inc = _angle(table, "inclination", source)
+    if not 0.0 <= inc <= math.pi * (1 + 1e-15):
+        raise _err(source, "inclination", f"{table['inclination']!r} is outside 0-180 deg",
+                   "give the inclination between 0 and 180 deg (retrograde above 90)")
+    angles = {k: _angle(table, k, source) % (2 * math.pi) for k in ("raan", "argument_of_perigee", "mean_anomaly") if k in table}
+    return KeplerianElements(hp, ha, min(inc, math.pi), epoch=frames.iso(start), **angles)
+
+
+def _perigee_apogee(table: Mapping, source: str) -> tuple[float, float]:
+    """(perigee, apogee) altitudes in m: one circular ``altitude`` or both ``perigee_altitude`` and ``apogee_altitude``."""
+    has_circ = "altitude" in table
+    has_ell = [k for k in ("perigee_altitude", "apogee_altitude") if k in table]
+    if has_circ and has_ell:
+        raise _err(source, has_ell[0], "both altitude (circular) and perigee/apogee altitudes given",
+                   "give either altitude or perigee_altitude and apogee_altitude")
+    if has_circ:
+        h = _altitude(table, "altitude", source)
+        return h, h
+    if not has_ell:
+        raise _err(source, "altitude", "missing", f"add {EXAMPLES['altitude']} (circular) or perigee_altitude and apogee_altitude")
+    if len(has_ell) == 1:
+        other = ({"perigee_altitude", "apogee_altitude"} - set(has_ell)).pop()
+        raise _err(source, other, "missing", f"give both perigee_altitude and apogee_altitude: {EXAMPLES[other]}")
+    hp = _altitude(table, "perigee_altitude", source)
+    ha = _quantity(table, "apogee_altitude", "length", source)
+    if ha < hp:
+        raise _err(source, "apogee_altitude", f"{table['apogee_altitude']!r} is below the perigee altitude {table['perigee_altitude']!r}",
+                   "the apogee altitude must be at least the perigee altitude (swap them?)")
+    return hp, ha
+
+
+def _check_model_validity(table: Mapping, start: Time, duration: float, source: str) -> None:
+    """The window [start, start + duration s] lies within the field model's validity."""
     lo, hi = igrf_validity(DEFAULT_MODEL)
     with frames.quiet():
         outside = bool(start < lo or start + duration * u.s > hi)
@@ -254,15 +294,6 @@ def parse_orbit(table: Mapping, source: str = "mission") -> OrbitSpec:
                    f"the window {frames.iso(start)} + {duration:g} s is outside {DEFAULT_MODEL}'s validity "
                    f"({frames.iso(lo)[:10]} to {frames.iso(hi)[:10]})",
                    "give an epoch (and duration) within the model's validity")
-
-    return OrbitSpec(
-        orbit=orbit,
-        start=frames.iso(start),
-        duration=duration,
-        step=step,
-        libration_in_plane=_libration(table, "libration_in_plane", source),
-        libration_out_of_plane=_libration(table, "libration_out_of_plane", source),
-    )
 
 
 __all__ = ["OrbitSpec", "parse_orbit", "KEYS", "MIN_ALTITUDE", "IGRF_MODELS"]
