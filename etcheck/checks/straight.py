@@ -235,12 +235,17 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
         cuts = _exact_rows(p, w_rows, B_hi, rest, options.tol)
     else:
         omegas = np.linspace(0.0, w_hi, options.campbell_points)
-        cd = campbell(p, omegas, k=options.k, N=N)
+        # one resolution for the diagram, checked at the operating spectrum's finer one on a few spins
+        cd = campbell(p, omegas, k=options.k, N=N, N_check=op.N if op.N > N else None)
         campbell_data = {
             "omega": omegas.tolist(),
             "spin_rpm": (omegas * wc * RPM).tolist(),
             "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
             "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
+            "N": cd.N,
+            "N_check": cd.N_check,
+            "checked_spin_rpm": (omegas[cd.checked] * wc * RPM).tolist(),
+            "error": finite_or_none(cd.error),
         }
         curves = static_curves(p, B_hi, w_hi, omega_rows=w_rows, N=N)
         curve_B, curve_w = curves.B, curves.omega_points
@@ -272,8 +277,9 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
 def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: int = 10) -> list[dict[str, float]]:
     """Time and error of the lowest k eigenvalue pairs and of B_c versus N.
 
-    A measurement for this scene (BLAS on one thread, best of 3), against a
-    reference at N = 96; see :func:`etcheck.rod.convergence.accuracy_table`.
+    A measurement for this scene (BLAS on one thread, one solve per N), against
+    a reference at N = 48 (:data:`etcheck.rod.convergence.N_REF`); see
+    :func:`etcheck.rod.convergence.accuracy_table`.
     """
     rows = accuracy_table(scaled.params, Ns=Ns, k=k)
     return [

@@ -123,14 +123,35 @@ def stiffness_diag(params: RodParameters) -> np.ndarray:
     return np.array([1.0, params.R, params.Gamma * (1.0 + params.R) / 2.0]) / params.f
 
 
-def _linear_map(fn, n: int) -> np.ndarray:
-    """Matrix (n, 3, 3) of the pointwise linear map fn: (n,3) -> (n,3)."""
-    out = np.empty((n, 3, 3))
-    for j in range(3):
-        e = np.zeros((n, 3))
-        e[:, j] = 1.0
-        out[:, :, j] = fn(e)
+def _skew(v: np.ndarray) -> np.ndarray:
+    """Matrices (n, 3, 3) of the cross products v x (.) for the rows of v (n, 3)."""
+    out = np.zeros(v.shape[:-1] + (3, 3))
+    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
+    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
+    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
     return out
+
+
+def _moment_blocks(params: RodParameters, d: np.ndarray, F0: np.ndarray, W: np.ndarray):
+    """The a-columns of the m' rows of eq. (72): static, gyroscopic (lambda) and inertia (lambda^2) parts.
+
+    ``d`` (n, 3, 3) holds the directors as columns, ``F0`` (n, 3) the contact
+    force, ``W`` (3, 3) the cross product with omega e3. With a x d_i =
+    -[d_i]x a: -(a x d3) x F0 = -[F0]x [d3]x a; (w . (a x d_i)) (d_i x w) =
+    (d_i x w)(d_i x w)^T a; (w . d_i)((a x d_i) x w) = (w . d_i) [w]x [d_i]x a;
+    d_i x (w x (a x d_i)) = -[d_i]x [w]x [d_i]x a; d_i x (a x d_i) = -[d_i]x [d_i]x a.
+    """
+    c = np.array([params.P * params.R, params.P, 0.0])
+    Sd = _skew(np.moveaxis(d, 2, 1))  # (n, 3 directors, 3, 3): [d_i]x
+    w = W[[2, 0, 1], [1, 2, 0]]  # the vector omega e3 back from its cross-product matrix
+    dw = np.cross(np.moveaxis(d, 2, 1), w)  # (n, i, 3): d_i x w
+    wd = np.einsum("nai,a->ni", d, w)  # w . d_i
+    static = (-_skew(F0) @ Sd[:, 2]
+              + np.einsum("i,nia,nib->nab", c, dw, dw)
+              + np.einsum("i,ni,ab,nibc->nac", c, wd, W, Sd))
+    gyro = -2.0 * np.einsum("i,niab,bc,nicd->nad", c, Sd, W, Sd)
+    inertia = -np.einsum("i,niab,nibc->nac", c, Sd, Sd)
+    return static, gyro, inertia
 
 
 def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
@@ -139,78 +160,35 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
     Returns ``(E0, E1, G0, G1, G2)``, each of shape (n, 12, 12) at the points s,
     with E(lambda) = E0 + lambda E1 and G(lambda) = G0 + lambda G1 +
     lambda^2 G2, rows/columns in ``VARIABLES`` order (dimensionless;
-    eqs. (71), (72), (74), (75)).
+    eqs. (71), (72), (74), (75)). Every block is a product of cross-product
+    matrices, evaluated for all points at once.
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
     n = s.size
     D0 = base.D0(s)
     F0 = base.F0(s)
     M0 = base.M0(s)
-    d = [D0[:, :, i] for i in range(3)]
-    d3 = d[2]
-    w = params.omega * _E3
-    wv = np.broadcast_to(w, (n, 3))
-    B = params.B
-    c = (params.P * params.R, params.P, 0.0)
-    K = stiffness_diag(params)
-
-    E0 = np.zeros((n, NFIELDS, NFIELDS))
-    E1 = np.zeros_like(E0)
-    G0 = np.zeros_like(E0)
-    G1 = np.zeros_like(E0)
-    G2 = np.zeros_like(E0)
+    Sd3 = _skew(D0[:, :, 2])
+    W = _skew(params.omega * _E3)
+    E0, E1, G0, G1, G2 = (np.zeros((n, NFIELDS, NFIELDS)) for _ in range(5))
     for grp in (XI, PHI, MOM):
         E0[:, grp, grp] = _EYE
 
-    cross = np.cross
-
-    def dot(u, v):
-        return np.einsum("ni,ni->n", u, v)[:, None]
-
-    # xi' = a x d3_0                                            (75)
-    G0[:, XI, ALPHA] = _linear_map(lambda a: cross(a, d3), n)
-
-    # (1 + gamma lambda) D0 K D0^T a' = m + M0 x a              (74)
-    DKD = np.einsum("nai,i,nbi->nab", D0, K, D0)
+    G0[:, XI, ALPHA] = -Sd3  # xi' = a x d3_0                                   (75)
+    # (1 + gamma lambda) D0 K D0^T a' = m + M0 x a                                (74)
+    DKD = np.einsum("nai,i,nbi->nab", D0, stiffness_diag(params), D0)
     E0[:, ALPHA, ALPHA] = DKD
     E1[:, ALPHA, ALPHA] = params.gamma * DKD
     G0[:, ALPHA, MOM] = _EYE
-    G0[:, ALPHA, ALPHA] = _linear_map(lambda a: cross(M0, a), n)
-
-    # phi' = -B (a x d3_0) x e3 + lambda^2 xi + 2 lambda w x xi + w x (w x xi)
-    G0[:, PHI, ALPHA] = _linear_map(lambda a: -B * cross(cross(a, d3), np.broadcast_to(_E3, (n, 3))), n)
+    G0[:, ALPHA, ALPHA] = _skew(M0)
+    # phi' = -B (a x d3_0) x e3 + lambda^2 xi + 2 lambda w x xi + w x (w x xi)   (71)
+    G0[:, PHI, ALPHA] = -params.B * _skew(_E3) @ Sd3
     G2[:, PHI, XI] = _EYE
-    G1[:, PHI, XI] = _linear_map(lambda x: 2.0 * cross(wv, x), n)
-    G0[:, PHI, XI] = _linear_map(lambda x: cross(wv, cross(wv, x)), n)
-
-    # m' = -(a x d3_0) x F0 - d3_0 x phi + sum_i c_i [...]       (72)
-    def m_static(a):
-        out = -cross(cross(a, d3), F0)
-        for ci, di in zip(c, d):
-            if ci == 0.0:
-                continue
-            adi = cross(a, di)
-            out = out + ci * (dot(wv, adi) * cross(di, wv) + dot(wv, di) * cross(adi, wv))
-        return out
-
-    def m_gyro(a):
-        out = np.zeros((n, 3))
-        for ci, di in zip(c, d):
-            if ci != 0.0:
-                out = out + 2.0 * ci * cross(di, cross(wv, cross(a, di)))
-        return out
-
-    def m_inertia(a):
-        out = np.zeros((n, 3))
-        for ci, di in zip(c, d):
-            if ci != 0.0:
-                out = out + ci * cross(di, cross(a, di))
-        return out
-
-    G0[:, MOM, ALPHA] = _linear_map(m_static, n)
-    G0[:, MOM, PHI] = _linear_map(lambda p: -cross(d3, p), n)
-    G1[:, MOM, ALPHA] = _linear_map(m_gyro, n)
-    G2[:, MOM, ALPHA] = _linear_map(m_inertia, n)
+    G1[:, PHI, XI] = 2.0 * W
+    G0[:, PHI, XI] = W @ W
+    # m' = -(a x d3_0) x F0 - d3_0 x phi + sum_i c_i [...]                       (72)
+    G0[:, MOM, ALPHA], G1[:, MOM, ALPHA], G2[:, MOM, ALPHA] = _moment_blocks(params, D0, F0, W)
+    G0[:, MOM, PHI] = -Sd3
     return E0, E1, G0, G1, G2
 
 
@@ -219,9 +197,9 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
     N = col.N
     out = np.zeros((NFIELDS, N, NFIELDS, N + 1))
     if E is not None:
-        out += np.einsum("kev,kj->ekvj", E, col.PD)
+        out += E.transpose(1, 0, 2)[:, :, :, None] * col.PD[None, :, None, :]
     if G is not None:
-        out -= np.einsum("kev,kj->ekvj", G, col.P)
+        out -= G.transpose(1, 0, 2)[:, :, :, None] * col.P[None, :, None, :]
     return out.reshape(NFIELDS * N, NFIELDS * (N + 1))
 
 

@@ -34,6 +34,7 @@ damping and zero without).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from enum import StrEnum
 from functools import lru_cache
@@ -45,7 +46,7 @@ from ..numerics.eigen import eliminate_static, match_spectra, single_blas_thread
 from .base_state import straight
 from .linear import NFIELDS, linear_operator
 from .parameters import RodParameters
-from .spectrum import check_resolution, nearest_eigenvalues, prefers_dense, select_pairs
+from .spectrum import ERROR_FLOOR, check_resolution, nearest_eigenvalues, prefers_dense, select_pairs
 
 __all__ = [
     "THRESHOLD",
@@ -286,24 +287,52 @@ class _Change:
     to_unstable: bool
 
 
-def _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=True):
-    """All stability changes on [lo, hi] and the state at lo."""
-    line = _Line(params, axis, N, k)
+def _distinct_static(params, axis, lo, hi, N) -> list:
+    """Static points (value, relative error) on [lo, hi], coincident ones merged."""
     spts, serr = static_points(params, axis, lo=lo, hi=hi, N=max(N, 32))
-    distinct = []
+    distinct: list = []
     for v, e in zip(spts, serr):
         if not distinct or v - distinct[-1][0] > 1e-7 * max(1.0, abs(v)):
             distinct.append((v, e))
+    return distinct
+
+
+def _scan_grid(lo: float, hi: float, n_scan: int, distinct: list) -> list:
+    """n_scan even points on [lo, hi] plus each static point +/- a relative _DELTA."""
     grid = set(np.linspace(lo, hi, n_scan).tolist())
     for v, _ in distinct:
         h = _DELTA * max(abs(v), 1e-3)
-        for x in (v - h, v + h):
-            if lo < x < hi:
-                grid.add(float(x))
-    grid = sorted(grid)
+        grid.update(float(x) for x in (v - h, v + h) if lo < x < hi)
+    return sorted(grid)
+
+
+def _flutter_error(params, axis, lo, hi, tol, N, k, a, b) -> float:
+    """Two-resolution error of a change bisected to [a, b]: the same change located at check_resolution(N)."""
+    check = _Line(params, axis, check_resolution(N), k)
+    x = 0.5 * (a + b)
+    w = max(10 * (b - a), 1e-8 * max(1.0, abs(x)))
+    for _ in range(6):
+        a2, b2 = max(lo, x - w), min(hi, x + w)
+        if check.unstable(a2) != check.unstable(b2):
+            a2, b2 = _bisect(check, a2, b2, tol)
+            return max(0.5 * (b - a), abs(0.5 * (a2 + b2) - x))
+        w *= 10
+    return np.inf
+
+
+def _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=True):
+    """All stability changes on [lo, hi] and the state at lo.
+
+    A change across exactly one static point in a bracket as narrow as the
+    points placed around it is that point (divergence, its pencil value);
+    any other is bisected to ``tol`` (flutter) and, with ``refine_error``,
+    located again at the check resolution for its error.
+    """
+    line = _Line(params, axis, N, k)
+    distinct = _distinct_static(params, axis, lo, hi, N)
+    grid = _scan_grid(lo, hi, n_scan, distinct)
     states = [line.unstable(x) for x in grid]
     changes = []
-    check = None
     for i in range(len(grid) - 1):
         if states[i] == states[i + 1]:
             continue
@@ -314,22 +343,8 @@ def _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error=True):
             changes.append(_Change(a, b, v, CriticalKind.DIVERGENCE, e * max(abs(v), 1e-3), states[i + 1]))
             continue
         a, b = _bisect(line, a, b, tol)
-        x = 0.5 * (a + b)
-        err = 0.5 * (b - a)
-        if refine_error:
-            if check is None:
-                check = _Line(params, axis, check_resolution(N), k)
-            w = max(10 * (b - a), 1e-8 * max(1.0, abs(x)))
-            for _ in range(6):
-                a2, b2 = max(lo, x - w), min(hi, x + w)
-                if check.unstable(a2) != check.unstable(b2):
-                    a2, b2 = _bisect(check, a2, b2, tol)
-                    err = max(err, abs(0.5 * (a2 + b2) - x))
-                    break
-                w *= 10
-            else:
-                err = np.inf
-        changes.append(_Change(a, b, x, CriticalKind.FLUTTER, err, states[i + 1]))
+        err = _flutter_error(params, axis, lo, hi, tol, N, k, a, b) if refine_error else 0.5 * (b - a)
+        changes.append(_Change(a, b, 0.5 * (a + b), CriticalKind.FLUTTER, err, states[i + 1]))
     return states[0], changes, line
 
 
@@ -452,13 +467,20 @@ def stability_map(params: RodParameters, B_grid, omega_grid, N: int = 16, k: int
 class Campbell:
     """Eigenvalues of the straight rod versus spin (dimensionless).
 
-    ``eigenvalues[i]``: the k least-|lambda| pairs at omega_grid[i] (one per
+    ``eigenvalues[i]``: the k least-|lambda| pairs at omega[i] (one per
     conjugate pair, both members of real pairs), sorted by Im then Re,
-    NaN-padded to a common length. Frequencies are Im, growth rates Re.
+    NaN-padded to a common length, all at resolution ``N``. Frequencies are
+    Im, growth rates Re. ``error``: the largest distance of those eigenvalues
+    to their partners at ``N_check`` over the spins ``checked`` (indices into
+    omega), relative, absolute below |lambda| = 0.1 (inf if one has none).
     """
 
     omega: np.ndarray
     eigenvalues: np.ndarray
+    N: int
+    N_check: int
+    checked: np.ndarray
+    error: float
 
     @property
     def frequencies(self) -> np.ndarray:
@@ -470,17 +492,33 @@ class Campbell:
 
 
 @single_blas_thread
-def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24) -> Campbell:
-    """Campbell diagram data: least-|lambda| eigenvalues of the straight rod vs omega."""
+def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24, N_check: int | None = None,
+             n_check: int = 3) -> Campbell:
+    """Campbell diagram data: least-|lambda| eigenvalues of the straight rod vs omega (dimensionless).
+
+    One resolution for the whole diagram (one shift-invert solve of the
+    reduced operator per spin); the error is estimated by a second resolution
+    ``N_check`` (default :func:`check_resolution` (N)) at ``n_check`` spins
+    spread evenly over the grid, ends included.
+    """
     fam = _family(params, N)
     omega_grid = np.asarray(omega_grid, dtype=float)
+    nev = 2 * k + 8
     rows = []
     for w in omega_grid:
-        lam = fam.eigenvalues(params.B, w, params.T, 2 * k + 8, past_cluster=True)
+        lam = fam.eigenvalues(params.B, w, params.T, nev, past_cluster=True)
         sel = lam[select_pairs(lam, k)]
         rows.append(sel[np.lexsort((sel.real, sel.imag))])
     width = max((r.size for r in rows), default=0)
     out = np.full((omega_grid.size, width), np.nan + 1j * np.nan)
     for i, r in enumerate(rows):
         out[i, : r.size] = r
-    return Campbell(omega=omega_grid, eigenvalues=out)
+    N_check = check_resolution(N) if N_check is None else int(N_check)
+    checked = np.unique(np.linspace(0, omega_grid.size - 1, min(n_check, omega_grid.size)).round().astype(int))
+    fine = _family(params, N_check)
+    error = 0.0
+    for i in checked:
+        ref = fine.eigenvalues(params.B, omega_grid[i], params.T, nev, past_cluster=True)
+        m = match_spectra(rows[i], ref, accept=np.inf, floor=ERROR_FLOOR)
+        error = max(error, float(np.max(m.errors, initial=0.0)) if m.values.size == rows[i].size else math.inf)
+    return Campbell(omega=omega_grid, eigenvalues=out, N=int(N), N_check=N_check, checked=checked, error=error)
