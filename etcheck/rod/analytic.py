@@ -187,18 +187,16 @@ def buckling_mode(k: int, R: float, s: np.ndarray) -> tuple[np.ndarray, np.ndarr
 # --- unperturbed spectrum (T = gamma = omega = B = 0), Sec. VI B -----------------
 
 
-def _clamped_beam_function(mu: float, P: float, stiffness: float) -> float:
-    """Frequency equation of a clamped-clamped Rayleigh beam, Sec. VI B, f = 1.
+def _clamped_beam_function(mu, P: float, stiffness: float):
+    """Frequency equation of a clamped-clamped Rayleigh beam, Sec. VI B, f = 1 (mu scalar or array).
 
     (a^2 - b^2) sin a sinh b - 2 a b (1 - cos a cosh b) = 0, divided by cosh b
     so it stays bounded; ``stiffness`` is R for the x (weak) equation and 1 for y.
     """
-    root = math.sqrt(mu**4 * P**2 + 4 * mu**2 / stiffness)
-    a = math.sqrt(0.5 * mu**2 * P + 0.5 * root)
-    b = math.sqrt(max(0.5 * root - 0.5 * mu**2 * P, 0.0))
-    return (a * a - b * b) * math.sin(a) * math.tanh(b) - 2 * a * b * (
-        1.0 / math.cosh(b) - math.cos(a)
-    )
+    root = np.sqrt(mu**4 * P**2 + 4 * mu**2 / stiffness)
+    a = np.sqrt(0.5 * mu**2 * P + 0.5 * root)
+    b = np.sqrt(np.maximum(0.5 * root - 0.5 * mu**2 * P, 0.0))
+    return (a * a - b * b) * np.sin(a) * np.tanh(b) - 2 * a * b * (1.0 / np.cosh(b) - np.cos(a))
 
 
 def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "weak") -> np.ndarray:
@@ -216,9 +214,9 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
     # and refine each sign change with Brent's method.
     mu_max = math.sqrt(stiffness) * ((n + 1.5) * math.pi) ** 2
     grid = np.linspace(1e-6, mu_max, 400 * (n + 2))
-    values = np.array([g(m) for m in grid])
+    values = g(grid)
     for i in np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0]:
-        found.append(brentq(g, grid[i], grid[i + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps))
+        found.append(float(brentq(g, grid[i], grid[i + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps)))
         if len(found) == n:
             break
     if len(found) < n:

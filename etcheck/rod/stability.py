@@ -503,7 +503,7 @@ def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24, N_chec
     """
     fam = _family(params, N)
     omega_grid = np.asarray(omega_grid, dtype=float)
-    nev = 2 * k + 8
+    nev = 2 * k + 2  # the 2k least-|lambda| and a conjugate cut at the edge (the shift is ~0: same order)
     rows = []
     for w in omega_grid:
         lam = fam.eigenvalues(params.B, w, params.T, nev, past_cluster=True)
