@@ -52,7 +52,8 @@ def straight_route(params: RodParameters) -> str:
     """How the straight tether's critical values are computed: "spectral" (Chebyshev collocation
     of rung 1) or "exact determinant" (the constant-coefficient characteristic determinant,
     :mod:`etcheck.rod.exact_straight`) where the boundary layers are thinner than LAYER_MIN or the
-    weak axis is nearly a string (R < R_MIN_SPECTRAL). Both are exact where both apply (tested to 1e-9)."""
+    weak axis is nearly a string (R < R_MIN_SPECTRAL), with or without damping
+    (:mod:`etcheck.rod.undamped_straight` without). Both are exact where both apply (tested to 1e-9)."""
     if boundary_layer(params) < LAYER_MIN or params.R < R_MIN_SPECTRAL:
         return EXACT
     return SPECTRAL
@@ -89,10 +90,9 @@ def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
     why_exact = (f"boundary layers of {layer:.2g} L at the welded ends" if layer < LAYER_MIN
                  else f"a nearly string-like weak axis (R = {params.R:.2g})")
     if params.gamma <= 0:
-        return Plan(1, f"the mission has {moving} and {why_exact}: the straight tether's critical values come from "
-                    "the exact characteristic determinant, which answers divergence only; without damping flutter "
-                    "is possible, so the check is incomplete (give the tether a damping_time)", complete=False,
-                    route=route)
+        return Plan(1, f"the mission has {moving} and {why_exact}, too thin for collocation, and no damping: the "
+                    "critical values come from the exact characteristic determinant of the undamped straight tether "
+                    "(divergence and flutter points, where two vibration modes meet, located exactly)", route=route)
     return Plan(1, f"the mission has {moving} and {why_exact}, too thin for collocation: the critical values come "
                 "from the exact characteristic determinant of the constant-coefficient straight tether "
                 "(with damping, stability is lost only where it vanishes: Kelvin-Tait-Chetaev)", route=route)

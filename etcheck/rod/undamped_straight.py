@@ -68,9 +68,13 @@ from scipy.optimize import brentq, minimize_scalar
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur
 from .parameters import RodParameters
-from .stability import CriticalKind
+from .stability import CriticalKind, CriticalPoint
 
-__all__ = ["characteristic_mu"]
+__all__ = ["MODEL", "characteristic_mu", "Crossing", "StabilityLine", "stability_line", "UndampedCritical",
+           "undamped_critical"]
+
+#: Model string of every value from this module.
+MODEL = "rung 1 (exact undamped determinant)"
 
 _EPS = np.finfo(float).eps
 _BC_REAL = np.array([0, 1, 4, 5])
@@ -296,7 +300,9 @@ class _Line:
         count = _mode_count(params, fine, T)
         n = max(int(math.ceil(density * count[-1])), 16)
         pos = np.interp(np.linspace(0.0, count[-1], n + 1), count, fine)
-        self.mu = np.unique(np.concatenate([neg, [0.0], pos[1:], [self.mu_cut]]))
+        above = self.mu_cut + (pos[-1] - pos[-2]) * np.arange(1, 4)  # past the cut: dips next to it are seen
+        self.mu = np.unique(np.concatenate([neg, [0.0], pos[1:], [self.mu_cut], above]))
+        self.i_cut = int(np.nonzero(self.mu == self.mu_cut)[0][0])
         self.evaluations = 0
 
     def E(self, p, mu) -> np.ndarray:
@@ -307,35 +313,67 @@ class _Line:
                                  shift=self.shift)
 
     def samples(self, ps) -> list[_Sample]:
+        """The real roots of E on the mu grid at each p of ps (one vectorised evaluation, then
+        the close pairs of all rows refined together)."""
         ps = np.atleast_1d(np.asarray(ps, dtype=float))
         rows = self.E(ps[:, None], self.mu[None, :])
-        return [self._sample(p, row) for p, row in zip(ps, rows)]
-
-    def _sample(self, p: float, E: np.ndarray) -> _Sample:
+        if not np.all(np.isfinite(rows)):
+            raise ArithmeticError(f"characteristic function not finite on the {self.axis} line")
         mu = self.mu
-        if not np.all(np.isfinite(E)):
-            raise ArithmeticError(f"characteristic function not finite at {self.axis} = {p:.6g}")
-        s = np.sign(E)
-        roots = []
-        for j in np.nonzero(s[:-1] * s[1:] < 0)[0]:
-            roots.append(mu[j] + (mu[j + 1] - mu[j]) * E[j] / (E[j] - E[j + 1]))
-        roots += [mu[j] for j in np.nonzero(s == 0)[0]]
-        # close pairs: a local minimum of |E| between samples of one sign
-        aE = np.abs(E)
-        for j in np.nonzero((s[:-2] == s[1:-1]) & (s[1:-1] == s[2:]) & (aE[1:-1] < aE[:-2])
-                            & (aE[1:-1] < aE[2:]))[0] + 1:
-            roots += self._close_pair(p, mu[j - 1], mu[j + 1], s[j], max(aE[j - 1], aE[j + 1]))
-        roots = np.sort(np.asarray(roots, dtype=float))
-        return _Sample(float(p), tuple(roots.tolist()), int(np.sum(roots < 0)), int(np.sum(roots > 0)),
-                       float(E[-1]))
+        s = np.sign(rows)
+        roots: list[list[float]] = []
+        cand = []
+        for i, (E, si) in enumerate(zip(rows, s)):
+            j = np.nonzero(si[:-1] * si[1:] < 0)[0]
+            roots.append((mu[j] + (mu[j + 1] - mu[j]) * E[j] / (E[j] - E[j + 1])).tolist()
+                         + mu[si == 0].tolist())
+            aE = np.abs(E)
+            dips = np.nonzero((si[:-2] == si[1:-1]) & (si[1:-1] == si[2:]) & (aE[1:-1] < aE[:-2])
+                              & (aE[1:-1] < aE[2:]))[0] + 1
+            cand += [(i, mu[j - 1], mu[j + 1], si[j], max(aE[j - 1], aE[j + 1]), aE[j]) for j in dips]
+        for i, pair in self._close_pairs(ps, cand):
+            roots[i] += pair
+        out = []
+        for p, r, E in zip(ps, roots, rows):
+            r = np.sort(np.asarray(r, dtype=float))
+            r = r[r < self.mu_cut]
+            out.append(_Sample(float(p), tuple(r.tolist()), int(np.sum(r < 0)), int(np.sum(r > 0)),
+                               float(E[self.i_cut])))
+        return out
 
-    def _close_pair(self, p: float, a: float, b: float, sg: float, size: float) -> list[float]:
-        """Two roots in (a, b) where sg E dips through (or touches) zero, else none."""
-        res = minimize_scalar(lambda m: sg * self.E(p, m).item(), bounds=(a, b), method="bounded",
-                              options={"xatol": 1e-12 * max(abs(a), abs(b), 1e-300)})
-        if sg * res.fun <= 0.0 or abs(res.fun) <= 1e3 * _EPS * size:
-            return [0.5 * (a + res.x), 0.5 * (res.x + b)]
-        return []
+    def _close_pairs(self, ps: np.ndarray, cand: list) -> list[tuple[int, list[float]]]:
+        """Close pairs of roots at the dips of |E| between grid points: each dip is zoomed in
+        (9 points, 6 levels, all dips in one evaluation per level) until E changes sign (two
+        roots), the dip clearly stays off zero (parabola through its three lowest points), or it
+        touches zero (a double root)."""
+        found = []
+        t = np.linspace(0.0, 1.0, 9)
+        for _ in range(6):
+            if not cand:
+                break
+            a = np.array([c[1] for c in cand])
+            b = np.array([c[2] for c in cand])
+            x = a[:, None] + (b - a)[:, None] * t[None, :]
+            E = self.E(np.array([ps[c[0]] for c in cand])[:, None], x)
+            nxt = []
+            for c, xi, Ei in zip(cand, x, E):
+                i, sg, size = c[0], c[3], c[4]
+                flips = np.nonzero(np.sign(Ei[:-1]) != np.sign(Ei[1:]))[0]
+                if flips.size >= 2:
+                    found.append((i, [0.5 * (xi[flips[0]] + xi[flips[0] + 1]), 0.5 * (xi[flips[-1]] + xi[flips[-1] + 1])]))
+                    continue
+                m = int(np.argmin(np.abs(Ei[1:-1]))) + 1
+                e0, e1, e2 = sg * Ei[m - 1], sg * Ei[m], sg * Ei[m + 1]
+                curv = e0 - 2 * e1 + e2
+                low = e1 - (e2 - e0) ** 2 / (8 * curv) if curv > 0 else e1
+                if abs(Ei[m]) <= 1e3 * _EPS * size:
+                    found.append((i, [xi[m], xi[m]]))  # touching to rounding: a double root
+                elif low < 0.25 * e1:
+                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, abs(Ei[m])))
+            cand = nxt
+        # still dipping after 6 levels (8^6 finer) and 1e8 below its neighbours: the dip falls like the
+        # square of the distance, a double root (R = 1 at omega = 0, where E is a square)
+        return found + [(c[0], [0.5 * (c[1] + c[2])] * 2) for c in cand if c[5] <= 1e-8 * c[4]]
 
     # --- bookkeeping along the line ----------------------------------------------------------
 
@@ -403,8 +441,9 @@ class StabilityLine:
 
     ``unstable_at_start``: the state at lo; ``crossings``: every located
     change, in order; ``windows``: the stable intervals (a window reaching
-    hi ends at hi); ``evaluations``: characteristic-function evaluations
-    spent. Changes closer together than the sample spacing (hi - lo) /
+    hi ends at hi); ``pairs_at_hi``: complex pairs of roots mu at hi (to
+    anchor a crossing line there); ``evaluations``: characteristic-function
+    evaluations spent. Changes closer together than the sample spacing (hi - lo) /
     (samples - 1) can be missed in pairs (a window or an unstable gap
     narrower than that), as in a scan.
     """
@@ -415,6 +454,7 @@ class StabilityLine:
     unstable_at_start: bool
     crossings: tuple[Crossing, ...]
     windows: tuple[tuple[float, float], ...]
+    pairs_at_hi: int
     evaluations: int
 
     def unstable_at(self, x: float) -> bool:
@@ -453,11 +493,15 @@ def _separation(params: RodParameters, axis: str, x: float) -> float:
     return float(max(ku[0], kv[0]) / max(2 * math.pi, 1.0))
 
 
-def _static_crossing(params: RodParameters, axis: str, a: float, b: float, rtol: float) -> tuple[float, float]:
-    """Root of D_static (= E(0)) in (a, b) along axis, and its absolute error (two formulations)."""
+def _static_crossing(params: RodParameters, axis: str, a: float, b: float, rtol: float) -> tuple[float, float] | None:
+    """Root of D_static (= E(0)) in (a, b) along axis, and its absolute error (two formulations);
+    None without a sign change."""
     base = params.with_(**{axis: 0.0})
     fn, mult = _ex._function(base, axis, 1.0)
     g = _ex._Counter(fn)
+    ga, gb = g.many(np.array([a, b]))
+    if np.sign(ga) == np.sign(gb):
+        return None  # an even number of static points in (a, b): bisect further
     x = brentq(g, a, b, xtol=1e-300, rtol=rtol, maxiter=200)
     route = _ex._route_at(base, axis, x, mult)
     g2 = _ex._Counter(_ex._alternative(base, axis, 1.0, x, route))
@@ -535,9 +579,11 @@ def _locate(line: _Line, a: _Sample, Na: int, b: _Sample, Nb: int, rtol: float, 
     dneg, dpos, dc = b.n_neg - a.n_neg, b.n_pos - a.n_pos, cb - ca
     to_unstable = _unstable(b, Nb)
     bracket = (a.p, b.p)
+    static = None
     if dc == 0 and dneg == -dpos and 0 < abs(dneg) <= 2:
-        x, err = _static_crossing(line.params, line.axis, min(a.p, b.p), max(a.p, b.p), rtol)
-        return Crossing(x, err, CriticalKind.DIVERGENCE, 0.0, to_unstable, bracket)
+        static = _static_crossing(line.params, line.axis, min(a.p, b.p), max(a.p, b.p), rtol)
+    if static is not None:
+        return Crossing(*static, CriticalKind.DIVERGENCE, 0.0, to_unstable, bracket)
     fold = abs(dc) == 1 and ((dneg == -2 * dc and dpos == 0) or (dpos == -2 * dc and dneg == 0))
     if fold and depth >= _SHRINK:
         x, err, mu = _fold_crossing(line, a, b, rtol)
@@ -593,4 +639,104 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     if start is not None:
         windows.append((float(start), float(hi)))
     return StabilityLine(axis, float(lo), float(hi), bool(flags[0]), tuple(crossings), tuple(windows),
-                         line.evaluations)
+                         _pairs(smp[-1], N[-1]), line.evaluations)
+
+
+# --- critical values at an operating point -------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class UndampedCritical:
+    """Critical values of the undamped straight rod at one operating point (dimensionless).
+
+    ``critical_load``: first loss of stability as B grows from 0 at the
+    operating omega and T; ``critical_spin``: as omega grows from 0 at the
+    operating B and T (both :class:`~etcheck.rod.stability.CriticalPoint`,
+    absolute errors, N = 0: no grid); ``windows``: the stable spin
+    intervals at the operating load up to ``scanned_to``; ``stable``: the
+    operating point itself; ``evaluations``: characteristic-function
+    evaluations spent.
+    """
+
+    critical_load: CriticalPoint
+    critical_spin: CriticalPoint
+    windows: tuple[tuple[float, float], ...]
+    scanned_to: float
+    stable: bool
+    evaluations: int
+
+    @property
+    def converged(self) -> bool:
+        return self.critical_load.converged and self.critical_spin.converged
+
+
+def _static_roots(params: RodParameters, axis: str, upto: float, n: int = 400) -> np.ndarray:
+    """The static points (roots of D_static) on axis in (0, upto], from sign changes on a grid
+    (for the ranges of the lines, not for the critical values)."""
+    fn, _ = _ex._function(params.with_(**{axis: 0.0}), axis, 1.0)
+    x = np.linspace(0.0, upto, n + 1)[1:]
+    g = fn(x)
+    i = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
+    return 0.5 * (x[i] + x[i + 1])
+
+
+def _spin_hi(params: RodParameters) -> float:
+    """End of the spin line (as the spectral scan's default): max(2, 1.25 x the second static spin)."""
+    scale = _ex._root_scale(params, "omega", 1.0)
+    r = _static_roots(params, "omega", max(8.0 * scale, 4.0))
+    return float(max(2.0, 1.25 * r[1])) if r.size >= 2 else 2.0
+
+
+def _point(line: StabilityLine, tol: float) -> CriticalPoint:
+    """The first loss of stability on a line as a CriticalPoint (value, kind, absolute error)."""
+    axis, lo, hi = line.axis, line.lo, line.hi
+    if line.unstable_at_start:
+        return CriticalPoint(axis, lo, CriticalKind.UNSTABLE_AT_START, (lo, lo), 0.0, True,
+                             f"already unstable at {axis} = {lo:g} ({MODEL})", 0)
+    first = next((c for c in line.crossings if c.to_unstable), None)
+    if first is None:
+        return CriticalPoint(axis, math.nan, CriticalKind.NONE_FOUND, (lo, hi), math.nan, False,
+                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL})", 0)
+    conv = bool(math.isfinite(first.error) and first.error <= tol * max(abs(first.value), 1e-3))
+    at = f" at Omega = {first.frequency:.9g}" if first.kind == CriticalKind.FLUTTER else ""
+    msg = (f"first instability at {axis} = {first.value:.12g} ({first.kind}{at}; {MODEL}); "
+           f"error estimate {first.error:.2e} (two formulations)")
+    return CriticalPoint(axis, first.value, first.kind, (first.value, first.value), first.error, conv, msg, 0)
+
+
+@_ex._one_blas_thread
+def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = True) -> UndampedCritical:
+    """Critical load, critical spin, stable spin windows and stability of the undamped straight rod.
+
+    Dimensionless; gamma is ignored (undamped). Three lines of
+    :func:`stability_line`: the spin line of the unloaded rod up to the
+    operating spin (it anchors the next one: complex pairs at (0, omega)),
+    the load line at the operating spin from 0 to just past its first
+    static point (stable before it means unstable past it: a root mu goes
+    negative), and the spin line at the operating load from 0 (self-adjoint
+    there) to max(2, 1.25 x its second static point, 1.1 x the operating
+    spin) with ``windows``, else to just past its first static point and
+    the operating spin. Same shapes as the spectral scans of
+    :mod:`etcheck.rod.stability` (critical_load, scan_line); errors are
+    absolute, from a second formulation of E; ``tol`` is relative.
+    """
+    p = params.with_(gamma=0.0)
+    w = p.omega
+    evaluations = 0
+    if windows:
+        spin_hi = max(_spin_hi(p), 1.1 * w)
+    else:
+        first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
+        spin_hi = max(1.02 * first[0] if first.size else 2.0, 1.1 * w, 1e-3)
+    spin_line = stability_line(p, "omega", 0.0, spin_hi)
+    evaluations += spin_line.evaluations
+    pairs = 0
+    if w > 0:
+        rest = stability_line(p.with_(B=0.0), "omega", 0.0, w)
+        pairs, evaluations = rest.pairs_at_hi, evaluations + rest.evaluations
+    static = _ex.exact_root(p.with_(B=0.0), "B")
+    load_hi = 1.02 * static.value if math.isfinite(static.value) else 16 * _ex._root_scale(p, "B", 1.0)
+    load_line = stability_line(p, "B", 0.0, load_hi, pairs=pairs)
+    evaluations += load_line.evaluations + static.evaluations
+    return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_hi,
+                            not spin_line.unstable_at(w), evaluations)

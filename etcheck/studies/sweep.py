@@ -11,7 +11,9 @@ lowest rung that is exact for it:
 * rung 1 static pencils with damping (the Kelvin-Tait-Chetaev structure,
   :mod:`etcheck.rod.damped_critical`): critical load at the point's spin,
   critical spin at the point's load, one QZ per resolution;
-* rung 1 spectral scan without damping (flutter windows are possible).
+* without damping (flutter windows are possible) the exact undamped
+  determinant (:mod:`etcheck.rod.undamped_straight`): divergence and
+  flutter points located exactly along the load and spin lines.
 
 Each point is an independent task keyed by its dimensionless parameters, the
 solver settings and the etcheck version. Results go to a cache folder as they
@@ -50,8 +52,9 @@ from etcheck.jsonable import finite_or_none
 from etcheck.rod.damped_critical import damped_critical, first_root
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.parameters import RodParameters
-from etcheck.rod.spectrum import spectrum
-from etcheck.rod.stability import CriticalKind, critical_load, critical_spin
+from etcheck.rod.stability import CriticalKind
+from etcheck.rod.undamped_straight import MODEL as UNDAMPED_MODEL
+from etcheck.rod.undamped_straight import undamped_critical
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 
@@ -122,8 +125,8 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
     ``model``, ``B_c`` (critical load at the point's spin and tension; 0 if
     unstable without load), ``omega_c`` (critical spin at the point's load; 0
     if statically buckled), ``omega_rest`` (critical spin without load, damped
-    only), their relative errors, ``stable`` and the resolution ``N``.
-    ``spin=False`` skips the critical spin (damped only). ``buckled=True``
+    only), their relative errors, ``stable`` and the resolution ``N`` (None
+    or 0: no grid). ``spin=False`` skips the critical spin (damped only). ``buckled=True``
     adds ``buckled_stable`` (and ``buckled_deflection``, units of L) at
     straight-unstable points: is the coiled state on b1 stable there (rungs 2-3).
     """
@@ -133,56 +136,68 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
         return out | {"status": STATUS_OUTSIDE,
                       "reason": f"P = {params.P:.3g} > {P_MAX}: the tether is too short for rod theory (P << 1)"}
     try:
-        if params.gamma > 0:
-            exact = straight_route(params) == EXACT  # boundary layers too thin for collocation
-            d = (exact_critical if exact else damped_critical)(params, tol, spin=spin)
-            pencil = "rung 1 (exact determinant)" if exact else "rung 1 (static pencil)"
-            out |= {"model": d.critical_load.model if params.omega == 0 and params.T == 0 else pencil,
-                    "B_c": d.critical_load.value, "B_c_error": d.critical_load.error,
-                    "omega_c": d.critical_spin.value, "omega_c_error": d.critical_spin.error,
-                    "omega_rest": d.spin_at_rest.value, "stable": d.stable,
-                    "N": max(d.critical_load.N, d.critical_spin.N)}
-            if not d.converged:
-                out |= {"status": STATUS_FAILED, "reason": d.message}
-        else:
-            out |= _undamped(params, tol)
+        out |= _damped(params, tol, spin) if params.gamma > 0 else _undamped(params, tol)
     except (np.linalg.LinAlgError, ValueError, ArithmeticError) as exc:
         out |= {"status": STATUS_FAILED, "reason": f"solver error: {type(exc).__name__}: {exc}"}
+    out = _finite(out, spin)
+    if out["status"] != STATUS_OK:
+        out["stable"] = None
+    elif buckled and out["stable"] is False and params.gamma > 0:
+        out |= _buckled(params)
+    return out
+
+
+def _damped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
+    """With damping, static pencils or the exact determinant (Kelvin-Tait-Chetaev)."""
+    exact = straight_route(params) == EXACT  # boundary layers too thin for collocation
+    d = (exact_critical if exact else damped_critical)(params, tol, spin=spin)
+    pencil = "rung 1 (exact determinant)" if exact else "rung 1 (static pencil)"
+    out = {"model": d.critical_load.model if params.omega == 0 and params.T == 0 else pencil,
+           "B_c": d.critical_load.value, "B_c_error": d.critical_load.error,
+           "omega_c": d.critical_spin.value, "omega_c_error": d.critical_spin.error,
+           "omega_rest": d.spin_at_rest.value, "stable": d.stable,
+           "N": max(d.critical_load.N, d.critical_spin.N)}
+    return out if d.converged else out | {"status": STATUS_FAILED, "reason": d.message}
+
+
+def _finite(out: dict[str, Any], spin: bool) -> dict[str, Any]:
+    """Infinite values stay (no root: None in JSON later), NaN ones fail the point."""
+    out = dict(out)
     for key in ("B_c", "omega_c", "omega_rest", "B_c_error", "omega_c_error"):
         v = out[key]
         if v is not None and not math.isfinite(v):
             if math.isnan(v) and out["status"] == STATUS_OK and (spin or not key.startswith("omega_c")):
                 out |= {"status": STATUS_FAILED, "reason": f"{key} is not a number"}
             out[key] = None if math.isnan(v) else v
-    if out["status"] != STATUS_OK:
-        out["stable"] = None
-    elif buckled and out["stable"] is False and params.gamma > 0:
-        try:
-            b = buckled_point(params)
-        except (ArithmeticError, ValueError, EtcheckError, np.linalg.LinAlgError) as exc:
-            b = {"stable": None, "max_deflection": None, "reason": f"rung 2 failed: {exc}"}
-        out |= {"buckled_stable": b["stable"], "buckled_deflection": b["max_deflection"], "buckled_reason": b["reason"]}
     return out
 
 
+def _buckled(params: RodParameters) -> dict[str, Any]:
+    """Is the coiled state on b1 stable at a straight-unstable point (rungs 2-3)."""
+    try:
+        b = buckled_point(params)
+    except (ArithmeticError, ValueError, EtcheckError, np.linalg.LinAlgError) as exc:
+        b = {"stable": None, "max_deflection": None, "reason": f"rung 2 failed: {exc}"}
+    return {"buckled_stable": b["stable"], "buckled_deflection": b["max_deflection"], "buckled_reason": b["reason"]}
+
+
 def _undamped(params: RodParameters, tol: float) -> dict[str, Any]:
-    """Without damping flutter is possible: the spectral scans of rung 1."""
-    load = critical_load(params.with_(B=0.0), tol=min(tol, 1e-10))
-    spin = critical_spin(params.with_(omega=0.0), tol=min(tol, 1e-10))
-    op = spectrum(params, k=10, tol=max(tol, 1e-8))
-    out = {"model": "rung 1 (spectral scan, undamped)", "N": int(op.N)}
-    for name, c in (("B_c", load), ("omega_c", spin)):
+    """Without damping flutter is possible: the exact undamped determinant (rung 1u), located
+    divergence and flutter points along the load and spin lines through the point."""
+    u = undamped_critical(params, tol, windows=False)
+    out: dict[str, Any] = {"model": UNDAMPED_MODEL, "N": None, "stable": bool(u.stable)}
+    for name, c in (("B_c", u.critical_load), ("omega_c", u.critical_spin)):
         if c.kind == CriticalKind.UNSTABLE_AT_START:
             out |= {name: 0.0, f"{name}_error": 0.0}
         elif c.kind == CriticalKind.NONE_FOUND:
             out |= {name: math.inf, f"{name}_error": 0.0}
         else:
             out |= {name: c.value, f"{name}_error": c.error / abs(c.value) if c.value else c.error}
-    converged = op.converged and all(c.converged or c.kind in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND)
-                                     for c in (load, spin))
-    out["stable"] = bool(op.stable)
-    if not converged:
-        out |= {"status": STATUS_FAILED, "reason": f"rung 1 scan did not converge: {op.message}; {load.message}"}
+    if not u.converged:
+        bad = [c.message for c in (u.critical_load, u.critical_spin)
+               if not c.converged and c.kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND)]
+        if bad:
+            out |= {"status": STATUS_FAILED, "reason": "rung 1u did not converge: " + "; ".join(bad)}
     return out
 
 
@@ -204,7 +219,7 @@ def critical_length(base: Scene, current: float, field: float, values: dict[str,
     Brent's method with relative tolerance ``tol`` on h(L) = log t*(L), t*
     the first root of the static pencil along the ray from zero load and
     spin to the point's (B, omega^2) (damped: exact, Kelvin-Tait-Chetaev),
-    or on the load margin minus one from the spectral scan (undamped).
+    or on the load margin minus one from the exact undamped determinant (undamped).
     """
 
     def h(L: float) -> float:
@@ -501,31 +516,10 @@ def _critical_lengths(points, results, axes, shape, base, current, field, option
     tasks, rows = [], []
     for j in range(shape[1] if other else 1):
         col = [by_idx[(i, j) if other else (i,)] for i in range(shape[0])]
-        row = {"other": None if other is None else col[0][0][other.name], "status": "", "reason": "",
-               "length_m": None}
-        if other is not None:
-            row["other_display"] = row["other"] * other.to_display
-        first_bad = next((i for i, (_, r) in enumerate(col) if r["status"] != STATUS_OK or not r["stable"]), None)
-        if first_bad is None:
-            row |= {"status": "beyond range", "reason": f"stable up to the longest length swept ({axes[0].stop:.6g} m)"}
-        elif first_bad == 0:
-            row |= {"status": "below range", "reason": f"not stable at the shortest length swept ({axes[0].start:.6g} m)"}
-        elif col[first_bad][1]["status"] != STATUS_OK:
-            row |= {"status": STATUS_FAILED, "reason": "the first unstable-looking point did not converge: "
-                    + col[first_bad][1]["reason"]}
-        else:
-            values = {k: v for k, v in col[0][0].items() if k != "length"}
-            lo, hi = col[first_bad - 1][0]["length"], col[first_bad][0]["length"]
-            args = (base, current, field, values, lo, hi, options.tol)
-            key = hashlib.sha256(json.dumps(["critical_length", repr(args), options.tol, __version__]).encode()).hexdigest()
-            hit = cache.get(key)
-            if hit is None:
-                tasks.append((key, args))
-            row["key"] = key
-            row["bracket_m"] = [lo, hi]
-            if hit is not None:
-                row |= hit
+        row, task = _length_row(col, other, axes[0], (base, current, field), options, cache)
         rows.append(row)
+        if task is not None:
+            tasks.append(task)
     found: dict[str, dict] = {}
 
     def arrived(key, r):
@@ -538,6 +532,31 @@ def _critical_lengths(points, results, axes, shape, base, current, field, option
         if key in found:
             row |= found[key]
     return rows
+
+
+def _length_row(col: list, other: Axis | None, length: Axis, mission_scene: tuple, options: SweepOptions,
+                cache: Cache) -> tuple[dict, tuple | None]:
+    """The critical-length row of one column of the grid (points in order of length) and the
+    task that locates it (None when the column says where it is without one, or from the cache)."""
+    row: dict[str, Any] = {"other": None if other is None else col[0][0][other.name], "status": "", "reason": "",
+                           "length_m": None}
+    if other is not None:
+        row["other_display"] = row["other"] * other.to_display
+    first_bad = next((i for i, (_, r) in enumerate(col) if r["status"] != STATUS_OK or not r["stable"]), None)
+    if first_bad is None:
+        return row | {"status": "beyond range", "reason": f"stable up to the longest length swept ({length.stop:.6g} m)"}, None
+    if first_bad == 0:
+        return row | {"status": "below range", "reason": f"not stable at the shortest length swept ({length.start:.6g} m)"}, None
+    if col[first_bad][1]["status"] != STATUS_OK:
+        return row | {"status": STATUS_FAILED, "reason": "the first unstable-looking point did not converge: "
+                      + col[first_bad][1]["reason"]}, None
+    values = {k: v for k, v in col[0][0].items() if k != "length"}
+    lo, hi = col[first_bad - 1][0]["length"], col[first_bad][0]["length"]
+    args = (*mission_scene, values, lo, hi, options.tol)
+    key = hashlib.sha256(json.dumps(["critical_length", repr(args), options.tol, __version__]).encode()).hexdigest()
+    row |= {"key": key, "bracket_m": [lo, hi]}
+    hit = cache.get(key)
+    return (row | hit, None) if hit is not None else (row, (key, args))
 
 
 def load_axes_or_table(mission: Mission, axes: Iterable[Axis]) -> tuple[Axis, ...]:

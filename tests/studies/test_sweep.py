@@ -28,6 +28,7 @@ from etcheck.rod.damped_critical import damped_critical, first_root
 from etcheck.rod.exact_straight import string_limit_load
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.stability import critical_load, critical_spin
+from etcheck.rod.undamped_straight import MODEL as UNDAMPED_MODEL
 from etcheck.scaling import scale, scene
 from etcheck.studies.sweep import STATUS_OK, STATUS_OUTSIDE, SweepOptions, solve_point, sweep
 
@@ -252,10 +253,10 @@ def test_long_and_short_lengths_in_one_sweep():
     assert g["region"][-1] == "straight-unstable" and g["load_margin"][-1] == 0.0  # 100 km spins far past critical
 
 
-def test_undamped_points_use_the_spectral_scan():
+def test_undamped_points_use_the_exact_undamped_determinant():
     m = _spin_mission(damping_time="0 s")
     res = sweep(m, (parse_option("spin", "0.05rpm:0.1rpm:2"),), SweepOptions(workers=1))
-    assert set(np.ravel(res["grid"]["model"])) == {"rung 1 (spectral scan, undamped)"}
+    assert set(np.ravel(res["grid"]["model"])) == {UNDAMPED_MODEL}
     assert all(s == STATUS_OK for s in res["grid"]["status"])
 
 
