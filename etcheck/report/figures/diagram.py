@@ -36,35 +36,14 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     (x, label) the first critical load (where b1 leaves the straight tether)."""
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6.4, 3.6))
-    seen = set()
+    seen: set[str] = set()
     for n, b in enumerate(d["branches"]):
         c = COLOURS[n % len(COLOURS)]
-        x, y = b[xkey], b[ykey]
-        mirror = ykey == "measure2" and b.get("symmetry") is None  # connecting branches come in mirror pairs
-        for xs, ys, st in _segments(x, y, b.get("stable")):
-            style = {"lw": 2.2, "ls": "-"} if st in (True, None) else {"lw": 0.9, "ls": "--"}
-            ax.plot(xs, ys, color=c, **style)
-            if mirror:
-                ax.plot(xs, -ys, color=c, alpha=0.6, **style)
-        ax.annotate(b["label"], (x[-1], y[-1]), xytext=(3, 0), textcoords="offset points", color=c, fontsize=8,
-                    fontweight="bold")
-        for q in b["special"]:
-            marker, name = MARKERS.get(q["kind"], ("o", q["kind"]))
-            xv = q["B"] if xkey == "values" else q["IB0_N_per_m"] if xkey == "IB0_N_per_m" else None
-            if xv is None:
-                continue
-            i = int(np.argmin(np.abs(np.asarray(x) - xv)))
-            ax.plot([xv], [y[i]], marker=marker, color="k", ms=5, ls="none",
-                    label=name if name not in seen else None)
-            seen.add(name)
+        _draw_branch(ax, b, xkey, ykey, c)
+        seen |= _draw_special_points(ax, b, xkey, ykey, seen)
         if pitchfork_key and b.get(pitchfork_key) is not None:
             ax.plot([b[pitchfork_key]], [0.0], marker="o", color=c, ms=4, ls="none")
-    if critical is not None:
-        ax.axvline(critical[0], color="#c0392b", ls=":", lw=1.2)
-        ax.plot([critical[0]], [0.0], marker="o", color="#c0392b", mec="k", ms=7, ls="none", zorder=6,
-                label=critical[1])
-    if mark is not None:
-        ax.plot([mark[0]], [mark[1]], marker="*", ms=13, color="#27ae60", mec="k", ls="none", zorder=7, label=mark[2])
+    _draw_marks(ax, mark, critical)
     if any(b.get("stable") is not None for b in d["branches"]):
         ax.plot([], [], color="k", lw=2.2, label="stable")
         ax.plot([], [], color="k", lw=0.9, ls="--", label="unstable")
@@ -75,6 +54,50 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7, loc="best")
     return _svg(fig)
+
+
+def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str) -> None:
+    """One branch, solid where stable (or unknown) and dashed where unstable, labelled at its end."""
+    x, y = b[xkey], b[ykey]
+    mirror = ykey == "measure2" and b.get("symmetry") is None  # connecting branches come in mirror pairs
+    for xs, ys, st in _segments(x, y, b.get("stable")):
+        style = {"lw": 2.2, "ls": "-"} if st in (True, None) else {"lw": 0.9, "ls": "--"}
+        ax.plot(xs, ys, color=colour, **style)
+        if mirror:
+            ax.plot(xs, -ys, color=colour, alpha=0.6, **style)
+    ax.annotate(b["label"], (x[-1], y[-1]), xytext=(3, 0), textcoords="offset points", color=colour, fontsize=8,
+                fontweight="bold")
+
+
+#: x key of a branch -> key of the same abscissa in its special points
+_SPECIAL_X = {"values": "B", "IB0_N_per_m": "IB0_N_per_m"}
+
+
+def _draw_special_points(ax, b: dict, xkey: str, ykey: str, seen: set[str]) -> set[str]:
+    """The branch's special points (pitchforks, folds, branch points) on the nearest branch point; each kind
+    labelled once over the figure (``seen``: kinds labelled before). Returns the kinds drawn."""
+    drawn = set()
+    if xkey not in _SPECIAL_X:
+        return drawn
+    x = np.asarray(b[xkey])
+    for q in b["special"]:
+        marker, name = MARKERS.get(q["kind"], ("o", q["kind"]))
+        xv = q[_SPECIAL_X[xkey]]
+        i = int(np.argmin(np.abs(x - xv)))
+        ax.plot([xv], [b[ykey][i]], marker=marker, color="k", ms=5, ls="none",
+                label=name if name not in seen | drawn else None)
+        drawn.add(name)
+    return drawn
+
+
+def _draw_marks(ax, mark: tuple | None, critical: tuple | None) -> None:
+    """The first critical load (x, label) and the operating point (x, y, label), where given."""
+    if critical is not None:
+        ax.axvline(critical[0], color="#c0392b", ls=":", lw=1.2)
+        ax.plot([critical[0]], [0.0], marker="o", color="#c0392b", mec="k", ms=7, ls="none", zorder=6,
+                label=critical[1])
+    if mark is not None:
+        ax.plot([mark[0]], [mark[1]], marker="*", ms=13, color="#27ae60", mec="k", ls="none", zorder=7, label=mark[2])
 
 
 def shapes_plot(shapes: list[tuple[str, dict]], length_m: float | None = None) -> str:

@@ -40,53 +40,12 @@ def margin_map(results: dict, field: str, title: str) -> str:
     plt = _plt()
     x, xlabel, xlog = _axis(results, 0)
     y, ylabel, ylog = _axis(results, 1)
-    g = results["grid"]
-    region = np.array(g["region"], dtype=object)
-    status = np.array(g["status"], dtype=object)
+    region = np.array(results["grid"]["region"], dtype=object)
     req = results["required_margin"]
     fig, ax = plt.subplots(figsize=(6.6, 4.3))
-    code = np.select([region == "straight-stable", region == "buckled-stable", region == "straight-unstable"],
-                     [2.0, 1.0, 0.0], np.nan)
-    X, Y = np.meshgrid(x, y, indexing="ij")
-    cl = results.get("critical_length")
-    edge = _exact_edge(results, x) if field == "load_margin" and not (region == "buckled-stable").any() else None
-    if edge is not None:  # two regions split by the exactly located critical length: shade them by it
-        ax.set_facecolor(UNSTABLE)
-        ax.fill_betweenx(edge[1], x[0], edge[0], color=STABLE, lw=0)
-    else:  # categories: each grid point's own colour (no invented in-between category)
-        from matplotlib.colors import ListedColormap
-
-        ax.pcolormesh(X, Y, code, shading="nearest", cmap=ListedColormap([UNSTABLE, BUCKLED, STABLE]), vmin=-0.5,
-                      vmax=2.5)
-    lm = _log_margin(results, field)
-    RX, RY, rlm = refined_log_margin(x, y, xlog, ylog, lm)
-    levels = [lv for lv in (-1, 1, 2, 3) if np.nanmin(rlm) < lv < np.nanmax(rlm)]
-    if levels:
-        cs = ax.contour(RX, RY, rlm, levels=sorted(set(levels)), colors="#555555", linewidths=0.8)
-        ax.clabel(cs, fmt=lambda v: f"{10 ** v:.3g}", fontsize=7, inline=True, inline_spacing=4)
-    cl = results.get("critical_length")
-    exact = bool(cl) and field == "load_margin" and any(r["length_m"] is not None for r in cl)
-    if np.nanmin(rlm) < 0 < np.nanmax(rlm) and not exact:
-        ax.contour(RX, RY, rlm, levels=[0], colors="k", linewidths=2.0)
-    if np.nanmin(rlm) < np.log10(req) < np.nanmax(rlm):
-        cs = ax.contour(RX, RY, rlm, levels=[np.log10(req)], colors="#1f4e79", linewidths=2.6, linestyles="--",
-                        zorder=6)
-        ax.clabel(cs, fmt=lambda v: f"required {req:g}", fontsize=8, inline=True, inline_spacing=6)
-    bad = status != "ok"
-    if bad.any():
-        ax.scatter(X[bad], Y[bad], marker="x", color="#8e1b10", s=22, zorder=5, label="no answer (failed / outside range)")
-    if exact:
-        a, b = zip(*[(r["length_m"], r["other_display"]) for r in cl if r["length_m"] is not None])
-        ax.plot(a, b, "-o", ms=2.5, lw=2.0, color="k", zorder=6,
-                label="stability boundary: critical length located exactly (Brent)")
-    _mark_operating(ax, results, x, y)
-    for name, colour in (("straight-stable", "#14632c"), ("buckled-stable", "#1f4e79"),
-                         ("straight-unstable", "#8e1b10")):
-        idx = np.argwhere(region == name)
-        if len(idx):
-            i, j = idx[len(idx) // 2]
-            ax.text(x[i], y[j], name, color=colour, fontsize=8, ha="center", va="center", fontweight="bold",
-                    bbox={"facecolor": "white", "alpha": 0.6, "edgecolor": "none", "pad": 1})
+    _shade_regions(ax, results, field, region, x, y)
+    exact = _margin_contours(ax, results, field, x, y, xlog, ylog)
+    _label_regions(ax, region, x, y)
     if not exact:
         ax.plot([], [], color="k", lw=2, label="stability boundary (margin 1)")
     ax.plot([], [], color="#1f4e79", lw=2.6, ls="--", label=f"required margin {req:g}")
@@ -102,6 +61,65 @@ def margin_map(results: dict, field: str, title: str) -> str:
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, framealpha=0.85)
     return _svg(fig)
+
+
+def _shade_regions(ax, results: dict, field: str, region: np.ndarray, x: np.ndarray, y: np.ndarray) -> None:
+    """Background: two regions split by the exactly located critical length where the load map has one,
+    otherwise each grid point's own category colour (no invented in-between category)."""
+    edge = _exact_edge(results, x) if field == "load_margin" and not (region == "buckled-stable").any() else None
+    if edge is not None:
+        ax.set_facecolor(UNSTABLE)
+        ax.fill_betweenx(edge[1], x[0], edge[0], color=STABLE, lw=0)
+        return
+    from matplotlib.colors import ListedColormap
+
+    code = np.select([region == "straight-stable", region == "buckled-stable", region == "straight-unstable"],
+                     [2.0, 1.0, 0.0], np.nan)
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    ax.pcolormesh(X, Y, code, shading="nearest", cmap=ListedColormap([UNSTABLE, BUCKLED, STABLE]), vmin=-0.5,
+                  vmax=2.5)
+
+
+def _margin_contours(ax, results: dict, field: str, x: np.ndarray, y: np.ndarray, xlog: bool, ylog: bool) -> bool:
+    """Margin contours (0.1, 10, 100, 1000 labelled; 1 the stability boundary; the required margin), the
+    points without an answer, the operating point and the exactly located critical length. Returns whether
+    the boundary was drawn from the exact critical lengths (then no margin-1 contour)."""
+    req = results["required_margin"]
+    RX, RY, rlm = refined_log_margin(x, y, xlog, ylog, _log_margin(results, field))
+    lo, hi = np.nanmin(rlm), np.nanmax(rlm)
+    levels = [lv for lv in (-1, 1, 2, 3) if lo < lv < hi]
+    if levels:
+        cs = ax.contour(RX, RY, rlm, levels=sorted(set(levels)), colors="#555555", linewidths=0.8)
+        ax.clabel(cs, fmt=lambda v: f"{10 ** v:.3g}", fontsize=7, inline=True, inline_spacing=4)
+    cl = results.get("critical_length")
+    exact = bool(cl) and field == "load_margin" and any(r["length_m"] is not None for r in cl)
+    if lo < 0 < hi and not exact:
+        ax.contour(RX, RY, rlm, levels=[0], colors="k", linewidths=2.0)
+    if lo < np.log10(req) < hi:
+        cs = ax.contour(RX, RY, rlm, levels=[np.log10(req)], colors="#1f4e79", linewidths=2.6, linestyles="--",
+                        zorder=6)
+        ax.clabel(cs, fmt=lambda v: f"required {req:g}", fontsize=8, inline=True, inline_spacing=6)
+    bad = np.array(results["grid"]["status"], dtype=object) != "ok"
+    if bad.any():
+        X, Y = np.meshgrid(x, y, indexing="ij")
+        ax.scatter(X[bad], Y[bad], marker="x", color="#8e1b10", s=22, zorder=5, label="no answer (failed / outside range)")
+    if exact:
+        a, b = zip(*[(r["length_m"], r["other_display"]) for r in cl if r["length_m"] is not None])
+        ax.plot(a, b, "-o", ms=2.5, lw=2.0, color="k", zorder=6,
+                label="stability boundary: critical length located exactly (Brent)")
+    _mark_operating(ax, results, x, y)
+    return exact
+
+
+def _label_regions(ax, region: np.ndarray, x: np.ndarray, y: np.ndarray) -> None:
+    """Each region's name at its middle grid point."""
+    for name, colour in (("straight-stable", "#14632c"), ("buckled-stable", "#1f4e79"),
+                         ("straight-unstable", "#8e1b10")):
+        idx = np.argwhere(region == name)
+        if len(idx):
+            i, j = idx[len(idx) // 2]
+            ax.text(x[i], y[j], name, color=colour, fontsize=8, ha="center", va="center", fontweight="bold",
+                    bbox={"facecolor": "white", "alpha": 0.6, "edgecolor": "none", "pad": 1})
 
 
 def _exact_edge(results: dict, x) -> tuple | None:
