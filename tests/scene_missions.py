@@ -19,7 +19,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-from hypothesis import HealthCheck, settings
+from hypothesis import HealthCheck, Phase, settings
 from hypothesis import strategies as st
 
 from etcheck.rod.parameters import F_CLAMPED
@@ -34,9 +34,12 @@ _COMMON = dict(deadline=None, derandomize=True, suppress_health_check=list(Healt
 
 
 def profile(default: int, thorough: int) -> settings:
-    """Settings of one property test: ``default`` examples normally, ``thorough`` under
-    HYPOTHESIS_PROFILE=thorough (still derandomised: the same scenes every run)."""
-    return settings(max_examples=thorough if THOROUGH else default, **_COMMON)
+    """Settings of one property test: ``default`` drawn examples normally (0: its explicit examples
+    only), ``thorough`` under HYPOTHESIS_PROFILE=thorough (still derandomised: the same scenes every run)."""
+    n = thorough if THOROUGH else default
+    if n == 0:
+        return settings(max_examples=1, phases=(Phase.explicit,), **_COMMON)
+    return settings(max_examples=n, **_COMMON)
 
 
 def reference_frequency(length: float) -> float:

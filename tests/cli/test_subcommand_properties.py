@@ -1,0 +1,197 @@
+"""Property tests of the subcommands as a user runs them (issue 11): ``etcheck diagram``, ``sweep``,
+``accuracy`` (``damping-map`` in tests/studies/test_damping_map_properties.py) on valid missions written
+as files, through ``etcheck.cli.main.main`` and, for a couple, a subprocess.
+
+Properties: exit 0/1, or 2 with a message naming the file, field or option, never 3 or a traceback;
+the JSON files are strict (no NaN/Infinity) with every number finite; the HTML renders; Ctrl-C exits
+130 with a message and no traceback; and the physics the outputs must share with the check (the sweep
+point at the mission's scene is the check's critical load; at R = 1 the primary pitchforks are double).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from hypothesis import example, given
+from hypothesis import strategies as st
+from scene_missions import (
+    assert_all_finite,
+    assert_clean_exit,
+    mission_dict,
+    profile,
+    reference_frequency,
+    scenes,
+    strict_json,
+    write_mission,
+)
+
+from etcheck import check
+from etcheck.cli.main import main
+from etcheck.input.mission import mission_from_dict
+from etcheck.rod.stability import divergence_loads
+from etcheck.scaling import scale, scene
+
+ROOT = Path(__file__).resolve().parents[2]
+SET = ROOT / "missions" / "set.toml"
+SUBCOMMANDS = ("check", "sweep", "diagram", "damping-map", "accuracy")
+#: a number printed as NaN or infinity
+NOT_FINITE = re.compile(r"\b(nan|-?inf(inity)?)\b", re.IGNORECASE)
+#: a small operating load (dimensionless B): every scene has a load margin to report
+B_OPERATING = 1e-3
+
+
+def run(argv: list[str]) -> tuple[int, str, str]:
+    """Exit code, stdout and stderr of ``etcheck ARGV`` run in this process."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = main(argv)
+        except SystemExit as exc:  # argparse
+            code = exc.code
+    return code, out.getvalue(), err.getvalue()
+
+
+def _out(command: str, folder: Path) -> list[str]:
+    return [] if command == "accuracy" else ["--out", str(folder)]
+
+
+# --- Ctrl-C and bugs: a message and an exit code, never a traceback ---------------------------------
+
+
+@pytest.mark.parametrize("command", SUBCOMMANDS)
+def test_ctrl_c_exits_130_with_a_message(command, tmp_path, monkeypatch):
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr("etcheck.input.mission.load_mission", interrupted)
+    monkeypatch.setattr("etcheck.checks.pipeline.load_mission", interrupted, raising=False)
+    code, _, err = run([command, str(SET), *_out(command, tmp_path)])
+    assert code == 130, err
+    assert "interrupted" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("command", SUBCOMMANDS)
+def test_a_bug_is_an_internal_error_without_traceback(command, tmp_path, monkeypatch):
+    def bug(*args, **kwargs):
+        raise ZeroDivisionError("planted")
+
+    monkeypatch.setattr("etcheck.input.mission.load_mission", bug)
+    monkeypatch.setattr("etcheck.checks.pipeline.load_mission", bug, raising=False)
+    code, _, err = run([command, str(SET), *_out(command, tmp_path)])
+    assert code == 3 and "internal error" in err and "planted" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("command", SUBCOMMANDS)
+def test_a_missing_mission_file_exits_2_naming_it(command, tmp_path):
+    missing = tmp_path / "no-such-mission.toml"
+    code, _, err = run([command, str(missing), *_out(command, tmp_path)])
+    assert code == 2 and "no-such-mission.toml" in err and "Traceback" not in err
+
+
+def test_subprocess_usage_errors_name_the_option(tmp_path):
+    for argv, option in ((["diagram", str(SET), "--N", "8"], "--N"),
+                         (["accuracy", str(SET), "--N", "2,8"], "--N"),
+                         (["damping-map", str(SET), "--points", "1x9"], "--points")):
+        proc = subprocess.run([sys.executable, "-m", "etcheck", *argv, *_out(argv[0], tmp_path)],
+                              capture_output=True, text=True, cwd=tmp_path, timeout=120)
+        assert proc.returncode == 2 and option in proc.stderr and "Traceback" not in proc.stderr, proc.stderr
+
+
+# --- diagram --------------------------------------------------------------------------------------
+
+
+def _spin_option(s: dict, with_units: bool) -> str:
+    """--spin as the dimensionless omega, or the same spin in rpm."""
+    if with_units:
+        return f"{s['omega'] * reference_frequency(s['length']) * 60 / (2 * math.pi)!r} rpm"
+    return repr(s["omega"])
+
+
+@profile(default=1, thorough=25)
+@given(scenes(), st.sampled_from([2, 1]), st.booleans(), st.sampled_from([None, 1.0]))
+@example(dict(R=0.5526, P=1e-3, T=0.0, gamma=0.04375, omega_factor=0.0, omega=0.0, length=100.0), 2, True, 1.0)
+def test_diagram_command_on_a_valid_scene(tmp_path_factory, s, branches, with_units, R):
+    folder = tmp_path_factory.mktemp("diagram")
+    data = mission_dict(s, B=B_OPERATING)
+    path = write_mission(data, folder)
+    # the load range ends just past the last drawn branch's static load (rung 1) at this spin and R
+    p = scale(scene(mission_from_dict(data))).params
+    loads = divergence_loads(p.with_(R=R) if R is not None else p, n=branches)
+    B_max = min(1.03 * float(loads[-1]), 1e3) if loads.size else 3.0
+    argv = ["diagram", str(path), "--spin", _spin_option(s, with_units), "--branches", str(branches),
+            "--B-max", repr(B_max), "--N", "16", "--no-stability", "--format", "html,json", "--out", str(folder / "out")]
+    if R is not None:
+        argv += ["--R", repr(R)]
+    code, out, err = run(argv)
+    assert_clean_exit(code, err, allowed=(0,))
+    if code:
+        return
+    assert not NOT_FINITE.search(out), out
+    (report,) = (folder / "out" / "scene").iterdir()
+    data = strict_json((report / "diagram.json").read_text(encoding="utf-8"))
+    assert_all_finite(data)
+    assert "</html>" in (report / "diagram.html").read_text(encoding="utf-8")
+    d = data["diagram"]
+    assert d["params"]["omega"] == pytest.approx(s["omega"], rel=1e-9, abs=1e-12)
+    assert d["params"]["R"] == (R if R is not None else pytest.approx(s["R"], rel=1e-12))
+    loads = {b["label"]: b["pitchfork_B"] for b in d["branches"] if b.get("pitchfork_B") is not None}
+    if d["params"]["R"] == 1.0 and {"b1", "b2"} <= set(loads):  # isotropic: b1 and b2 start together
+        assert loads["b1"] == pytest.approx(loads["b2"], rel=1e-9)
+
+
+# --- sweep ----------------------------------------------------------------------------------------
+
+
+@profile(default=1, thorough=25)
+@given(scenes(), st.sampled_from([3.0, 1.0, 0.01]))
+def test_sweep_command_on_a_valid_scene(tmp_path_factory, s, load):
+    """A two-point length sweep from the mission's own length: the first point is the mission."""
+    folder = tmp_path_factory.mktemp("sweep")
+    data = mission_dict(s, B=load)
+    path = write_mission(data, folder)
+    L = s["length"]
+    code, _, err = run(["sweep", str(path), "--length", f"{L!r}m:{2 * L!r}m:2", "--workers", "1", "--no-cache",
+                        "--format", "json,csv", "--out", str(folder / "out")])
+    assert_clean_exit(code, err)
+    if code == 2:
+        return
+    result = strict_json((folder / "out" / "scene" / "sweep" / "sweep.json").read_text(encoding="utf-8"))
+    assert_all_finite(result)
+    g = result["grid"]
+    assert code == (1 if g["regions"]["failed"] else 0)
+    assert sum(g["regions"].values()) == 2 == sum(g["counts"].values())
+    for status, reason in zip(g["status"], g["reason"]):
+        assert status == "ok" or reason, (status, reason)
+    csv = (folder / "out" / "scene" / "sweep" / "sweep.csv").read_text(encoding="utf-8")
+    assert len([line for line in csv.splitlines() if line and not line.startswith("#")]) == 3  # header + 2
+    # one value, one route: the sweep's first point is the check's critical load of the same mission
+    margin = check(mission_from_dict(data)).results["margins"][0]
+    swept = g["critical_load_N_per_m"][0]
+    if g["status"][0] == "ok" and margin["critical"] is not None and swept is not None:
+        rel = g["load_error"][0] / swept if swept else 0.0
+        assert swept == pytest.approx(margin["critical"], rel=rel + margin["error"], abs=1e-300)
+
+
+# --- accuracy -------------------------------------------------------------------------------------
+
+
+@profile(default=1, thorough=25)
+@given(scenes(), st.sampled_from([0.3, 3.0]))
+def test_accuracy_command_on_a_valid_scene(tmp_path_factory, s, load):
+    path = write_mission(mission_dict(s, B=load), tmp_path_factory.mktemp("accuracy"))
+    code, out, err = run(["accuracy", str(path), "--N", "8,12", "--pairs", "3"])
+    assert_clean_exit(code, err, allowed=(0,))
+    if code:
+        return
+    rows = [line.split() for line in out.splitlines() if line.split()[:1] in (["8"], ["12"])]
+    assert len(rows) == 2, out
+    for row in rows:  # N, time per solve [ms], eigenvalue error, B_c error: all finite numbers
+        assert all(math.isfinite(float(x)) for x in row), row
+    assert "automatic stability solve" in out and not NOT_FINITE.search(out), out

@@ -1,0 +1,97 @@
+"""Property tests of the damping map (``etcheck damping-map``, issue 11) over valid scenes.
+
+Scenes from :mod:`scene_missions` (R, P, tension, damping; the map sweeps the spin itself) run
+through the command (``etcheck.cli.main.main``) at its smallest grid and resolution, with the JSON
+written by the command read back. Properties: exit 0 or a refusal (2) with a message, never a
+failed solve (3) or a traceback; damping.json is strict JSON and every number in it finite; the
+map's points below B*(omega) are stable with damping (Kelvin-Tait-Chetaev, Sec. VII B) with damping
+ratios in (0, 1]; and the B*(omega) curve at omega = 0 is the check's B* (b1's secondary pitchfork,
+:func:`etcheck.checks.buckled.postbuckling_check`) within the two stated errors (issue 11: one value,
+one route). A damping map costs seconds: the default run draws one scene, the paper's SET.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import math
+
+from hypothesis import example, given
+from hypothesis import strategies as st
+from scene_missions import (
+    THOROUGH,
+    assert_all_finite,
+    assert_clean_exit,
+    mission_dict,
+    profile,
+    scenes,
+    strict_json,
+    write_mission,
+)
+
+from etcheck.checks.buckled import postbuckling_check
+from etcheck.cli.main import main
+from etcheck.input.mission import mission_from_dict
+from etcheck.rod.stability import divergence_loads
+from etcheck.scaling import scale, scene
+
+#: resolution of the map (the CLI's smallest; its B* curve is located at N and 1.5 N)
+N = 16
+#: resolution of the check's B* (the check's own, 32, in the thorough profile)
+N_CHECK = 32 if THOROUGH else 16
+
+SET = dict(R=21 / 38, P=1e-3, T=0.0, gamma=0.04375, omega_factor=0.0, omega=0.0, length=100.0)
+
+
+def run_damping_map(path, out, *options) -> tuple[int, str]:
+    """Exit code and stderr of ``etcheck damping-map PATH --out OUT --format json OPTIONS``."""
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        try:
+            code = main(["damping-map", str(path), "--out", str(out), "--format", "json", *options])
+        except SystemExit as exc:  # argparse
+            code = exc.code
+    return code, err.getvalue()
+
+
+def check_secondary_pitchfork(s: dict) -> dict:
+    """The check's B* of scene ``s`` at rest: :func:`postbuckling_check` (as the check calls it for an
+    operating load within the required margin of the first critical load)."""
+    scaled = scale(scene(mission_from_dict(mission_dict(s))))
+    p = scaled.params.with_(omega=0.0)
+    B_c = float(divergence_loads(p, n=1)[0])
+    return postbuckling_check(p.with_(B=0.6 * B_c), scaled.scales, B_c, 2.0, N=N_CHECK)
+
+
+@profile(default=0, thorough=12)
+@given(scenes(spin=False).filter(lambda s: s["gamma"] > 0), st.sampled_from([0.3, 1.5]))
+@example(SET, 0.3)
+def test_damping_map_of_a_valid_scene(tmp_path_factory, s, spin_max):
+    folder = tmp_path_factory.mktemp("damping")
+    path = write_mission(mission_dict(s), folder)
+    code, err = run_damping_map(path, folder / "out", "--points", "2x2", "--gammas", repr(s["gamma"]),
+                                "--spin-max", repr(spin_max), "--N", str(N))
+    assert_clean_exit(code, err, allowed=(0,))
+    if code:
+        return
+    data = strict_json((folder / "out" / "scene" / "damping-map" / "damping.json").read_text(encoding="utf-8"))
+    assert_all_finite(data)
+    m = data["study"]
+    assert len(m["omega"]) == 2 and len(m["B"]) == 2 and m["gammas"] == [s["gamma"]]
+    assert m["largest_error"] is not None
+    stars = m["secondary_pitchfork_B"]
+    assert len(stars) == len(m["omega"]) == len(m["secondary_pitchfork_error"])
+    # with damping b1 is stable between its pitchfork and B*: no point of the map grows
+    assert m["unstable_points"] == 0
+    zeta = [z for plane in m["damping_ratio"] for row in plane for z in row if z is not None]
+    assert all(0 < z <= 1 for z in zeta), zeta
+    # B*(omega) at rest: the check's B*, within the two stated errors
+    star = check_secondary_pitchfork(s)
+    if stars[0] is None or star.get("secondary_pitchfork_B") is None:
+        assert stars[0] is None and star.get("secondary_pitchfork_B") is None, (stars[0], star)
+        return
+    B_check = star["secondary_pitchfork_B"]
+    tolerance = m["secondary_pitchfork_error"][0] + star["secondary_pitchfork_error"] * B_check
+    assert abs(stars[0] - B_check) <= tolerance, (stars[0], B_check, tolerance)
+    assert math.isfinite(tolerance)
+
