@@ -43,6 +43,7 @@ from etcheck.rod.branches import (
     locate,
     primary_branches,
     resolution_check,
+    state_at,
 )
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import spectrum
@@ -239,7 +240,8 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: 
             if start is not None and params.B > start.load:
                 raise SolverError(f"rung 2: {why}")
             return {"available": False, "reason": why}
-    B, st = locate(branch, lambda s: s.params.B, params.B)
+    st = state_at(branch, params.B)
+    B = st.params.B
     check = resolution_check(branch)
     ms = eq.measures(st)
     sp = spectrum(st.params, base=st, k=8, tol=1e-6)
@@ -364,7 +366,7 @@ def buckled_point(params: RodParameters, N: int = 24) -> dict:
     start, branch, why = _b1_to(params, N)
     if branch is None:
         return out | {"stable": False if start is None else None, "reason": why}
-    _, st = locate(branch, lambda s: s.params.B, params.B)
+    st = state_at(branch, params.B)
     flag, _, _ = state_stability(st, params.gamma)
     return out | {"stable": flag, "max_deflection": eq.measures(st).max_deflection,
                   "reason": "" if flag is not None else "spectrum not converged"}

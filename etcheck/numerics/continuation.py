@@ -44,6 +44,7 @@ import time
 import warnings
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from enum import StrEnum
 
 import numpy as np
 import scipy.linalg as sla
@@ -53,6 +54,7 @@ __all__ = [
     "Point",
     "SpecialPoint",
     "ContinuationResult",
+    "StopReason",
     "continuation",
     "switch_branch",
     "correct",
@@ -150,14 +152,33 @@ class SpecialPoint:
     reason: str = ""
 
 
+class StopReason(StrEnum):
+    """Why a continuation ended (the values are what results files show)."""
+
+    MAX_POINTS = "max_points"
+    STEP_UNDERFLOW = "step size underflow"
+    PARAMETER_BOUND = "parameter bound"
+    STOP_CONDITION = "stop condition"
+    SPECIAL_POINT = "special point"  # one of ContinuationOptions.stop_on was located
+    SWITCH_FAILED = "branch switch failed"
+
+
 @dataclass(frozen=True, eq=False)
 class ContinuationResult:
-    """Accepted points, located special points, why it stopped, wall time [s]."""
+    """Accepted points, located special points, why it stopped, wall time [s], and
+    the kind of special point it stopped at (``stop_kind``, "" unless
+    ``reason`` is SPECIAL_POINT)."""
 
     points: list
     special: list
-    reason: str
+    reason: StopReason
     time: float
+    stop_kind: str = ""
+
+    @property
+    def description(self) -> str:
+        """The stop reason in words, e.g. "parameter bound" or "special point (bp)"."""
+        return f"{self.reason} ({self.stop_kind})" if self.reason is StopReason.SPECIAL_POINT else str(self.reason)
 
     @property
     def p(self) -> np.ndarray:
@@ -185,9 +206,7 @@ def tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray,
     A = _bordered(Ju, Jp, W * tau0)
     e = np.zeros(A.shape[0])
     e[-1] = 1.0
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", sla.LinAlgWarning)
-        t = sla.solve(A, e)
+    t = np.linalg.solve(A, e)
     return t / math.sqrt(float(np.sum(W * t * t))), Ju, Jp
 
 
@@ -207,10 +226,8 @@ def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, 
         g = float(row[:m] @ xi + row[m] * (p - p0) - ds)
         Ju, Jp = problem.jacobian(u, p)
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", sla.LinAlgWarning)
-                d = sla.solve(_bordered(Ju, Jp, row), -np.append(r, g))
-        except (sla.LinAlgError, ValueError):
+            d = np.linalg.solve(_bordered(Ju, Jp, row), -np.append(r, g))
+        except (np.linalg.LinAlgError, ValueError):
             return u, p, math.inf, it, False
         if not np.all(np.isfinite(d)):
             return u, p, math.inf, it, False
@@ -234,10 +251,8 @@ def correct_at(problem, u, p: float, tol: float, max_newton: int):
         r = problem.residual(u, p)
         Ju, _ = problem.jacobian(u, p)
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", sla.LinAlgWarning)
-                d = sla.solve(Ju, -r)
-        except (sla.LinAlgError, ValueError):
+            d = np.linalg.solve(Ju, -r)
+        except (np.linalg.LinAlgError, ValueError):
             return u, p, math.inf, it, False
         u = problem.retract(u, d)
         if float(np.max(np.abs(d))) < tol:
@@ -282,22 +297,82 @@ def _make_point(problem, u, p, tau_prev, W, s, residual, newton, opts) -> Point:
     return Point(u, float(p), tau, residual, newton, s, tests)
 
 
-def illinois_update(x: float, fx: float, lo: float, hi: float, flo: float, fhi: float) -> tuple:
+def illinois_update(x: float, fx: float, lo: float, hi: float, flo: float, fhi: float, last: int = 0) -> tuple:
     """One bracket update of the Illinois (modified regula falsi) method: keep the
-    sign change in [lo, hi] and halve the stale end's value."""
+    sign change in [lo, hi]; when the same end is replaced twice in a row (``last``:
+    -1 lo, +1 hi, 0 none), halve the value at the stale end. Returns
+    (lo, hi, flo, fhi, replaced end)."""
     if (fx > 0) == (flo > 0):
-        return x, hi, fx, 0.5 * fhi
-    return lo, x, 0.5 * flo, fx
+        return x, hi, fx, (0.5 * fhi if last == -1 else fhi), -1
+    return lo, x, (0.5 * flo if last == 1 else flo), fx, 1
 
 
 #: a special point counts as located when its arclength bracket is narrower than this (weighted norm)
 LOCATE_WIDTH = 1e-7
+#: failed or jumped trials after which :func:`_locate` gives up
+_MAX_FAILURES = 12
+
+
+@dataclass
+class _Bracket:
+    """The current bracket of :func:`_locate`: arclength ends (from a), Illinois values,
+    true test values and converged points at the ends."""
+
+    lo: float
+    hi: float
+    flo: float
+    fhi: float
+    f0lo: float
+    f0hi: float
+    plo: Point
+    phi: Point
+    last: int = 0  # end replaced by the previous update: -1 lo, +1 hi
+
+    def trial(self, failures: int) -> float:
+        """Next arclength: Illinois secant, or after failed trials ever closer to the ends."""
+        lo, hi = self.lo, self.hi
+        if failures:
+            frac = 0.5 ** (1 + (failures + 1) // 2)
+            return lo + (frac if failures % 2 else 1.0 - frac) * (hi - lo)
+        sig = hi - self.fhi * (hi - lo) / (self.fhi - self.flo) if self.fhi != self.flo else 0.5 * (lo + hi)
+        return sig if lo < sig < hi else 0.5 * (lo + hi)
+
+    def update(self, sig: float, q: Point, fq: float) -> None:
+        if fq == 0.0:
+            self.lo = self.hi = sig
+            self.plo = self.phi = q
+            self.f0lo = self.f0hi = 0.0
+            return
+        self.lo, self.hi, self.flo, self.fhi, self.last = illinois_update(sig, fq, self.lo, self.hi, self.flo,
+                                                                          self.fhi, self.last)
+        if self.last == -1:
+            self.f0lo, self.plo = fq, q
+        else:
+            self.f0hi, self.phi = fq, q
+
+
+def _trial_point(problem, br: _Bracket, s_a: float, sig: float, name: str, W, opts) -> Point | None:
+    """The branch point at arclength sig inside the bracket, or None when the corrector
+    failed or landed on a crossing branch (its tangent turned away too far)."""
+    # predictor-corrector from the nearer converged bracket end along its own tangent: a short step
+    # keeps the trial in the basin of this branch next to a branch point
+    base, step = (br.plo, sig - br.lo) if sig - br.lo <= br.hi - sig else (br.phi, sig - br.hi)
+    u, p, rn, it, ok = correct(problem, base.u, base.p, base.tau, step, W, opts.tol, max(40, opts.max_newton + 4))
+    if not ok:
+        return None
+    q = _make_point(problem, u, p, base.tau, W, s_a + sig, rn, it, opts)
+    cos_end = float(np.sum(W * br.plo.tau * br.phi.tau))
+    if float(np.sum(W * base.tau * q.tau)) < min(cos_end, math.cos(opts.max_angle)) - 0.2 or name not in q.tests:
+        return None  # left the branch (landed on a crossing one)
+    return q
 
 
 def _locate(problem, a: Point, b: Point, name: str, W, opts) -> SpecialPoint:
     """Bracketed root of tests[name] between the accepted points a and b.
 
-    Illinois (modified regula falsi) on the arclength from a. Each trial is
+    Illinois (modified regula falsi: the value at an end kept twice in a row
+    is halved, which keeps the convergence superlinear) on the arclength from
+    a. Each trial is
     corrected onto the branch by a short pseudo-arclength step from the
     nearer converged end of the current bracket, along that end's tangent
     (up to 40 Newton iterations: next to a branch point the bordered matrix
@@ -310,62 +385,112 @@ def _locate(problem, a: Point, b: Point, name: str, W, opts) -> SpecialPoint:
     linearly between the two converged bracket ends; the point is
     ``converged`` when the bracket is narrower than ``LOCATE_WIDTH``.
     """
-    lo, hi = 0.0, b.s - a.s
-    flo, fhi = a.tests[name], b.tests[name]
-    f0lo, f0hi = flo, fhi  # true (not Illinois-halved) values at the ends
-    plo, phi = a, b
+    fa, fb = a.tests[name], b.tests[name]
+    br = _Bracket(0.0, b.s - a.s, fa, fb, fa, fb, a, b)
     failures = 0
     reason = ""
     for _ in range(100):
-        if hi - lo <= opts.locate_tol:
+        if br.hi - br.lo <= opts.locate_tol:
             break
-        if failures:
-            # after a failed or jumped trial: probe ever closer to the converged ends, alternately
-            frac = 0.5 ** (1 + (failures + 1) // 2)
-            sig = lo + (frac if failures % 2 else 1.0 - frac) * (hi - lo)
-        else:
-            sig = hi - fhi * (hi - lo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
-            if not (lo < sig < hi):
-                sig = 0.5 * (lo + hi)
-        # predictor-corrector from the nearer converged bracket end along its own tangent: a short step
-        # keeps the trial in the basin of this branch next to a branch point
-        base, step = (plo, sig - lo) if sig - lo <= hi - sig else (phi, sig - hi)
-        u, p, rn, it, ok = correct(problem, base.u, base.p, base.tau, step, W, opts.tol, max(40, opts.max_newton + 4))
-        q = None
-        if ok:
-            q = _make_point(problem, u, p, base.tau, W, a.s + sig, rn, it, opts)
-            cos_end = float(np.sum(W * plo.tau * phi.tau))
-            if float(np.sum(W * base.tau * q.tau)) < min(cos_end, math.cos(opts.max_angle)) - 0.2 or name not in q.tests:
-                q = None  # left the branch (landed on a crossing one)
+        sig = br.trial(failures)
+        q = _trial_point(problem, br, a.s, sig, name, W, opts)
         if q is None:
             failures += 1
-            if failures > 12:
-                reason = (f"corrector failed or left the branch {failures} times; bracket width {hi - lo:.1e} "
-                          f"> {LOCATE_WIDTH:.0e}")
+            if failures > _MAX_FAILURES:
+                reason = (f"corrector failed or left the branch {failures} times; bracket width "
+                          f"{br.hi - br.lo:.1e} > {LOCATE_WIDTH:.0e}")
                 break
             continue
         failures = 0
-        fq = q.tests[name]
-        if fq == 0.0:
-            lo = hi = sig
-            plo = phi = q
-            f0lo = f0hi = 0.0
+        br.update(sig, q, q.tests[name])
+        if br.lo == br.hi:
             break
-        if (fq > 0) == (flo > 0):
-            lo, flo, f0lo, plo = sig, fq, fq, q
-            fhi *= 0.5
-        else:
-            hi, fhi, f0hi, phi = sig, fq, fq, q
-            flo *= 0.5
-    width = hi - lo
-    t = f0lo / (f0lo - f0hi) if f0lo != f0hi else 0.5
-    p_root = plo.p + t * (phi.p - plo.p)
-    best = plo if abs(f0lo) <= abs(f0hi) else phi
+    return _located(name, a, br, reason)
+
+
+def _located(name: str, a: Point, br: _Bracket, reason: str) -> SpecialPoint:
+    """The special point of a final bracket: root interpolated between its converged ends."""
+    width = br.hi - br.lo
+    t = br.f0lo / (br.f0lo - br.f0hi) if br.f0lo != br.f0hi else 0.5
+    p_root = br.plo.p + t * (br.phi.p - br.plo.p)
+    best = br.plo if abs(br.f0lo) <= abs(br.f0hi) else br.phi
     converged = width <= LOCATE_WIDTH
     if not converged and not reason:
         reason = f"bracket width {width:.1e} > {LOCATE_WIDTH:.0e} after the iteration limit"
-    return SpecialPoint(name, best, -1, (a.s + lo, a.s + hi), float(best.tests[name]), float(p_root),
-                        (float(plo.p), float(phi.p)), converged, reason)
+    return SpecialPoint(name, best, -1, (a.s + br.lo, a.s + br.hi), float(best.tests[name]), float(p_root),
+                        (float(br.plo.p), float(br.phi.p)), converged, reason)
+
+
+def _clip_to_bounds(a: Point, ds: float, opts) -> tuple[float, float | None]:
+    """Step from a, shortened so that the predictor does not cross a parameter bound
+    (then also the bound it would reach)."""
+    step, clipped = ds, None
+    tp = float(a.tau[-1])
+    for bound in (opts.p_max, opts.p_min):
+        if tp != 0.0 and math.isfinite(bound) and (a.p + step * tp - bound) * (a.p - bound) < 0:
+            step = (bound - a.p) / tp
+            clipped = bound
+    return step, clipped
+
+
+def _place_on_bound(problem, a: Point, b: Point, step: float, W, opts) -> Point | None:
+    """b moved back onto the parameter bound it overshot (None if that fails)."""
+    bound = opts.p_max if b.p > opts.p_max else opts.p_min
+    frac = (bound - a.p) / (b.p - a.p)
+    try:
+        u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, frac * step, W, opts.tol, opts.max_newton + 4)
+        if ok:
+            u, p, rn, it, ok = correct_at(problem, u, bound, opts.tol, opts.max_newton + 4)
+    except ValueError:
+        return None
+    return _make_point(problem, u, p, a.tau, W, a.s + frac * step, rn, it, opts) if ok else None
+
+
+def _advance(problem, a: Point, ds: float, W, opts) -> tuple[Point | None, int, bool]:
+    """One accepted step from a: (new point or None when rejected, Newton iterations,
+    whether it lies on a parameter bound)."""
+    step, clipped = _clip_to_bounds(a, ds, opts)
+    try:
+        u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, step, W, opts.tol, opts.max_newton)
+        if ok and clipped is not None and abs(p - clipped) <= 0.1 * abs(step * float(a.tau[-1])):
+            u, p, rn, it, ok = correct_at(problem, u, clipped, opts.tol, opts.max_newton + 4)
+        else:
+            clipped = None
+    except ValueError:  # parameter left its admissible range
+        return None, 0, False
+    if not ok:
+        return None, it, False
+    b = _make_point(problem, u, p, a.tau, W, a.s + step, rn, it, opts)
+    if float(np.sum(W * a.tau * b.tau)) < math.cos(opts.max_angle) and ds > opts.ds_min:
+        return None, it, False
+    if clipped is None and (b.p > opts.p_max or b.p < opts.p_min):
+        placed = _place_on_bound(problem, a, b, step, W, opts)
+        if placed is not None:
+            return placed, it, True
+    return b, it, clipped is not None
+
+
+def _special_between(problem, a: Point, b: Point, index: int, W, opts) -> tuple[list, str]:
+    """Special points located between consecutive points a and b (sign changes of their
+    tests), and the first kind among them at which the continuation stops ("" if none)."""
+    found, stop_kind = [], ""
+    for name, fa in a.tests.items():
+        fb = b.tests.get(name)
+        if fb is None or fa == 0.0 or (fa > 0) == (fb > 0):
+            continue
+        found.append(replace(_locate(problem, a, b, name, W, opts), index=index))
+        if name in opts.stop_on and not stop_kind:
+            stop_kind = name
+    return found, stop_kind
+
+
+def _next_step(ds: float, newton: int, opts) -> float:
+    """Grow the step after fast convergence, shrink it after slow."""
+    if newton <= 3:
+        return min(ds * 1.5, opts.ds_max)
+    if newton >= 6:
+        return max(ds * 0.5, opts.ds_min)
+    return ds
 
 
 def continuation(problem, u0, p0: float, tau0: np.ndarray, opts: ContinuationOptions,
@@ -374,7 +499,7 @@ def continuation(problem, u0, p0: float, tau0: np.ndarray, opts: ContinuationOpt
 
     tau0 (shape (m+1,)) gives the initial direction (it is replaced by the true
     tangent oriented like it). Returns every accepted point and the special
-    points located between them.
+    points located between them, and why it stopped (:class:`StopReason`).
     """
     t_start = time.perf_counter()
     m = np.asarray(tau0).size - 1
@@ -384,73 +509,35 @@ def continuation(problem, u0, p0: float, tau0: np.ndarray, opts: ContinuationOpt
     pts = [_make_point(problem, u0, p0, tau0, W, 0.0, first_residual, 0, opts)]
     special: list[SpecialPoint] = []
     ds = abs(opts.ds)
-    reason = "max_points"
+    reason, kind = StopReason.MAX_POINTS, ""
     while len(pts) < opts.max_points:
         a = pts[-1]
-        step = ds
-        tp = float(a.tau[-1])
-        clipped = None
-        for bound in (opts.p_max, opts.p_min):
-            if tp != 0.0 and math.isfinite(bound) and (a.p + step * tp - bound) * (a.p - bound) < 0:
-                step = (bound - a.p) / tp
-                clipped = bound
-        try:
-            u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, step, W, opts.tol, opts.max_newton)
-            if ok and clipped is not None and abs(p - clipped) <= 0.1 * abs(step * tp):
-                u, p, rn, it, ok = correct_at(problem, u, clipped, opts.tol, opts.max_newton + 4)
-            else:
-                clipped = None
-        except ValueError:  # parameter left its admissible range
-            ok = False
-        if ok:
-            b = _make_point(problem, u, p, a.tau, W, a.s + step, rn, it, opts)
-            cosang = float(np.sum(W * a.tau * b.tau))
-            if cosang < math.cos(opts.max_angle) and ds > opts.ds_min:
-                ok = False
-        if not ok:
+        b, it, on_bound = _advance(problem, a, ds, W, opts)
+        if b is None:
             ds *= 0.5
             if ds < opts.ds_min:
-                reason = "step size underflow"
+                reason = StopReason.STEP_UNDERFLOW
                 break
             continue
-        # parameter bounds: place the last point on the bound
-        hit_bound = clipped is not None
-        if not hit_bound and (b.p > opts.p_max or b.p < opts.p_min):
-            bound = opts.p_max if b.p > opts.p_max else opts.p_min
-            frac = (bound - a.p) / (b.p - a.p)
-            try:
-                u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, frac * step, W, opts.tol, opts.max_newton + 4)
-                if ok:
-                    u, p, rn, it, ok = correct_at(problem, u, bound, opts.tol, opts.max_newton + 4)
-            except ValueError:
-                ok = False
-            if ok:
-                b = _make_point(problem, u, p, a.tau, W, a.s + frac * step, rn, it, opts)
-                hit_bound = True
-        hit_special = None
-        for name, fa in a.tests.items():
-            fb = b.tests.get(name)
-            if fb is None or fa == 0.0 or (fa > 0) == (fb > 0):
-                continue
-            sp = _locate(problem, a, b, name, W, opts)
-            special.append(replace(sp, index=len(pts) - 1))
-            if name in opts.stop_on:
-                hit_special = name
+        found, kind = _special_between(problem, a, b, len(pts) - 1, W, opts)
+        special.extend(found)
         pts.append(b)
-        if hit_special is not None:
-            reason = f"special point ({hit_special})"
+        stop = _stop_reason(b, on_bound, kind, opts)
+        if stop is not None:
+            reason = stop
             break
-        if hit_bound or b.p >= opts.p_max or b.p <= opts.p_min:
-            reason = "parameter bound"
-            break
-        if opts.stop is not None and opts.stop(b.u, b.p):
-            reason = "stop condition"
-            break
-        if it <= 3:
-            ds = min(ds * 1.5, opts.ds_max)
-        elif it >= 6:
-            ds = max(ds * 0.5, opts.ds_min)
-    return ContinuationResult(pts, special, reason, time.perf_counter() - t_start)
+        ds = _next_step(ds, it, opts)
+    return ContinuationResult(pts, special, reason, time.perf_counter() - t_start, kind)
+
+
+def _stop_reason(b: Point, on_bound: bool, kind: str, opts) -> StopReason | None:
+    if kind:
+        return StopReason.SPECIAL_POINT
+    if on_bound or b.p >= opts.p_max or b.p <= opts.p_min:
+        return StopReason.PARAMETER_BOUND
+    if opts.stop is not None and opts.stop(b.u, b.p):
+        return StopReason.STOP_CONDITION
+    return None
 
 
 def switch_branch(problem, u_bp, p_bp: float, direction: np.ndarray, opts: ContinuationOptions,
@@ -472,7 +559,7 @@ def switch_branch(problem, u_bp, p_bp: float, direction: np.ndarray, opts: Conti
             break
         ds *= 0.5
     else:
-        return ContinuationResult([], [], "branch switch failed", 0.0)
+        return ContinuationResult([], [], StopReason.SWITCH_FAILED, 0.0)
     # tangent at the new point, oriented away from the branch point
     res = continuation(problem, u, p, d, opts, first_residual=rn)
     return res

@@ -429,7 +429,7 @@ def _b1_reference(params: RodParameters, B_ref: float, N: int):
     p0 = params.with_(omega=0.0, gamma=0.0, T=params.T)
     start = br.primary_branches(p0, 1, N)[0]
     b = br.continue_branch(p0, start, stop=(0.0, B_ref + 0.2), ds=0.05)
-    return br.locate(b, lambda s: s.params.B, B_ref)[1]
+    return br.state_at(b, B_ref)
 
 
 _OMEGA_BRANCH_CACHE: dict = {}
@@ -471,13 +471,12 @@ def b1_spin_branch(params: RodParameters, B_ref: float, omega_max: float, N: int
 
 
 def _spin_state(params: RodParameters, B_ref: float, omega: float, N: int) -> eq.Equilibrium:
-    """b1 at exactly (B_ref, omega): located on the omega branch, then Newton at the
-    exact parameters (the secant location stops at a tolerance in arclength, which
-    can leave omega off by ~1e-4 and shift B* by ~1e-3 at high spin)."""
+    """b1 at exactly (B_ref, omega): Newton at that spin from the omega branch
+    (:func:`~etcheck.rod.branches.state_at`), then in the full space at the exact parameters."""
     bw = b1_spin_branch(params, B_ref, omega, N)
     if omega == 0:
         return bw.states[0]
-    st = br.locate(bw, lambda s: s.params.omega, omega)[1]
+    st = br.state_at(bw, omega)
     return eq.solve_equilibrium(st.params.with_(omega=float(omega), B=float(B_ref)), st)
 
 
@@ -492,15 +491,16 @@ def b1_state(params: RodParameters, B: float, omega: float, N: int = 32, B_ref: 
         return st
     b = br.continue_branch(st.params, st, parameter="B", stop=(min(B, B_ref) - 1e-9, max(B, B_ref) + 1e-9),
                            which="S1", ds=0.05, ds_max=0.2, direction=1.0 if B > B_ref else -1.0)
-    st = br.locate(b, lambda s: s.params.B, B)[1]
+    st = br.state_at(b, B)
     return eq.solve_equilibrium(st.params.with_(B=float(B)), st)
 
 
 def _b1_in_B(params: RodParameters, omega: float, N: int, B_ref: float, B_max: float, lower: float | None = None):
-    """b1 at fixed omega continued in B upward from B_ref to B_max (and downward to ``lower``)."""
+    """b1 at fixed omega continued in B upward from B_ref to its first secondary pitchfork
+    (or B_max), and downward to ``lower``."""
     st = _spin_state(params, B_ref, omega, N)
     up = br.continue_branch(st.params, st, parameter="B", stop=(B_ref - 1e-9, B_max), which="S1", ds=0.05,
-                            ds_max=0.25)
+                            ds_max=0.25, stop_on=("break",))
     down = None
     if lower is not None and lower < B_ref:
         down = br.continue_branch(st.params, st, parameter="B", stop=(lower, B_ref + 1e-9), which="S1", ds=0.05,
@@ -520,9 +520,10 @@ def first_break(branch, above: float = -math.inf) -> br.RodBranchPoint | None:
 
 
 def _b1_direct(params: RodParameters, N: int, B_max: float):
-    """b1 from its pitchfork at the scene's omega and T, continued in B up to B_max (Fix(S1))."""
+    """b1 from its pitchfork at the scene's omega and T, continued in B up to its first secondary
+    pitchfork (or B_max; Fix(S1))."""
     start = next(s for s in br.primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
-    return br.continue_branch(params, start, stop=(0.0, B_max), N=N)
+    return br.continue_branch(params, start, stop=(0.0, B_max), N=N, stop_on=("break",))
 
 
 @single_blas_thread

@@ -51,7 +51,7 @@ from functools import lru_cache
 
 import numpy as np
 import scipy.linalg as sla
-import scipy.sparse as sp
+import scipy.sparse as sparse
 from scipy.sparse.csgraph import connected_components
 
 from ..numerics.continuation import (
@@ -60,6 +60,7 @@ from ..numerics.continuation import (
     SpecialPoint,
     continuation,
     correct,
+    correct_at,
     illinois_update,
     signed_smallness,
     switch_branch,
@@ -85,6 +86,7 @@ __all__ = [
     "continue_branch",
     "connecting_branch",
     "locate",
+    "state_at",
     "liftoff_spin",
     "trivial_branch_points",
     "ResolutionCheck",
@@ -162,13 +164,13 @@ class SymmetryBases:
 
 def _components(A: np.ndarray) -> list[np.ndarray]:
     """Index sets of the diagonal blocks of A (connected components of the pattern of A + A^T)."""
-    pattern = sp.csr_array((A != 0) | (A.T != 0))
+    pattern = sparse.csr_array((A != 0) | (A.T != 0))
     n, labels = connected_components(pattern, directed=False)
     order = np.argsort(labels, kind="stable")
     return np.split(order, np.cumsum(np.bincount(labels, minlength=n))[:-1])
 
 
-def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sp.csc_array:
+def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sparse.csc_array:
     """Orthonormal basis (columns) of ker(A - sign I) for A block diagonal on ``blocks``:
     one small SVD per block, so the basis is as sparse as A's blocks (most are 1 x 1 or
     2 x 2: the signed permutation s -> 1 - s)."""
@@ -181,7 +183,7 @@ def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sp.csc_
         cols.append(c + k)
         vals.append(Z[r, c])
         k += Z.shape[1]
-    return sp.csc_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(A.shape[0], k))
+    return sparse.csc_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(A.shape[0], k))
 
 
 @lru_cache(maxsize=16)
@@ -374,7 +376,7 @@ def _branch(name, problem: _RodProblem, res: ContinuationResult) -> Branch:
         name=name, parameter=problem.parameter, params=problem.params, N=problem.N, which=problem.which,
         values=res.p, measure1=np.array([m.measure1 for m in ms]), measure2=np.array([m.measure2 for m in ms]),
         max_deflection=np.array([m.max_deflection for m in ms]), states=states, special=tuple(special),
-        time=res.time, reason=res.reason,
+        time=res.time, reason=res.description,
         residual=max((pt.residual for pt in res.points), default=math.nan), result=res, problem=problem,
     )
 
@@ -449,10 +451,10 @@ def primary_branches(params: RodParameters, k: int = 1, N: int = 40) -> tuple[Br
 # --- continuation -----------------------------------------------------------------------
 
 
-def _options(ds, ds_max, p_range, max_points, extra_stop=None) -> ContinuationOptions:
+def _options(ds, ds_max, p_range, max_points, extra_stop=None, stop_on: tuple = ()) -> ContinuationOptions:
     lo, hi = p_range
     return ContinuationOptions(ds=ds, ds_min=1e-7, ds_max=ds_max, p_min=lo, p_max=hi, max_points=max_points,
-                               tol=1e-10, stop=extra_stop)
+                               tol=1e-10, stop=extra_stop, stop_on=tuple(stop_on))
 
 
 def _stop_fn(max_measure1: float | None):
@@ -465,7 +467,7 @@ def _stop_fn(max_measure1: float | None):
 def continue_branch(params: RodParameters, start, parameter: str = "B", stop: tuple = (-math.inf, math.inf),
                     N: int | None = None, ds: float = 0.02, ds_max: float = 0.3, max_points: int = 400,
                     max_measure1: float | None = None, amplitude: float = 0.02,
-                    direction: float = 1.0, which: str | None = None) -> Branch:
+                    direction: float = 1.0, which: str | None = None, stop_on: tuple = ()) -> Branch:
     """Continue a branch of relative equilibria in ``parameter`` (B, omega, T or R).
 
     ``start`` is a :class:`BranchStart` (leave the straight rod at its
@@ -476,12 +478,13 @@ def continue_branch(params: RodParameters, start, parameter: str = "B", stop: tu
     own parameters; ``which`` = "S1"/"S2"/"b1"/"b2" restricts to that
     symmetry class, None continues in the full space). ``direction`` = +1/-1
     orients the first tangent along +/- the parameter. ``stop`` = (p_min, p_max)
-    bounds the parameter, ``max_measure1`` stops when measure_1 exceeds it.
-    Dimensionless. Returns a :class:`Branch` with located folds ("fold"),
+    bounds the parameter, ``max_measure1`` stops when measure_1 exceeds it,
+    ``stop_on`` (kinds, e.g. ("break",)) at the first located special point
+    of those kinds. Dimensionless. Returns a :class:`Branch` with located folds ("fold"),
     restricted branch points ("bp") and symmetry-breaking branch points
     ("break").
     """
-    opts = _options(ds, ds_max, stop, max_points, _stop_fn(max_measure1))
+    opts = _options(ds, ds_max, stop, max_points, _stop_fn(max_measure1), stop_on)
     if isinstance(start, BranchStart):
         if parameter != "B":
             raise ValueError("a branch starts at a pitchfork in B; continue it in another parameter afterwards")
@@ -584,7 +587,7 @@ def locate(branch: Branch, fn, target: float, tol: float = 1e-12) -> tuple[float
     W = weights(m, ContinuationOptions())
     prob = branch.problem
     lo, hi = 0.0, bpt.s - a.s
-    flo, fhi = vals[i], vals[i + 1]
+    flo, fhi, last = vals[i], vals[i + 1], 0
     best = (bpt.p, bpt.u)
     for _ in range(60):
         sig = hi - fhi * (hi - lo) / (fhi - flo) if fhi != flo else 0.5 * (lo + hi)
@@ -598,10 +601,37 @@ def locate(branch: Branch, fn, target: float, tol: float = 1e-12) -> tuple[float
         best = (p, u)
         if abs(fq) < tol:
             break
-        lo, hi, flo, fhi = illinois_update(sig, fq, lo, hi, flo, fhi)
+        lo, hi, flo, fhi, last = illinois_update(sig, fq, lo, hi, flo, fhi, last)
         if hi - lo < 1e-14:
             break
     return float(best[0]), best[1]
+
+
+@single_blas_thread
+def state_at(branch: Branch, value: float, tol: float = 1e-11) -> eq.Equilibrium:
+    """The state of ``branch`` where its parameter equals ``value`` (first crossing; dimensionless).
+
+    Predicted along the tangent of the nearer of the two bracketing points and
+    corrected by Newton at the fixed parameter (same symmetry restriction):
+    one short solve instead of the secant search of :func:`locate`, which it
+    falls back to where the tangent has no parameter component (a fold).
+    """
+    vals = np.asarray(branch.values) - value
+    idx = np.nonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) <= 0)[0]
+    if idx.size == 0:
+        raise ValueError(f"{branch.parameter} = {value} not reached on branch {branch.name} "
+                         f"({branch.values.min():.6g} .. {branch.values.max():.6g})")
+    i = int(idx[0])
+    pts = branch.result.points
+    a = pts[i] if abs(vals[i]) <= abs(vals[i + 1]) else pts[i + 1]
+    prob = branch.problem
+    tp = float(a.tau[-1])
+    if abs(tp) > 1e-3:
+        u = prob.retract(a.u, (value - a.p) / tp * a.tau[:-1])
+        u, _, rn, it, ok = correct_at(prob, u, float(value), tol, 12)
+        if ok:
+            return eq.Equilibrium(prob.at(value), u.x, u.D, u.F, u.M, rn, it, True)
+    return locate(branch, lambda s: getattr(s.params, branch.parameter), value)[1]
 
 
 @single_blas_thread
@@ -649,8 +679,6 @@ class ResolutionCheck:
 def resolution_check(branch: Branch, N_check: int | None = None, stride: int = 4) -> ResolutionCheck:
     """Re-solve every ``stride``-th point of ``branch`` (and its last) at N_check
     (default N + max(8, N // 2)) and compare the measures (dimensionless)."""
-    from ..numerics.continuation import correct_at
-
     M = branch.N + max(8, branch.N // 2) if N_check is None else int(N_check)
     prob = _RodProblem(branch.params, branch.parameter, M, branch.which)
     idx = sorted(set(range(1, len(branch.states), stride)) | {len(branch.states) - 1})

@@ -200,6 +200,12 @@ def straight_state(params: RodParameters, N: int) -> Equilibrium:
     return Equilibrium(params, x, D, F, np.zeros((s.size, 3)), 0.0, 0, True)
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross product of (n, 3) arrays (np.cross without its axis bookkeeping)."""
+    return np.stack([a[:, 1] * b[:, 2] - a[:, 2] * b[:, 1], a[:, 2] * b[:, 0] - a[:, 0] * b[:, 2],
+                     a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
+
+
 def residual(params: RodParameters, state: Equilibrium) -> np.ndarray:
     """Collocation residual of the O(1) BVP, shape (12 (N+1),), dimensionless.
 
@@ -212,21 +218,25 @@ def residual(params: RodParameters, state: Equilibrium) -> np.ndarray:
     col = collocation(N)
     P, PD = col.P, col.PD
     x, D, F, M = state.x, state.D, state.F, state.M
-    Dt = np.einsum("kj,jab->kab", P, D)
-    Dp = np.einsum("kj,jab->kab", PD, D)
+    n1 = N + 1
+    Dt = (P @ D.reshape(n1, 9)).reshape(N, 3, 3)
+    Dp = (PD @ D.reshape(n1, 9)).reshape(N, 3, 3)
     Ft, Mt, xt = P @ F, P @ M, P @ x
     d3 = Dt[:, :, 2]
     K = stiffness_diag(params)
     kb = _axial(Dt, Dp)
-    w = params.omega * _E3
+    w2 = params.omega**2
     r_x = PD @ x - d3
-    r_a = np.einsum("nab,b,nb->na", Dt, K, kb) - Mt
-    r_phi = PD @ F + params.B * np.cross(d3, _E3) - np.cross(w, np.cross(w, xt))
-    r_m = PD @ M + np.cross(d3, Ft)
+    r_a = np.einsum("nab,nb->na", Dt, kb * K[None, :]) - Mt
+    # B d3 x e3 = B (d3_2, -d3_1, 0); -w x (w x x) = omega^2 (x_1, x_2, 0)
+    r_phi = PD @ F
+    r_phi[:, 0] += params.B * d3[:, 1] + w2 * xt[:, 0]
+    r_phi[:, 1] += -params.B * d3[:, 0] + w2 * xt[:, 1]
+    r_m = PD @ M + _cross(d3, Ft)
     for ci, i in ((params.P * params.R, 0), (params.P, 1)):
         if ci != 0.0 and params.omega != 0.0:
             di = Dt[:, :, i]
-            r_m -= ci * (di @ w)[:, None] * np.cross(di, w)
+            r_m -= ci * (di @ _E3)[:, None] * w2 * np.stack([di[:, 1], -di[:, 0], np.zeros(N)], axis=1)
     ode = np.concatenate([r.T.reshape(-1) for r in (r_x, r_a, r_phi, r_m)])
     d0, d1 = D[0], D[-1]
     bc = np.array([
@@ -361,12 +371,24 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
 def parameter_derivative(params: RodParameters, state: Equilibrium, name: str) -> np.ndarray:
     """d residual / d parameter for ``name`` in :data:`PARAMETERS` (dimensionless).
 
-    The residual is affine in B, T and R and quadratic in omega, so a
-    difference quotient of step 1/2 (central; one-sided for R, kept in (0, 1])
-    is exact up to rounding.
+    B enters only the force rows (d3 x e3 at the t_k) and T only the
+    sliding-end boundary row (F3(0) - T): both written out. The residual is
+    affine in R and quadratic in omega, so there a difference quotient of
+    step 1/2 (central; one-sided for R, kept in (0, 1]) is exact up to
+    rounding.
     """
     if name not in PARAMETERS:
         raise ValueError(f"parameter must be one of {PARAMETERS}, got {name!r}")
+    N = state.N
+    if name in ("B", "T"):
+        out = np.zeros(NFIELDS * (N + 1))
+        if name == "T":
+            out[NFIELDS * N + 2] = -1.0
+        else:
+            d3 = collocation(N).P @ state.D[:, :, 2]
+            out[6 * N:7 * N] = d3[:, 1]
+            out[7 * N:8 * N] = -d3[:, 0]
+        return out
     v = getattr(params, name)
     if name == "R":
         h = 0.5 * v
