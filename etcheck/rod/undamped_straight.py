@@ -330,7 +330,7 @@ class _Line:
             aE = np.abs(E)
             dips = np.nonzero((si[:-2] == si[1:-1]) & (si[1:-1] == si[2:]) & (aE[1:-1] < aE[:-2])
                               & (aE[1:-1] < aE[2:]))[0] + 1
-            cand += [(i, mu[j - 1], mu[j + 1], si[j], max(aE[j - 1], aE[j + 1]), aE[j]) for j in dips]
+            cand += [(i, mu[j - 1], mu[j + 1], si[j], max(aE[j - 1], aE[j + 1]), 1.0) for j in dips]
         for i, pair in self._close_pairs(ps, cand):
             roots[i] += pair
         out = []
@@ -343,12 +343,12 @@ class _Line:
 
     def _close_pairs(self, ps: np.ndarray, cand: list) -> list[tuple[int, list[float]]]:
         """Close pairs of roots at the dips of |E| between grid points: each dip is zoomed in
-        (9 points, 6 levels, all dips in one evaluation per level) until E changes sign (two
+        (9 points, 8 levels, all dips in one evaluation per level) until E changes sign (two
         roots), the dip clearly stays off zero (parabola through its three lowest points), or it
         touches zero (a double root)."""
         found = []
         t = np.linspace(0.0, 1.0, 9)
-        for _ in range(6):
+        for level in range(8):
             if not cand:
                 break
             a = np.array([c[1] for c in cand])
@@ -368,12 +368,12 @@ class _Line:
                 low = e1 - (e2 - e0) ** 2 / (8 * curv) if curv > 0 else e1
                 if abs(Ei[m]) <= 1e3 * _EPS * size:
                     found.append((i, [xi[m], xi[m]]))  # touching to rounding: a double root
-                elif low < 0.25 * e1:
-                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, abs(Ei[m])))
+                elif low < 0.5 * e1 or level < 2:  # the parabola is rough on the first levels
+                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, abs(low) / e1))
             cand = nxt
-        # still dipping after 6 levels (8^6 finer) and 1e8 below its neighbours: the dip falls like the
-        # square of the distance, a double root (R = 1 at omega = 0, where E is a square)
-        return found + [(c[0], [0.5 * (c[1] + c[2])] * 2) for c in cand if c[5] <= 1e-8 * c[4]]
+        # after 8 levels (4^8 finer) the parabola through the lowest samples still has its minimum at
+        # zero: E falls like the square of the distance, a double root (R = 1 at omega = 0: E is a square)
+        return found + [(c[0], [0.5 * (c[1] + c[2])] * 2) for c in cand if c[5] <= 1e-3]
 
     # --- bookkeeping along the line ----------------------------------------------------------
 

@@ -13,7 +13,7 @@ import pytest
 from helpers import set_like
 
 from etcheck import check
-from etcheck.checks.plan import EXACT, LAYER_MIN, SPECTRAL, boundary_layer, straight_route
+from etcheck.checks.plan import EXACT, LAYER_MIN, SPECTRAL, boundary_layer, plan, straight_route
 from etcheck.rod.damped_critical import damped_critical
 from etcheck.rod.exact_straight import exact_critical, string_limit_load
 from etcheck.rod.parameters import RodParameters
@@ -58,9 +58,11 @@ def test_the_issue_tape_is_answered_by_the_exact_rung_fast():
     assert elapsed < 30  # minutes before (no answer); generous bound on a loaded machine, not a benchmark
 
 
-def test_undamped_thin_layers_are_incomplete_not_guessed():
-    r = check(set_like(name="tape", damping_time="0 s", **TAPE)).results
-    assert r["verdict"] == "incomplete" and "flutter" in r["plan"]["reason"]
+def test_undamped_thin_layers_go_to_the_exact_undamped_determinant():
+    """Without damping flutter is possible; the exact undamped determinant locates it (no longer incomplete)."""
+    p = RodParameters(P=1e-9, R=2.5e-6, Gamma=0.75, T=1e3, omega=0.1)
+    chosen = plan(p)
+    assert chosen.complete and chosen.route == EXACT and "undamped" in chosen.reason
 
 
 def test_buckled_tape_is_beyond_rungs_2_3_and_says_why():

@@ -1,0 +1,113 @@
+"""Rung 1u: the exact undamped determinant E(mu) of the straight rod and the stability lines built on it.
+
+Every check is against an independent computation: the Chebyshev collocation spectrum of the general
+linear operator (eigenvalues, growth rates on either side of a located point), the static pencils, the
+chi roots of eq. (91) and the string limit. The agreement with the spectral scans on eight scenes is
+measured in benchmarks/bench_undamped.py (too slow for the suite).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from etcheck.rod.analytic import critical_loads
+from etcheck.rod.damped_critical import first_root
+from etcheck.rod.exact_straight import exact_critical, string_limit_load
+from etcheck.rod.parameters import RodParameters
+from etcheck.rod.spectrum import spectrum
+from etcheck.rod.stability import CriticalKind
+from etcheck.rod.undamped_straight import characteristic_mu, stability_line, undamped_critical
+
+SET = dict(P=1e-3, R=21 / 38, Gamma=0.76923)
+
+
+def _growth(p: RodParameters) -> float:
+    return float(np.max(spectrum(p, k=8, tol=1e-9).eigenvalues.real))
+
+
+@pytest.fixture(scope="module")
+def set_spin_line():
+    """SET at B = 0.3: stable, divergence, stable again, flutter, stable again up to omega = 2."""
+    return stability_line(RodParameters(**SET, B=0.3), "omega", 0.0, 2.0)
+
+
+@pytest.mark.parametrize("B,omega,T", [(0.3, 0.25, 0.0), (0.0, 0.4, 0.0), (0.2, 0.0, 2.0), (0.5, 1.3, 0.5)])
+def test_both_formulations_agree(B, omega, T):
+    p = RodParameters(**SET, B=B, omega=omega, T=T)
+    mu = np.array([-3.0, -0.2, 0.05, 0.7, 4.0, 31.0])
+    a, b = characteristic_mu(p, mu, route="exponential"), characteristic_mu(p, mu, route="schur")
+    assert np.all(np.isfinite(a))
+    assert np.allclose(a, b, rtol=1e-10, atol=0)
+
+
+def test_roots_are_the_eigenvalues_of_the_collocation_spectrum():
+    p = RodParameters(**SET, B=0.3, omega=0.25)
+    lam = spectrum(p, k=10, tol=1e-10).eigenvalues
+    mu = np.sort((-lam**2).real)
+    torsion = (np.arange(1, 4) * math.pi) ** 2 * p.Gamma / (2 * p.P * p.f)  # decoupled, not a root of E
+    bending = [m for m in mu if np.min(np.abs(torsion - m)) > 1e-6 * m]
+    assert len(bending) >= 6
+    for m in bending:
+        lo, hi = characteristic_mu(p, np.array([m * (1 - 1e-9), m * (1 + 1e-9)]))
+        assert lo * hi < 0, m  # a sign change within 1e-9 of every bending eigenvalue
+
+
+def test_spin_line_crossings_are_confirmed_by_the_spectrum(set_spin_line):
+    kinds = [c.kind for c in set_spin_line.crossings]
+    assert kinds == [CriticalKind.DIVERGENCE, CriticalKind.DIVERGENCE, CriticalKind.FLUTTER, CriticalKind.FLUTTER]
+    p = RodParameters(**SET, B=0.3)
+    for c in set_spin_line.crossings:
+        assert c.error < 1e-10 * c.value
+        if c.kind == CriticalKind.FLUTTER:
+            before, after = (_growth(p.with_(omega=c.value * (1 + s * 1e-7))) for s in (-1, 1))
+            stable, unstable = (after, before) if not c.to_unstable else (before, after)
+            assert stable < 1e-8 < 1e-5 < unstable  # Re lambda ~ sqrt(distance) past a Krein collision
+    for a, b in set_spin_line.windows:
+        assert _growth(p.with_(omega=0.5 * (a + b))) < 1e-8
+    gaps = [(a, b) for (_, a), (b, _) in zip(set_spin_line.windows[:-1], set_spin_line.windows[1:])]
+    assert len(gaps) == 2 and all(_growth(p.with_(omega=0.5 * (a + b))) > 1e-6 for a, b in gaps)
+
+
+def test_divergence_points_are_the_static_pencil_roots(set_spin_line):
+    first = set_spin_line.crossings[0]
+    pencil = first_root(RodParameters(**SET, B=0.3), "omega")
+    assert pencil.converged and first.value == pytest.approx(pencil.value, rel=1e-9)
+
+
+def test_critical_values_at_an_operating_point():
+    u = undamped_critical(RodParameters(**SET, B=0.3, omega=0.25), windows=False)
+    assert u.converged and u.stable
+    load = first_root(RodParameters(**SET, omega=0.25), "B")  # stable up to the first static point here
+    assert u.critical_load.kind == CriticalKind.DIVERGENCE
+    assert u.critical_load.value == pytest.approx(load.value, rel=1e-9)
+    assert u.critical_spin.kind == CriticalKind.DIVERGENCE
+
+
+def test_without_spin_the_critical_load_is_the_first_chi_root():
+    u = undamped_critical(RodParameters(**SET, B=0.1), windows=False)
+    assert u.critical_load.value == pytest.approx(critical_loads(SET["R"], RodParameters(**SET).f, 1)[0], rel=1e-9)
+
+
+def test_isotropic_rod_double_roots_at_rest():
+    """R = 1: at zero spin every root of E is double (E is a square); the spin line still starts there."""
+    p = RodParameters(P=1e-3, R=1.0, Gamma=0.76923, B=0.2)
+    line = stability_line(p, "omega", 0.0, 1.5, samples=13)
+    for a, b in line.windows:
+        assert _growth(p.with_(omega=0.5 * (a + b))) < 1e-8
+
+
+def test_thin_boundary_layers_undamped():
+    """A 500 m aluminium tape under 0.18 N (layers of 1e-5 L): beyond collocation; without spin the
+    undamped critical load is the static one (the damped exact route) and near the string limit."""
+    L, EI1, EI2, rho_A = 500.0, 3.65, 9.3e-6, 2.7e-3
+    f = RodParameters(P=0.0, R=1.0, Gamma=1.0).f
+    p = RodParameters(P=EI1 / 70e9 / (rho_A / 2700) / L**2, R=EI2 / EI1, Gamma=1 / 1.33,
+                      T=0.18 * L**2 / (f * EI1), B=30e-6 * L**3 / (f * EI1))
+    u = undamped_critical(p, windows=False)
+    assert u.converged and u.stable
+    damped = exact_critical(p.with_(gamma=0.01)).critical_load.value
+    assert u.critical_load.value == pytest.approx(damped, rel=1e-12)
+    assert u.critical_load.value == pytest.approx(string_limit_load(p, order=2), rel=1e-5)
