@@ -481,7 +481,30 @@ def _special_between(problem, a: Point, b: Point, index: int, W, opts) -> tuple[
         found.append(replace(_locate(problem, a, b, name, W, opts), index=index))
         if name in opts.stop_on and not stop_kind:
             stop_kind = name
-    return found, stop_kind
+    return _pitchfork_folds(found), stop_kind
+
+
+def _pitchfork_folds(found: list) -> list:
+    """A branch point met at a fold of the branch (a pitchfork reached along its
+    bifurcating branch, where the parameter is extremal) takes the fold's location
+    when both are located in the same step and agree to twice the spread of the
+    branch point's parameter bracket.
+
+    Next to such a point the corrector of the determinant test keeps landing on
+    the crossing branch and the test is nearly a step function, so its bracket
+    ends can lie on different branches and their interpolated parameter is off
+    (by 1e-8 in T for the SET b1, 1e-6 in the straight tether's load); the fold
+    test (the parameter component of the tangent) is smooth there and its root
+    is located to rounding.
+    """
+    folds = [q for q in found if q.kind == "fold" and q.converged]
+    out = []
+    for q in found:
+        spread = abs(q.p_bracket[1] - q.p_bracket[0])
+        twin = next((f for f in folds if q.kind == "bp" and abs(f.p - q.p) <= 2.0 * spread + 1e-12), None)
+        out.append(q if twin is None else replace(q, point=twin.point, p=twin.p, p_bracket=twin.p_bracket,
+                                                   bracket=twin.bracket, converged=True, reason=""))
+    return out
 
 
 def _next_step(ds: float, newton: int, opts) -> float:

@@ -42,7 +42,9 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg as sla
 from scipy.optimize import linear_sum_assignment
+from scipy.sparse.linalg import ArpackNoConvergence, LinearOperator, eigs
 
 from ..errors import SolverError
 from ..numerics.chebyshev import clenshaw_curtis_weights
@@ -51,7 +53,7 @@ from . import branches as br
 from . import equilibria as eq
 from .linear import NFIELDS, collocation, linear_operator, stiffness_diag
 from .parameters import RodParameters
-from .spectrum import ERROR_FLOOR, check_resolution, damping_cluster, nearest_eigenvalues, prefers_dense
+from .spectrum import ERROR_FLOOR, SIGMA, check_resolution, damping_cluster, nearest_eigenvalues, prefers_dense
 from .stability import THRESHOLD
 
 __all__ = [
@@ -134,11 +136,16 @@ class DampedOperator:
 
 
 def damped_operator(params: RodParameters, base, N: int) -> DampedOperator:
-    """Build :class:`DampedOperator` about ``base`` at resolution N (two builds of
-    :func:`~etcheck.rod.linear.linear_operator`, at gamma = 0 and gamma = 1)."""
+    """Build :class:`DampedOperator` about ``base`` at resolution N with one build of
+    :func:`~etcheck.rod.linear.linear_operator` at gamma = 1: the Kelvin-Voigt term
+    lambda gamma K kappa(q) sits only in the constitutive rows (ODE group 1, rows
+    3N..6N; eq. (74)), where no gyroscopic term appears, so A1 splits by rows
+    (checked against a gamma = 0 build in the tests)."""
     p0 = params.with_(gamma=0.0)
-    A0, A1g, A2 = linear_operator(p0, base, N)
-    A1d = linear_operator(p0.with_(gamma=1.0), base, N)[1] - A1g
+    A0, A1, A2 = linear_operator(p0.with_(gamma=1.0), base, N)
+    rows = slice(3 * int(N), 6 * int(N))
+    A1g, A1d = A1.copy(), np.zeros_like(A1)
+    A1d[rows], A1g[rows] = A1[rows], 0.0
     return DampedOperator(p0, int(N), A0, A1g, A1d, A2)
 
 
@@ -260,10 +267,9 @@ class BranchSpectra:
         })
 
 
-def _point_spectrum(state, gamma: float, nev: int, N: int, vectors: bool):
-    op = damped_operator(state.params, state, N)
-    out = operator_eigenvalues(op, gamma, nev, vectors)
-    return out
+def _point_spectrum(state, gamma: float, nev: int, N: int, vectors: bool, op: DampedOperator | None = None):
+    op = damped_operator(state.params, state, N) if op is None else op
+    return operator_eigenvalues(op, gamma, nev, vectors)
 
 
 def _is_stable(lam: np.ndarray, gamma: float) -> bool:
@@ -309,12 +315,13 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
     for i, st in enumerate(states):
         p = st.params.with_(gamma=gamma)
         st_g = st.with_params(p) if st.params != p else st
-        lam, V = _point_spectrum(st_g, gamma, nev, N0, True)
+        op = damped_operator(p, st_g, N0)
+        lam, V = _point_spectrum(st_g, gamma, nev, N0, True, op)
         lam_M = _point_spectrum(st_g, gamma, nev, M, False)
         maxre[i] = _max_real(lam)
         maxre_err[i] = abs(_max_real(lam_M) - maxre[i]) if lam_M.size else math.inf
         stable[i] = _is_stable(lam, gamma)
-        index[i] = stiffness_index(damped_operator(p, st_g, N0), nev)
+        index[i] = stiffness_index(op, nev)
         decided[i] = abs(maxre[i]) > 2.0 * maxre_err[i]
         if gamma == 0 and index[i] == 0:
             stable[i] = decided[i] = True
@@ -683,10 +690,29 @@ def find_hopf(branch, gamma: float, k: int = 6, N: int | None = None, tol: float
 
 
 def _static_problem(op: DampedOperator, nev: int) -> np.ndarray:
-    """Eigenvalues lambda of (A0 + lambda^2 A2) q = 0 (A1 = 0: no gyroscopic, no damping terms)."""
-    return nearest_eigenvalues(op.A0, np.zeros_like(op.A1g), op.A2, nev, 0.0)
+    """Eigenvalues lambda of (A0 + lambda^2 A2) q = 0 (A1 = 0: no gyroscopic, no damping terms).
 
-
+    Solved as the linear pencil A0 q = -mu A2 q in mu = lambda^2 (size 12(N+1),
+    half the companion form of the QEP, and one mu per pair +-lambda): the
+    nev // 2 mu nearest SIGMA^2 by shift-invert ARPACK (one dense LU of
+    A0 + SIGMA^2 A2; infinite mu, from the lambda-free unknowns, map to 0 and
+    are never returned). Returns both square roots +-sqrt(mu) of each, i.e. the
+    nev lambda of least modulus, like the QEP would.
+    """
+    n = op.A0.shape[0]
+    k = max(1, min(nev // 2, n - 2))
+    s = SIGMA**2
+    lu = sla.lu_factor(op.A0 + s * op.A2, check_finite=False)
+    A2 = op.A2
+    inv = LinearOperator((n, n), matvec=lambda z: sla.lu_solve(lu, A2 @ z, check_finite=False), dtype=float)
+    try:
+        theta = eigs(inv, k=k, which="LM", ncv=min(n, max(3 * k, 20)), tol=1e-13, maxiter=500,
+                     return_eigenvectors=False)
+    except ArpackNoConvergence as err:  # keep what converged
+        theta = err.eigenvalues
+    mu = s - 1.0 / theta.astype(complex)  # (A0 + s A2)^-1 A2 q = q / (s - mu)
+    root = np.sqrt(mu)
+    return np.concatenate([root, -root])
 def _count_index(lam0: np.ndarray) -> int:
     real = np.abs(lam0.imag) <= 1e-8 * np.maximum(np.abs(lam0), 1.0)
     return int(np.count_nonzero(real & (lam0.real > 1e-9)))
