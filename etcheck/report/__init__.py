@@ -30,24 +30,18 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
     out: dict[str, bytes] = {}
     html = None
     if "html" in formats or "pdf" in formats:
-        from etcheck.report.html import (
-            render_damping_html,
-            render_diagram_html,
-            render_html,
-            render_sweep_html,
-            render_with_print,
-        )
+        # imported here: jinja2 and matplotlib are not needed for JSON or data files
+        from etcheck.report.html import render_damping_html, render_diagram_html, render_html, render_sweep_html
 
         renderer = {"sweep": render_sweep_html, "diagram": render_diagram_html,
                     "damping": render_damping_html}.get(kind, render_html)
-        # the PDF gets the figures as PNG at print resolution (WeasyPrint draws SVG slowly), the HTML keeps SVG
-        html, print_html = render_with_print(renderer, results) if "pdf" in formats else (renderer(results), None)
+        html = renderer(results)  # figures drawn once, as PNG at print resolution, for both formats
     if "html" in formats:
         out["html"] = html.encode("utf-8")
     if "pdf" in formats:
-        from etcheck.report.pdf import render_pdf
+        from etcheck.report.pdf import render_pdf  # WeasyPrint: only for a PDF
 
-        out["pdf"] = render_pdf(print_html)
+        out["pdf"] = render_pdf(html)
     if "json" in formats:
         out["json"] = (json.dumps(results, indent=2, allow_nan=False, ensure_ascii=False, default=_json_default) + "\n").encode()
     if "csv" in formats or "nc" in formats:

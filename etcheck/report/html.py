@@ -1,9 +1,7 @@
-"""HTML report: one jinja2 template (autoescaped), figures inline as SVG."""
+"""HTML report: one jinja2 template (autoescaped), figures inline as PNG; the PDF is typeset from the same HTML."""
 
 from __future__ import annotations
 
-import base64
-import contextvars
 import math
 from collections import Counter
 
@@ -71,55 +69,18 @@ def _environment():
     return env
 
 
-#: when set (a list), every rendered document is also rendered for print, figures as PNG, into it
-_PRINT: contextvars.ContextVar[list | None] = contextvars.ContextVar("etcheck_print_html", default=None)
-
-
-class _Figure(Markup):
-    png: bytes | None = None
-
-
 def _fig(source: str) -> Markup:
-    """Markup of one figure, keeping its PNG copy (if any) for the print version."""
-    out = _Figure(source)
-    out.png = getattr(source, "png", None)
-    return out
-
-
-def _as_image(fig: Markup, name: str) -> Markup:
-    png = getattr(fig, "png", None)
-    if not png:
-        return fig
-    return Markup('<img src="data:image/png;base64,{}" alt="{}">').format(base64.b64encode(png).decode(), name)
+    """Markup of one drawn figure (an inline PNG ``<img>``, the same bytes in the HTML and the PDF)."""
+    return Markup(source)
 
 
 def _render(template: str, **context) -> str:
-    tpl = _environment().get_template(template)
-    collector = _PRINT.get()
-    if collector is not None:
-        figs = {k: _as_image(v, k) for k, v in context["figs"].items()}
-        collector.append(tpl.render(fignum=FigureNumbers(), **(context | {"figs": figs})))
-    return tpl.render(fignum=FigureNumbers(), **context)
-
-
-def render_with_print(renderer, results: dict) -> tuple[str, str]:
-    """(screen HTML with SVG figures, print HTML with the same figures as PNG at print resolution);
-    the figures are drawn once."""
-    from etcheck.report.figures.common import rasterised
-
-    collected: list = []
-    token = _PRINT.set(collected)
-    try:
-        with rasterised():
-            screen = renderer(results)
-    finally:
-        _PRINT.reset(token)
-    return screen, collected[0]
+    return _environment().get_template(template).render(fignum=FigureNumbers(), **context)
 
 
 def render_html(results: dict) -> str:
     """The self-contained HTML report for check results (JSON-able dict)."""
-    figs = {name: _fig(svg) for name, svg in figures(results).items()}
+    figs = {name: _fig(fig) for name, fig in figures(results).items()}
     return _render("report.html.j2", r=results, figs=figs)
 
 
@@ -134,14 +95,14 @@ def render_sweep_html(results: dict) -> str:
         if status != "ok":
             failures.append({"values": [grids[k][i] for k, i in enumerate(idx)], "status": status,
                              "reason": np.array(g["reason"], dtype=object)[idx]})
-    figs = {name: _fig(svg) for name, svg in sweep_figures(results).items()}
+    figs = {name: _fig(fig) for name, fig in sweep_figures(results).items()}
     return _render("sweep.html.j2", r=results, figs=figs, models=dict(models),
                                                                failures=failures[:50])
 
 
 def render_diagram_html(results: dict) -> str:
     """The self-contained HTML report of a bifurcation diagram."""
-    figs = {name: _fig(svg) for name, svg in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
+    figs = {name: _fig(fig) for name, fig in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
     return _render("diagram.html.j2", r=results, d=results["diagram"], figs=figs)
 
 

@@ -39,8 +39,8 @@ def test_html_renders_in_chromium_with_every_figure(kind, tmp_path):
     assert figures > 0
     dom = _chromium("--dump-dom", html.as_uri())
     assert dom.returncode == 0, dom.stderr[-2000:]
-    # every figure reached the rendered DOM as an SVG with its caption
-    rendered = re.findall(r"<figure>\s*<svg.*?</svg>\s*<figcaption>Figure \d+:", dom.stdout, flags=re.S)
+    # every figure reached the rendered DOM as an inline PNG with its caption
+    rendered = re.findall(r'<figure>\s*<img src="data:image/png;base64,[^"]+"[^>]*>\s*<figcaption>Figure \d+:', dom.stdout)
     assert len(rendered) == figures
     shot = tmp_path / "shot.png"
     run = _chromium("--hide-scrollbars", "--window-size=1200,1600", f"--screenshot={shot}", html.as_uri())
@@ -70,7 +70,8 @@ def test_pdf_pages_render_with_every_figure_and_nothing_in_the_side_margins(kind
         margin = int(round(10 / 210 * w))  # the outer 10 mm of the 14 mm side margins of A4
         for box in ((0, 0, margin, h), (w - margin, 0, w, h)):
             assert img.crop(box).getextrema()[0] > 200, f"{page.name}: ink in a side margin (something overflows)"
-    # the PDF embeds one PNG per figure
+    # the PDF embeds one PNG per figure, at print resolution
     images = subprocess.run(["pdfimages", "-list", str(pdf)], capture_output=True, text=True, timeout=60)
     if images.returncode == 0:
-        assert len(images.stdout.strip().splitlines()) - 2 >= figures
+        rows = [line.split() for line in images.stdout.strip().splitlines()[2:] if line.split()[2] == "image"]
+        assert len(rows) == figures and min(int(r[12]) for r in rows) >= 150, images.stdout  # x-ppi on the page

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -33,10 +35,10 @@ def test_html_escapes_mission_text():
 def test_html_has_the_engineering_content(set_results):
     html = render(set_results, ("html",))["html"].decode()
     for text in ("PASS", "SHA-256", set_results["mission"]["sha256"], "Validity and accuracy",
-                 "rung 0 (analytic)", "0.0111", "<svg", "operating"):
+                 "rung 0 (analytic)", "0.0111", "operating"):
         assert text in html, text
-    # both figures inline, no external resources
-    assert html.count("<svg") >= 2
+    # both figures inline (PNG data), no external resources
+    assert html.count('<img src="data:image/png;base64,') == html.count("<figure>") >= 2
     assert "src=\"http" not in html and "href=\"http" not in html
 
 
@@ -49,15 +51,26 @@ def test_json_is_strict_and_round_trips(set_results):
     )
 
 
-def test_svg_is_deterministic(set_results):
+def test_html_is_deterministic(set_results):
     a = render(set_results, ("html",))["html"]
     b = render(set_results, ("html",))["html"]
     assert a == b
 
 
-def test_pdf_is_a_pdf(set_results):
+def test_pdf_is_a_pdf(set_results, tmp_path):
     pdf = render(set_results, ("pdf",))["pdf"]
     assert pdf.startswith(b"%PDF-") and len(pdf) > 10_000
+    if shutil.which("pdfimages") and shutil.which("pdffonts"):  # poppler-utils
+        (tmp_path / "r.pdf").write_bytes(pdf)
+        images = subprocess.run(["pdfimages", "-list", str(tmp_path / "r.pdf")], capture_output=True, text=True,
+                                check=True).stdout.splitlines()[2:]
+        # one opaque RGB image per figure: no alpha masks (the PDF writer would compress each twice)
+        assert len(images) == 2 and all(r.split()[2] == "image" and r.split()[5] == "rgb" for r in images), images
+        fonts = subprocess.run(["pdffonts", str(tmp_path / "r.pdf")], capture_output=True, text=True,
+                               check=True).stdout.splitlines()[2:]
+        # one family (the footers too) and the monospace SHA-256: each embedded font costs a subsetting
+        assert sorted(f.split()[0].split("+")[1] for f in fonts) == ["DejaVu-Sans", "DejaVu-Sans-Bold",
+                                                                     "DejaVu-Sans-Mono"], fonts
 
 
 def test_failed_render_writes_nothing(set_results, tmp_path, monkeypatch):

@@ -1,15 +1,17 @@
-"""Report figures as deterministic inline SVG (matplotlib, imported lazily).
+"""Report figures of the check (matplotlib, imported lazily), each drawn once as a PNG.
 
-Every function takes the JSON-able results and returns an SVG string; axes are
-labelled with units and the operating point is marked.
+Every function takes the JSON-able results and returns the figure as an inline
+``<img>`` (:func:`etcheck.report.figures.common.image`); axes are labelled with
+units and the operating point is marked. Labels are plain Unicode (β₁, χ, √):
+matplotlib's TeX parser would cost a third of a second per process.
 """
 
 from __future__ import annotations
 
 import math
 
+from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
-from etcheck.report.figures.common import svg as _svg
 from etcheck.report.figures.diagram import branch_plot, shapes_plot
 
 
@@ -20,28 +22,34 @@ def chi_plot(results: dict) -> str:
     beta = sr["chi_curve"]["beta"]
     chi = sr["chi_curve"]["chi_scaled"]
     op = sr["operating_beta"]
-    fig, ax = plt.subplots(figsize=(6.4, 2.8))
-    ax.plot(beta, chi, color="#1f4e79", lw=1.4, label=r"$\chi(\beta)\,e^{-\sqrt{3}\beta}$ (arXiv:0810.3668 eq. (91))")
+    fig, ax = plt.subplots(figsize=(5.7, 2.8))
+    ax.plot(beta, chi, color="#1f4e79", lw=1.4, label="χ(β) exp(−√3 β) (arXiv:0810.3668 eq. (91))")
     for i, load in enumerate(sr["critical_loads"]):
         if load["beta"] <= beta[-1] and (i < 3 or op > beta[-1]):
             ax.axvline(load["beta"], color="#c0392b", ls=":", lw=1,
-                       label="double zeros $\\beta_k$ (buckling loads)" if i == 0 else None)
-            ax.annotate(f"$\\beta_{load['k']}$", (load["beta"], 0.0),
+                       label="double zeros βₖ (buckling loads)" if i == 0 else None)
+            ax.annotate(f"β{_subscript(load['k'])}", (load["beta"], 0.0),
                         xytext=(3, 28), textcoords="offset points", fontsize=7, color="#c0392b")
     top = max(chi) * 1.05
     if op <= beta[-1]:
-        ax.axvline(op, color="#27ae60", lw=2, label=f"operating $\\beta$ = {op:.4g}")
+        ax.axvline(op, color="#27ae60", lw=2, label=f"operating β = {op:.4g}")
     else:
-        ax.annotate(f"operating $\\beta$ = {op:.4g} (off scale) →", (beta[-1], 0.85 * top),
+        ax.annotate(f"operating β = {op:.4g} (off scale) →", (beta[-1], 0.85 * top),
                     ha="right", fontsize=8, color="#27ae60", fontweight="bold")
-        ax.plot([], [], color="#27ae60", lw=2, label=f"operating $\\beta$ = {op:.4g} (off scale)")
+        ax.plot([], [], color="#27ae60", lw=2, label=f"operating β = {op:.4g} (off scale)")
     ax.set_xlim(0, beta[-1])
     ax.set_ylim(-0.05 * top, top)
-    ax.set_xlabel(r"$\beta = (f B)^{1/3} / R^{1/6}$  (dimensionless)")
-    ax.set_ylabel(r"scaled $\chi$ (dimensionless)")
+    ax.set_xlabel("β = ∛(f B / √R)  (dimensionless)")
+    ax.set_ylabel("scaled χ (dimensionless)")
     ax.legend(loc="upper left", fontsize=7, framealpha=0.9)
     ax.set_title("Characteristic function of the straight welded tether (ω = 0, T = 0)", fontsize=9)
-    return _svg(fig)
+    fig.tight_layout()
+    return _image(fig)
+
+
+def _subscript(k: int) -> str:
+    """``k`` in Unicode subscript digits (β₁, β₁₂)."""
+    return str(k).translate(str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉"))
 
 
 def mode_plot(results: dict) -> str:
@@ -52,8 +60,8 @@ def mode_plot(results: dict) -> str:
     s = [v * length for v in sr["first_mode"]["s"]]
     x, y = sr["first_mode"]["x"], sr["first_mode"]["y"]
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(6.6, 2.6), gridspec_kw={"width_ratios": [2.2, 1]})
-    ax1.plot(s, x, color="#1f4e79", label="x (along $d_1$, weak-axis bending)")
-    ax1.plot(s, y, color="#e67e22", ls="--", label="y (along $d_2$)")
+    ax1.plot(s, x, color="#1f4e79", label="x (along d₁, weak-axis bending)")
+    ax1.plot(s, y, color="#e67e22", ls="--", label="y (along d₂)")
     ax1.set_xlabel("arclength s [m]")
     ax1.set_ylabel("deflection / max (–)")
     ax1.legend(fontsize=7, loc="lower center")
@@ -66,7 +74,7 @@ def mode_plot(results: dict) -> str:
     ax2.legend(fontsize=7, loc="upper right")
     ax2.set_title("End view (coil)", fontsize=9)
     fig.tight_layout()
-    return _svg(fig)
+    return _image(fig)
 
 
 def _first_crossing(x, g, threshold):
@@ -112,12 +120,12 @@ def campbell_plot(results: dict) -> str:
     ax1.set_ylabel("frequency |Im λ| [Hz]")
     ax2.set_ylabel("growth rate Re λ [1/s]")
     ax2.set_xlabel("spin rate [rpm]")
-    ax1.set_title(f"Campbell diagram of the straight tether at the operating load "
+    ax1.set_title(f"Campbell diagram of the straight tether at the operating load\n"
                   f"(I·B0 = {lin['operating']['IB0_N_per_m']:.3g} N/m, rotating frame)", fontsize=9)
     ax1.legend(fontsize=7, loc="upper left", framealpha=0.9)
     ax1.set_xlim(rpm[0], rpm[-1])
     fig.tight_layout()
-    return _svg(fig)
+    return _image(fig)
 
 
 def _shade_unstable_spin(ax, lin, rpm, label=None):
@@ -186,35 +194,37 @@ def stability_map_plot(results: dict) -> str:
     ax.set_ylim(rpm[0], rpm[-1])
     ax.set_title(f"Safe operating region of the straight tether (T = {results['scene']['tension_N']:.3g} N, "
                  f"γ = {results['scaled']['gamma']:.3g})", fontsize=9)
-    return _svg(fig)
+    return _image(fig)
 
 
 def _shade_rows(ax, rows, load):
-    """Damped map: exact stable intervals per spin row, drawn as bands."""
+    """Damped map: exact stable intervals per spin row, drawn as bands (one collection of rectangles)."""
     import numpy as np
+    from matplotlib.collections import PolyCollection
 
     rpm = np.array([r["spin_rpm"] for r in rows])
     h = (rpm[1] - rpm[0]) if rpm.size > 1 else 1.0
-    edge_x, edge_y = [], []
+    edge_x, edge_y, bands = [], [], []
     b_row = np.full(rpm.size, np.inf)
     for i, r in enumerate(rows):
         y0, y1 = max(rpm[i] - h / 2, rpm[0]), min(rpm[i] + h / 2, rpm[-1])
-        for a, b in r["IB0_N_per_m"]:
-            ax.fill_between([a, b], y0, y1, color="#d5efdc", lw=0)
+        bands += [((a, y0), (b, y0), (b, y1), (a, y1)) for a, b in r["IB0_N_per_m"]]
         first = r["IB0_N_per_m"][0] if r["IB0_N_per_m"] else None
         b_row[i] = first[1] if first and first[0] == 0.0 else 0.0
         if first and first[0] == 0.0 and first[1] < load[-1]:
             edge_x.append(first[1])
             edge_y.append(rpm[i])
+    ax.add_collection(PolyCollection(bands, facecolors="#d5efdc", edgecolors="none", linewidths=0),
+                      autolim=False)
     ax.plot(edge_x, edge_y, color="#1b1b1b", lw=1.4)
     # first spin row at which each load is no longer stable
     cols = np.linspace(load[0], load[-1], 200)
-    w_col = np.full(cols.size, np.inf)
-    for j, x in enumerate(cols):
-        for i, r in enumerate(rows):
-            if not any(a <= x <= b for a, b in r["IB0_N_per_m"]):
-                w_col[j] = rpm[i]
-                break
+    stable = np.zeros((len(rows), cols.size), dtype=bool)
+    for i, r in enumerate(rows):
+        for a, b in r["IB0_N_per_m"]:
+            stable[i] |= (a <= cols) & (cols <= b)
+    unstable = ~stable
+    w_col = np.where(unstable.any(axis=0), rpm[unstable.argmax(axis=0)], np.inf)
     return b_row, rpm, cols, w_col
 
 
@@ -291,7 +301,8 @@ def coil_region_plot(results: dict) -> str:
     ax.set_title(f"Coil (b1): where the coiled tether is stable (T = {results['scene']['tension_N']:.3g} N; "
                  "independent of the damping)", fontsize=9)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
-    return _svg(fig)
+    fig.tight_layout()
+    return _image(fig)
 
 
 def _critical_mark(results: dict):

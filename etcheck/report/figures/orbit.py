@@ -2,16 +2,16 @@
 field, and the axial field and the load margin against time (first orbit, whole window).
 
 Every function takes the JSON-able check results (``results["orbit"]``, SI:
-tesla, seconds, N/m; latitude and longitude in degrees) and returns an SVG
-string; fields are drawn in µT.
+tesla, seconds, N/m; latitude and longitude in degrees) and returns the figure
+as an inline PNG ``<img>``; fields are drawn in µT.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
-from etcheck.report.figures.common import svg as _svg
 
 
 def _arr(values) -> np.ndarray:
@@ -40,7 +40,7 @@ def ground_track_plot(results: dict) -> str:
     ax.set_ylabel("geodetic latitude [deg N]")
     ax.legend(loc="lower left", fontsize=7, framealpha=0.9)
     ax.set_title(f"Ground track over {o['duration_s'] / 3600:.4g} h from {o['start'][:16]} UTC ({o['model']})", fontsize=9)
-    return _svg(fig)
+    return _image(fig)
 
 
 def _time_panels(o: dict, series: dict, unit: float, unit_name: str, title: str) -> str:
@@ -73,7 +73,7 @@ def _time_panels(o: dict, series: dict, unit: float, unit_name: str, title: str)
         ax2.legend(fontsize=7, loc="upper left", ncol=3, framealpha=0.9)
     axes[-1, 0].set_xlabel(f"time since {o['start'][:16]} UTC [{unit_name}]")
     fig.tight_layout()
-    return _svg(fig)
+    return _image(fig)
 
 
 def first_orbit_plot(results: dict) -> str:

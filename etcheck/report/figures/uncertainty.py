@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
-from etcheck.report.figures.common import svg as _svg
 
 
 def tornado_plot(results: dict) -> str:
@@ -39,4 +39,4 @@ def tornado_plot(results: dict) -> str:
         ax.set_title(p["margin"], fontsize=9)
         ax.legend(fontsize=6, loc="lower right", framealpha=0.9)
     fig.tight_layout()
-    return _svg(fig)
+    return _image(fig)

@@ -1,0 +1,53 @@
+"""Figures are drawn once as opaque PNGs at print resolution, cropped like matplotlib's tight bounding box."""
+
+from __future__ import annotations
+
+import base64
+import io
+import re
+
+import numpy as np
+import pytest
+
+from etcheck.report.figures.common import PAD_INCH, PRINT_DPI, image, pyplot
+
+PIL = pytest.importorskip("PIL.Image")
+
+
+def _decoded(fig_html: str):
+    data = re.fullmatch(r'<img src="data:image/png;base64,([^"]+)" width="(\d+)" height="(\d+)" alt="">', fig_html)
+    assert data, fig_html[:80]
+    img = PIL.open(io.BytesIO(base64.b64decode(data.group(1))))
+    assert img.size == (int(data.group(2)), int(data.group(3)))
+    return img
+
+
+def _figure(legend_below: bool):
+    plt = pyplot()
+    fig, ax = plt.subplots(figsize=(4.0, 3.0))
+    ax.plot([0, 1], [0, 1], label="a line")
+    ax.set_xlabel("x [m]")
+    if legend_below:
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.5))
+    else:
+        fig.tight_layout()  # everything inside the canvas: cropped from the one drawing
+    return image(fig)
+
+
+def test_a_figure_is_cropped_to_its_content_with_a_white_border():
+    out = _figure(legend_below=False)
+    img = _decoded(out)
+    assert out.png and img.format == "PNG" and img.mode == "RGB"  # no alpha mask for the PDF writer
+    w, h = img.size
+    assert w < 4.0 * PRINT_DPI and h < 3.0 * PRINT_DPI  # the canvas's empty margins are cut away
+    pixels = np.asarray(img)
+    pad = round(PAD_INCH * PRINT_DPI) // 2  # line widths may reach past the layout boxes by a few pixels
+    for border in (pixels[:pad], pixels[-pad:], pixels[:, :pad], pixels[:, -pad:]):
+        assert border.min() == 255  # the white border around the content
+    assert pixels[pad:-pad, pad:-pad].min() < 100  # ink inside it
+
+
+def test_content_beyond_the_canvas_is_kept():
+    img = _decoded(_figure(legend_below=True))
+    assert img.size[1] > 3.0 * PRINT_DPI  # the legend below the axes grew the picture past the 3-inch canvas
+    assert np.asarray(img)[-round(0.6 * PRINT_DPI):].min() < 100  # and its text is drawn
