@@ -1,0 +1,35 @@
+"""Start-up cost: the CLI loads no solver to parse its options, and a JSON-only check loads no report stack.
+
+One fresh interpreter (sys.modules of this test process is shared with every other test).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+#: never needed to check a mission without [orbit] and write its results.json
+REPORT_AND_STUDY_STACK = ("matplotlib", "weasyprint", "jinja2", "PIL", "xarray", "dask", "sgp4", "ppigrf",
+                          "hypothesis", "pint")
+
+PROBE = """
+import json, sys
+from etcheck.cli.main import main
+at_start = sorted(m for m in ("numpy", "scipy", "astropy") if m in sys.modules)
+code = main(["missions/set.toml", "--draft", "--format", "json", "--out", sys.argv[1]])
+print(json.dumps({"at_start": at_start, "code": code, "loaded": sorted({m.split(".")[0] for m in sys.modules})}))
+"""
+
+
+def test_a_json_only_draft_check_loads_no_report_stack(tmp_path):
+    run = subprocess.run([sys.executable, "-c", PROBE, str(tmp_path)], cwd=ROOT, capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    out = json.loads(run.stdout.strip().splitlines()[-1])
+    assert out["code"] == 0 and (tmp_path / "set" / "results.json").exists()
+    assert out["at_start"] == []  # `etcheck --help` and option errors answer before numpy is loaded
+    assert "numpy" in out["loaded"]  # the probe saw the check's own imports
+    assert [m for m in REPORT_AND_STUDY_STACK if m in out["loaded"]] == []
