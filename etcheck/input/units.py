@@ -45,23 +45,7 @@ def to_quantity(value, kind: str) -> u.Quantity:
     radians per time. Raises :class:`QuantityProblem` with a readable message.
     """
     unit, what, example = KINDS[kind]
-    if isinstance(value, bool) or isinstance(value, (int, float)):
-        raise QuantityProblem(f"{value!r} has no unit; expected {what} such as {example}")
-    if isinstance(value, str):
-        try:
-            q = u.Quantity(value)
-        except (TypeError, ValueError) as exc:
-            raise QuantityProblem(
-                f"cannot read {value!r} as a quantity ({exc}); expected {what} such as {example}"
-            ) from None
-        if q.unit == u.dimensionless_unscaled and not value.strip().replace(".", "").isalpha():
-            raise QuantityProblem(f"{value!r} has no unit; expected {what} such as {example}")
-    elif isinstance(value, u.Quantity):
-        q = value
-    elif _is_pint(value):
-        q = _from_pint(value, unit, what, example)
-    else:
-        raise QuantityProblem(f"expected {what} such as {example}, got {type(value).__name__} {value!r}")
+    q = _read(value, unit, what, example)
     if not q.isscalar:
         raise QuantityProblem(f"expected a single value, got an array {value!r}")
     if kind == "angular_rate" and q.unit.is_equivalent(u.Hz):
@@ -74,6 +58,27 @@ def to_quantity(value, kind: str) -> u.Quantity:
         ) from None
     if not math.isfinite(q.value):
         raise QuantityProblem(f"{value!r} is not a finite number")
+    return q
+
+
+def _read(value, unit: u.UnitBase, what: str, example: str) -> u.Quantity:
+    """The quantity a TOML string, astropy or pint quantity stands for (any unit, not yet checked)."""
+    if isinstance(value, bool) or isinstance(value, (int, float)):
+        raise QuantityProblem(f"{value!r} has no unit; expected {what} such as {example}")
+    if isinstance(value, u.Quantity):
+        return value
+    if _is_pint(value):
+        return _from_pint(value, unit, what, example)
+    if not isinstance(value, str):
+        raise QuantityProblem(f"expected {what} such as {example}, got {type(value).__name__} {value!r}")
+    try:
+        q = u.Quantity(value)
+    except (TypeError, ValueError) as exc:
+        raise QuantityProblem(
+            f"cannot read {value!r} as a quantity ({exc}); expected {what} such as {example}"
+        ) from None
+    if q.unit == u.dimensionless_unscaled and not value.strip().replace(".", "").isalpha():
+        raise QuantityProblem(f"{value!r} has no unit; expected {what} such as {example}")
     return q
 
 
