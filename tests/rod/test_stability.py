@@ -145,3 +145,8 @@ def test_map_and_campbell():
     cb = campbell(SET, np.linspace(0, 1, 5), k=4)
     assert cb.eigenvalues.shape[0] == 5
     assert np.nanmin(cb.frequencies[0]) == pytest.approx(spectrum(SET, k=1).eigenvalues[0].imag, rel=1e-10)
+    # one resolution, its error from a second one at the ends and the middle: honest both ways
+    assert (cb.N, cb.N_check, cb.checked.tolist()) == (24, 36, [0, 2, 4])
+    assert cb.error < 1e-11
+    coarse = campbell(SET, np.linspace(0, 1, 5), k=4, N=8, N_check=24)
+    assert coarse.error > 1e-4  # N = 8 is off by ~1e-1 (accuracy table)
