@@ -294,6 +294,9 @@ def _jacobian(v: dict[str, float], gj_follows: bool) -> dict[str, dict[str, floa
     J["omega"] |= {"spin_rate": 1.0, "EI1": -0.5, "mass_per_length": 0.5, "length": 2.0}
     J["B"] |= {"current": 1.0, "axial_field": 1.0, "length": 3.0, "EI1": -1.0}
     J["T"] |= {"end_tension": 1.0, "length": 2.0, "EI1": -1.0}
+    if EI2 > EI1:  # axes swapped by the sample: R = EI1/EI2
+        J["R"] |= {"EI1": 1.0, "EI2": -1.0}
+        J["omega"]["EI1"], J["omega"]["EI2"] = 0.0, -0.5
     return J
 
 
@@ -316,73 +319,84 @@ def sensitivities(model: MarginModel, step: float = STEP) -> tuple[MarginSensiti
     p0 = fixed.params(v)
     m0 = fixed.margins_at(p0)
     J = _jacobian(v, model.gj_ratio is not None)
-    if v["EI2"] > v["EI1"]:  # axes swapped by the sample: R = EI1/EI2
-        J["R"] |= {"EI1": 1.0, "EI2": -1.0}
-        J["omega"]["EI1"], J["omega"]["EI2"] = 0.0, -0.5
-    out = []
-    for kind in model.kinds:
-        name = NAMES[kind]
-        base = m0[kind]
-        d = {q: 0.0 for q in _DIMS}
-        how = {}
-        exact_dir = "B" if kind in (LOAD0, LOAD) else "omega"
-        d[exact_dir] = -1.0
-        how[exact_dir] = "exact"
-        if not (base > 0 and math.isfinite(base)):
-            els = tuple(Elasticity(k, None, "margin is zero or unbounded at the operating point") for k in ROWS)
-            out.append(MarginSensitivity(name, base, els))
+    return tuple(_margin_sensitivity(fixed, kind, p0, m0[kind], J, v, step) for kind in model.kinds)
+
+
+def _margin_sensitivity(fixed: MarginModel, kind: str, p0: RodParameters, base: float,
+                        J: dict[str, dict[str, float]], v: dict[str, float], step: float) -> MarginSensitivity:
+    """One margin's elasticities: in the dimensionless parameters (exact or central differences), then to the
+    physical inputs through the scalings (``J``), and to both stiffnesses together."""
+    name = NAMES[kind]
+    if not (base > 0 and math.isfinite(base)):
+        els = tuple(Elasticity(k, None, "margin is zero or unbounded at the operating point") for k in ROWS)
+        return MarginSensitivity(name, base, els)
+    d, how = _dimensionless_elasticities(fixed, kind, p0, step)
+    els = [_physical_elasticity(fixed, kind, k, J, d, how, v, step) for k in PHYSICAL]
+    common, els = _both_stiffnesses(fixed, kind, els, step)
+    return MarginSensitivity(name, base, (common, *els))
+
+
+def _dimensionless_elasticities(fixed: MarginModel, kind: str, p0: RodParameters,
+                                step: float) -> tuple[dict[str, float], dict[str, str]]:
+    """d ln margin / d ln q for q in R, Gamma, P, omega, B, T, and how each was found: "exact" (the margin is
+    inversely proportional to B or omega), zero parameters, "symmetric" (R = 1: not differentiable) or "fd"."""
+    exact_dir = "B" if kind in (LOAD0, LOAD) else "omega"
+    d = {q: 0.0 for q in _DIMS} | {exact_dir: -1.0}
+    how = {exact_dir: "exact"}
+    for q in _DIMS:
+        if q == exact_dir:
             continue
-        for q in _DIMS:
-            if q == exact_dir:
-                continue
-            x = getattr(p0, q)
-            if x == 0:
-                how[q] = "exact (the parameter is zero)"
-                continue
-            if q == "R" and p0.R * math.exp(step) > 1.0:
-                how[q] = "symmetric"
-                continue
+        x = getattr(p0, q)
+        if x == 0:
+            how[q] = "exact (the parameter is zero)"
+        elif q == "R" and p0.R * math.exp(step) > 1.0:
+            how[q] = "symmetric"
+        else:
             up = fixed.margins_at(p0.with_(**{q: x * math.exp(step)}))[kind]
             dn = fixed.margins_at(p0.with_(**{q: x * math.exp(-step)}))[kind]
             d[q] = (math.log(up) - math.log(dn)) / (2 * step) if up > 0 and dn > 0 else math.nan
             how[q] = "fd"
-        els = []
-        for k in PHYSICAL:
-            val = sum(J[q][k] * d[q] for q in _DIMS)
-            used = {how.get(q, "") for q in _DIMS if J[q][k] != 0}
-            if k == "damping_time":
-                els.append(Elasticity(k, 0.0, "exact (the static pencil does not contain damping)"))
-                continue
-            if (k in ("current", "axial_field") and kind != SPIN) or (k == "spin_rate" and kind == SPIN):
-                els.append(Elasticity(k, -1.0, "exact (margin ∝ 1/input)"))
-                continue
-            if k in ("EI1", "EI2") and "symmetric" in used:
-                els.append(Elasticity(k, None, "isotropic: see both together"))
-                continue
-            if "fd" in used:
-                method = f"central difference, relative step {step:g} in the dimensionless parameters"
-            elif k == "torsional_stiffness" and model.gj_ratio is not None:
-                method = "GJ follows from poisson_ratio: counted in EI1 and EI2"
-            else:
-                method = "exact (the margin does not depend on it)" if val == 0 else "exact (from the scalings)"
-            if k == "end_tension" and v["end_tension"] == 0:
-                method = "exact: 0 at zero tension (see the tolerance swing for an absolute tolerance)"
-            els.append(Elasticity(k, val, method))
-        both = next(e for e in els if e.input == "EI1"), next(e for e in els if e.input == "EI2")
-        gj = next(e for e in els if e.input == "torsional_stiffness")
-        if both[0].value is None:  # isotropic: the common factor directly
-            up = fixed.margins(fixed.values({"bending_stiffness": math.exp(step)}))[kind]
-            dn = fixed.margins(fixed.values({"bending_stiffness": math.exp(-step)}))[kind]
-            tot = (math.log(up) - math.log(dn)) / (2 * step)
-            els = [replace(e, value=0.5 * tot, method="half of both together (isotropic, by symmetry)")
-                   if e.input in ("EI1", "EI2") else e for e in els]
-            common = Elasticity("bending_stiffness", tot, f"central difference, relative step {step:g}")
-        else:
-            tot = both[0].value + both[1].value + (gj.value if model.gj_ratio is not None else 0.0)
-            common = Elasticity("bending_stiffness", tot, "sum of EI1 and EI2" +
-                                (" (GJ follows from poisson_ratio)" if model.gj_ratio is not None else ""))
-        out.append(MarginSensitivity(name, base, (common, *els)))
-    return tuple(out)
+    return d, how
+
+
+def _physical_elasticity(fixed: MarginModel, kind: str, k: str, J: dict[str, dict[str, float]],
+                         d: dict[str, float], how: dict[str, str], v: dict[str, float], step: float) -> Elasticity:
+    """The elasticity to physical input ``k``: sum over q of d ln q / d ln k * d ln margin / d ln q."""
+    if k == "damping_time":
+        return Elasticity(k, 0.0, "exact (the static pencil does not contain damping)")
+    if (k in ("current", "axial_field") and kind != SPIN) or (k == "spin_rate" and kind == SPIN):
+        return Elasticity(k, -1.0, "exact (margin ∝ 1/input)")
+    used = {how.get(q, "") for q in _DIMS if J[q][k] != 0}
+    if k in ("EI1", "EI2") and "symmetric" in used:
+        return Elasticity(k, None, "isotropic: see both together")
+    val = sum(J[q][k] * d[q] for q in _DIMS)
+    if k == "end_tension" and v["end_tension"] == 0:
+        method = "exact: 0 at zero tension (see the tolerance swing for an absolute tolerance)"
+    elif "fd" in used:
+        method = f"central difference, relative step {step:g} in the dimensionless parameters"
+    elif k == "torsional_stiffness" and fixed.gj_ratio is not None:
+        method = "GJ follows from poisson_ratio: counted in EI1 and EI2"
+    else:
+        method = "exact (the margin does not depend on it)" if val == 0 else "exact (from the scalings)"
+    return Elasticity(k, val, method)
+
+
+def _both_stiffnesses(fixed: MarginModel, kind: str, els: list[Elasticity],
+                      step: float) -> tuple[Elasticity, list[Elasticity]]:
+    """The elasticity to EI1 and EI2 together (one factor), and the per-axis ones (halves of it when the rod
+    is isotropic, where each alone is not differentiable)."""
+    ei1, ei2 = next(e for e in els if e.input == "EI1"), next(e for e in els if e.input == "EI2")
+    gj = next(e for e in els if e.input == "torsional_stiffness")
+    if ei1.value is not None:
+        tot = ei1.value + ei2.value + (gj.value if fixed.gj_ratio is not None else 0.0)
+        return Elasticity("bending_stiffness", tot, "sum of EI1 and EI2" +
+                          (" (GJ follows from poisson_ratio)" if fixed.gj_ratio is not None else "")), els
+    up = fixed.margins(fixed.values({"bending_stiffness": math.exp(step)}))[kind]
+    dn = fixed.margins(fixed.values({"bending_stiffness": math.exp(-step)}))[kind]
+    tot = (math.log(up) - math.log(dn)) / (2 * step)
+    els = [replace(e, value=0.5 * tot, method="half of both together (isotropic, by symmetry)")
+           if e.input in ("EI1", "EI2") else e for e in els]
+    return Elasticity("bending_stiffness", tot, f"central difference, relative step {step:g}"), els
 
 
 @single_blas_thread
@@ -558,6 +572,25 @@ def _chunk_worker(args) -> list[tuple[float, int]]:
         return [conditional_probability(model, kind, v, cond) for v in rows]
 
 
+@dataclass(frozen=True)
+class _Sampling:
+    """When the sampling of one probability stops: relative 95 % half-width ``target``, below ``negligible`` with
+    its interval, or ``max_samples`` points; ``replicates`` scrambled Sobol sequences of ``first`` points each at
+    the start (doubling), seeded from ``seed``; ``workers`` local processes for the pencils."""
+
+    target: float
+    max_samples: int
+    replicates: int
+    first: int
+    seed: int
+    negligible: float
+    workers: int
+
+    def settled(self, mean: float, half: float, n: int) -> bool:
+        """The target is met, the probability is negligible, or no sample fell short out of 1024 or more."""
+        return (mean > 0 and half <= self.target * mean) or mean + half < self.negligible or (mean == 0 and n >= 1024)
+
+
 @single_blas_thread
 def failure_probabilities(model: MarginModel, unc: Uncertainty, sens: tuple[MarginSensitivity, ...] | None = None,
                           target: float = 0.1, max_samples: int | None = None, replicates: int = 8,
@@ -573,9 +606,6 @@ def failure_probabilities(model: MarginModel, unc: Uncertainty, sens: tuple[Marg
     (default 2^20 for the closed form, 4096 for pencils). ``workers``:
     local processes for the pencils (default: every core).
     """
-    from scipy import stats
-    from scipy.stats import qmc
-
     if model.route == ROUTE_UNDAMPED or _undamped_samples(model, unc):
         return tuple(Probability(NAMES[k], model.required, None, None, None, None, 0, 0, ROUTE_UNDAMPED,
                                  NOT_ANSWERED_UNDAMPED, None, False,
@@ -584,90 +614,96 @@ def failure_probabilities(model: MarginModel, unc: Uncertainty, sens: tuple[Marg
     sens = sens or sensitivities(model)
     if max_samples is None:
         max_samples = 2**20 if model.route == ROUTE_CLOSED else 4096
-    exact_zero = {"damping_time"} if model.route == ROUTE_PENCIL else set(PHYSICAL) - {
-        "EI1", "EI2", "length", "current", "axial_field"}
-    route = model.route
+    sampling = _Sampling(target, max_samples, replicates, first, seed, negligible,
+                         workers or len(os.sched_getaffinity(0)))
     if model.route == ROUTE_CLOSED and any(unc.get(k) for k in ("spin_rate", "end_tension")):
         model = replace(model, route=ROUTE_PENCIL, kinds=model.kinds)  # samples leave the rung-0 case
-        route = ROUTE_PENCIL
-        exact_zero = {"damping_time"}
-    results = []
-    pool = None
+    exact_zero = {"damping_time"} if model.route == ROUTE_PENCIL else set(PHYSICAL) - {
+        "EI1", "EI2", "length", "current", "axial_field"}
+    # pencils in local processes (started at the first batch large enough to share out)
+    pool = ProcessPoolExecutor(max_workers=sampling.workers) if model.route == ROUTE_PENCIL and sampling.workers > 1 \
+        else None
     try:
-        for s in sens:
-            kind = next(k for k in model.kinds if NAMES[k] == s.margin)
-            cond_name = _dominant(s, unc, exact_zero)
-            cond = unc.get(cond_name) if cond_name else None
-            dists = [d for d in unc.inputs if d.input not in exact_zero and d is not cond]
-            inert = [d.input for d in unc.inputs if d.input in exact_zero]
-            note = f"inputs without influence (exactly): {', '.join(inert)}" if inert else ""
-            started = time.perf_counter()
-            if not dists:
-                v = model.values()
-                v["_bs"] = 1.0
-                pr, ev = conditional_probability(model, kind, v, cond)
-                results.append(Probability(s.margin, model.required, pr, pr, pr, 0.0, 1, ev, route,
-                                           "exact: one input, integrated in closed form" if cond else
-                                           "exact: no uncertain input moves this margin", cond_name, True, note))
-                continue
-            sobols = [qmc.Sobol(len(dists), scramble=True, seed=seed + 7919 * r) for r in range(replicates)]
-            sums = np.zeros(replicates)
-            n_each = 0
-            evals = 0
-            batch = first
-            settled = False
-            while True:
-                us = [sb.random(batch) for sb in sobols]
-                if route == ROUTE_CLOSED:
-                    gs = [_closed_form_batch(model, dists, u, cond) for u in us]
-                    evals += batch * replicates
-                else:
-                    rows = [_sample_values(model, dists, u) for u in us]
-                    flat = [w for r in rows for w in r]
-                    n_workers = workers or len(os.sched_getaffinity(0))
-                    if n_workers > 1 and len(flat) >= 16:
-                        if pool is None:
-                            pool = ProcessPoolExecutor(max_workers=n_workers)
-                        size = max(1, math.ceil(len(flat) / (4 * n_workers)))
-                        chunks = [flat[i:i + size] for i in range(0, len(flat), size)]
-                        got = [x for part in pool.map(_chunk_worker, [(model, kind, c, cond) for c in chunks]) for x in part]
-                    else:
-                        got = _chunk_worker((model, kind, flat, cond))
-                    evals += sum(e for _, e in got)
-                    g = np.array([x for x, _ in got])
-                    gs = [g[r * batch:(r + 1) * batch] for r in range(replicates)]
-                sums += np.array([float(np.sum(g)) for g in gs])
-                n_each += batch
-                est = sums / n_each
-                mean = float(np.mean(est))
-                half = float(stats.t.ppf(0.975, replicates - 1) * np.std(est, ddof=1) / math.sqrt(replicates))
-                if mean > 0 and half <= target * mean:
-                    settled = True
-                elif mean + half < negligible:
-                    settled = True
-                elif mean == 0 and n_each * replicates >= 1024:
-                    settled = True
-                if settled or n_each * replicates * 2 > max_samples:
-                    break
-                batch = n_each  # doubling keeps the Sobol balance (powers of two)
-            n = n_each * replicates
-            if mean + half < negligible and mean > 0:
-                note = (note + "; " if note else "") + f"negligible: below {negligible:g} with its interval"
-            if mean == 0:
-                low, high, rel = 0.0, 3.0 / n, None
-                note = (note + "; " if note else "") + f"no sample fell short: P < {3.0 / n:.2g} (rule of three, 95 %)"
-            else:
-                low, high, rel = max(0.0, mean - half), min(1.0, mean + half), half / mean
-            how = (f"randomised quasi-Monte Carlo: {replicates} scrambled Sobol sequences (scipy.stats.qmc) over "
-                   f"{', '.join(d.input for d in dists)}; "
-                   + (f"{cond_name} integrated exactly (conditional probability)" if cond else "indicator of margin < required")
-                   + f"; {time.perf_counter() - started:.2f} s")
-            results.append(Probability(s.margin, model.required, mean, low, high, rel, n, evals, route, how,
-                                       cond_name, settled, note))
+        return tuple(_probability(model, s, unc, exact_zero, sampling, pool) for s in sens)
     finally:
         if pool is not None:
             pool.shutdown()
-    return tuple(results)
+
+
+def _probability(model: MarginModel, s: MarginSensitivity, unc: Uncertainty, exact_zero: set[str],
+                 sampling: _Sampling, pool: ProcessPoolExecutor | None) -> Probability:
+    """P(margin < required) of one margin: its dominant input integrated exactly, the others sampled."""
+    kind = next(k for k in model.kinds if NAMES[k] == s.margin)
+    cond_name = _dominant(s, unc, exact_zero)
+    cond = unc.get(cond_name) if cond_name else None
+    dists = [d for d in unc.inputs if d.input not in exact_zero and d is not cond]
+    inert = [d.input for d in unc.inputs if d.input in exact_zero]
+    note = f"inputs without influence (exactly): {', '.join(inert)}" if inert else ""
+    started = time.perf_counter()
+    if not dists:
+        v = model.values()
+        v["_bs"] = 1.0
+        pr, ev = conditional_probability(model, kind, v, cond)
+        return Probability(s.margin, model.required, pr, pr, pr, 0.0, 1, ev, model.route,
+                           "exact: one input, integrated in closed form" if cond else
+                           "exact: no uncertain input moves this margin", cond_name, True, note)
+    mean, half, n, evals, settled = _quasi_monte_carlo(model, kind, dists, cond, sampling, pool)
+    if mean + half < sampling.negligible and mean > 0:
+        note = (note + "; " if note else "") + f"negligible: below {sampling.negligible:g} with its interval"
+    if mean == 0:
+        low, high, rel = 0.0, 3.0 / n, None
+        note = (note + "; " if note else "") + f"no sample fell short: P < {3.0 / n:.2g} (rule of three, 95 %)"
+    else:
+        low, high, rel = max(0.0, mean - half), min(1.0, mean + half), half / mean
+    how = (f"randomised quasi-Monte Carlo: {sampling.replicates} scrambled Sobol sequences (scipy.stats.qmc) over "
+           f"{', '.join(d.input for d in dists)}; "
+           + (f"{cond_name} integrated exactly (conditional probability)" if cond else "indicator of margin < required")
+           + f"; {time.perf_counter() - started:.2f} s")
+    return Probability(s.margin, model.required, mean, low, high, rel, n, evals, model.route, how, cond_name,
+                       settled, note)
+
+
+def _quasi_monte_carlo(model: MarginModel, kind: str, dists: list[Distribution], cond: Distribution | None,
+                       sampling: _Sampling, pool: ProcessPoolExecutor | None) -> tuple[float, float, int, int, bool]:
+    """(mean, 95 % half-width, samples, evaluations, settled) over scrambled Sobol replicates, doubling."""
+    from scipy import stats
+    from scipy.stats import qmc
+
+    replicates = sampling.replicates
+    sobols = [qmc.Sobol(len(dists), scramble=True, seed=sampling.seed + 7919 * r) for r in range(replicates)]
+    sums = np.zeros(replicates)
+    n_each = evals = 0
+    batch = sampling.first
+    while True:
+        gs, ev = _conditional_batches(model, kind, dists, cond, [sb.random(batch) for sb in sobols], sampling, pool)
+        evals += ev
+        sums += np.array([float(np.sum(g)) for g in gs])
+        n_each += batch
+        est = sums / n_each
+        mean = float(np.mean(est))
+        half = float(stats.t.ppf(0.975, replicates - 1) * np.std(est, ddof=1) / math.sqrt(replicates))
+        settled = sampling.settled(mean, half, n_each * replicates)
+        if settled or n_each * replicates * 2 > sampling.max_samples:
+            return mean, half, n_each * replicates, evals, settled
+        batch = n_each  # doubling keeps the Sobol balance (powers of two)
+
+
+def _conditional_batches(model: MarginModel, kind: str, dists: list[Distribution], cond: Distribution | None,
+                         us: list[np.ndarray], sampling: _Sampling,
+                         pool: ProcessPoolExecutor | None) -> tuple[list[np.ndarray], int]:
+    """The conditional probabilities at every replicate's points ``us``, and the model evaluations spent."""
+    batch = us[0].shape[0]
+    if model.route == ROUTE_CLOSED:
+        return [_closed_form_batch(model, dists, u, cond) for u in us], batch * len(us)
+    flat = [w for u in us for w in _sample_values(model, dists, u)]
+    if pool is not None and len(flat) >= 16:
+        size = max(1, math.ceil(len(flat) / (4 * sampling.workers)))
+        chunks = [flat[i:i + size] for i in range(0, len(flat), size)]
+        got = [x for part in pool.map(_chunk_worker, [(model, kind, c, cond) for c in chunks]) for x in part]
+    else:
+        got = _chunk_worker((model, kind, flat, cond))
+    g = np.array([x for x, _ in got])
+    return [g[r * batch:(r + 1) * batch] for r in range(len(us))], sum(e for _, e in got)
 
 
 def _undamped_samples(model: MarginModel, unc: Uncertainty) -> bool:
