@@ -278,7 +278,8 @@ def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: i
     """Time and error of the lowest k eigenvalue pairs and of B_c versus N.
 
     A measurement for this scene (BLAS on one thread, one solve per N), against
-    a reference at N = 48 (:data:`etcheck.rod.convergence.N_REF`); see
+    a reference at :func:`etcheck.rod.convergence.reference_resolution` (Ns)
+    (N = 48 for the default Ns, 96 up to N = 64); see
     :func:`etcheck.rod.convergence.accuracy_table`.
     """
     rows = accuracy_table(scaled.params, Ns=Ns, k=k)

@@ -23,12 +23,18 @@ from .linear import linear_operator
 from .parameters import RodParameters
 from .spectrum import ERROR_FLOOR, lowest_eigenvalues, select_pairs
 
-__all__ = ["N_REF", "AccuracyRow", "accuracy_table", "first_load"]
+__all__ = ["REFERENCES", "AccuracyRow", "reference_resolution", "accuracy_table", "first_load"]
 
-#: Reference resolution: converged to round-off for the straight rod (the
-#: lowest pairs agree to ~1e-14 from N = 32 on), and better conditioned than
-#: larger N (the static pencil at N = 96 carries ~6e-11 of round-off).
-N_REF = 48
+#: Reference resolutions: the smallest at least 1.5 x the finest N compared is
+#: used (the lowest pairs of the straight rod agree to ~1e-14 from N = 32 on, so
+#: N = 48 is a round-off reference for N <= 32; a larger N only adds cost).
+REFERENCES = (48, 64, 96, 128)
+
+
+def reference_resolution(Ns) -> int:
+    """The reference N of :func:`accuracy_table` for the resolutions Ns (48 for N <= 32, 96 for N <= 64)."""
+    need = 1.5 * max(Ns, default=0)
+    return next((n for n in REFERENCES if n >= need), int(math.ceil(need)))
 
 
 @dataclass(frozen=True)
@@ -64,13 +70,15 @@ def first_load(params: RodParameters, N: int) -> float:
 
 
 def accuracy_table(params: RodParameters, Ns=(8, 12, 16, 24, 32), k: int = 10,
-                   N_ref: int = N_REF) -> list[AccuracyRow]:
+                   N_ref: int | None = None) -> list[AccuracyRow]:
     """Rows (N, solve time [s], eigenvalue error, B_c error) against N = N_ref.
 
     One solve per resolution: linear_operator + shift-invert solve for
     2k + 8 eigenvalues, timed with time.perf_counter on one BLAS thread (a
     single measurement), and the first static load from :func:`first_load`.
+    ``N_ref`` defaults to :func:`reference_resolution` (Ns).
     """
+    N_ref = reference_resolution(Ns) if N_ref is None else int(N_ref)
     base = straight(params)
     nev = 2 * k + 8
     rows = []

@@ -1,7 +1,8 @@
 """The speed/accuracy trade of the solvers for one mission's scene, measured (not a test).
 
 Rung 1: time of one solve and error of the lowest eigenvalue pairs and of the
-first static load versus the Chebyshev resolution N (reference N = 96), and the
+first static load versus the Chebyshev resolution N (reference N = 96 up to N = 64,
+48 up to N = 32: :func:`etcheck.rod.convergence.reference_resolution`), and the
 automatic two-resolution solve as the check runs it. Rung 2: time and error of
 tracing b1 from its pitchfork to 4 times that load versus N (reference N = 48).
 BLAS on one thread.
