@@ -37,10 +37,12 @@ from etcheck.rod import equilibria as eq
 from etcheck.rod.branch_stability import secondary_pitchfork
 from etcheck.rod.branches import (
     Branch,
+    LiftoffSpin,
     connecting_branch,
     continue_branch,
-    liftoff_spin,
+    liftoff_estimate,
     locate,
+    pitchfork_loads,
     primary_branches,
     resolution_check,
     state_at,
@@ -81,13 +83,23 @@ class DiagramOptions:
 
 
 @lru_cache(maxsize=256)
-def _liftoff_cached(P: float, R: float, Gamma: float, f: float, T: float, which: str, k: int) -> float:
-    return liftoff_spin(RodParameters(P=P, R=R, Gamma=Gamma, f=f, T=T), which=which, k=k, N=24)
+def _liftoff_cached(P: float, R: float, Gamma: float, f: float, T: float, which: str, k: int) -> LiftoffSpin:
+    return liftoff_estimate(RodParameters(P=P, R=R, Gamma=Gamma, f=f, T=T), which=which, k=k, N=24)
+
+
+def liftoff_spin_estimate(params: RodParameters, which: str = "b1", k: int = 1) -> LiftoffSpin:
+    """Spin at which the k-th branch of class b1 (S1) or b2 (S2) lifts off, with its two-resolution
+    error (straight-rod pencils at N = 24 and 36; memoised)."""
+    return _liftoff_cached(params.P, params.R, params.Gamma, params.f, params.T, which, k)
 
 
 def liftoff(params: RodParameters, which: str = "b1", k: int = 1) -> float:
-    """Spin at which the k-th branch of class b1 (S1) or b2 (S2) lifts off (straight-rod pencils; memoised)."""
-    return _liftoff_cached(params.P, params.R, params.Gamma, params.f, params.T, which, k)
+    """The lift-off spin of :func:`liftoff_spin_estimate` (NaN when the branch does not lift off)."""
+    return liftoff_spin_estimate(params, which, k).omega
+
+
+def _finite(x: float) -> float | None:
+    return x if math.isfinite(x) else None
 
 
 def _b1_to(params: RodParameters, N: int) -> tuple[Any, Branch | None, str]:
@@ -107,17 +119,18 @@ def _b1_to(params: RodParameters, N: int) -> tuple[Any, Branch | None, str]:
     return start, branch, ""
 
 
-def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, float]]:
-    """(label, symmetry, k-th pitchfork of its class, lift-off spin) of branches b1, b2, ... until n of them
+def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, LiftoffSpin]]:
+    """(label, symmetry, k-th pitchfork of its class, lift-off spin with its error) of branches b1, b2, ... until n of them
     are still attached to the straight tether at the scene's spin (lifted-off ones are listed too)."""
     out, attached, j = [], 0, 0
+    none = LiftoffSpin(math.nan, math.nan, 24, 36)
     while attached < n and j < n + 8:
         j += 1
         which = "S1" if j % 2 else "S2"
         kk = (j + 1) // 2
-        w = liftoff(params, "b1" if which == "S1" else "b2", kk) if params.omega > 0 else math.nan
+        w = liftoff_spin_estimate(params, "b1" if which == "S1" else "b2", kk) if params.omega > 0 else none
         out.append((f"b{j}", which, kk, w))
-        attached += not (math.isfinite(w) and params.omega >= w)
+        attached += not (math.isfinite(w.omega) and params.omega >= w.omega)
     return out
 
 
@@ -169,8 +182,10 @@ def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramO
 
     ``params`` fixes omega, T, R, ... (B is the continuation parameter).
     Returns JSON-able data: per branch its label, symmetry class, pitchfork
-    load, points (B, measure_1, measure_2, max deflection; I·B0 in N/m and
-    deflection in m), special points (folds, branch points), shapes, cost,
+    load (at the check resolution N + max(8, N // 2), with the change from N
+    as its error; the branch itself starts at its N value), lift-off spin
+    with its error, points (B, measure_1, measure_2, max deflection; I·B0 in
+    N/m and deflection in m), special points (folds, branch points), shapes, cost,
     the two-resolution error and, with ``options.stability``, the stability
     of every point at the scene's damping.
     """
@@ -181,25 +196,32 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
     """:func:`bifurcation_diagram` and the continued primary branches by label."""
     t_all = time.perf_counter()
     labels = _labels(params, options.branches)
-    attached = [(lab, which, kk, w) for lab, which, kk, w in labels if not (math.isfinite(w) and params.omega >= w)]
-    lifted = [{"label": lab, "liftoff_omega": w} for lab, _, _, w in labels if math.isfinite(w) and params.omega >= w]
+    attached = [(lab, which, kk, w) for lab, which, kk, w in labels
+                if not (math.isfinite(w.omega) and params.omega >= w.omega)]
+    lifted = [{"label": lab, "liftoff_omega": w.omega, "liftoff_omega_error": _finite(w.error)}
+              for lab, _, _, w in labels if math.isfinite(w.omega) and params.omega >= w.omega]
     # the j-th attached branch of a class starts at that class's j-th pitchfork (lifted ones are gone)
     starts: dict[str, Any] = {}
+    loads: dict[str, tuple[float, float]] = {}  # pitchfork load at the check resolution and its error
     count = {"S1": 0, "S2": 0}
     for lab, which, _, _ in attached:
         count[which] += 1
         pair = primary_branches(params.with_(B=0.0), count[which], options.N)
         starts[lab] = next(s for s in pair if s.which == which)
-    loads = [s.load for s in starts.values()]
-    B_max = options.B_max or max(3.0, 1.3 * max(loads, default=0.0))
+        pl = pitchfork_loads(params.with_(B=0.0), which, options.N, count[which])
+        loads[lab] = (float(pl.loads[-1]), float(pl.errors[-1])) if pl.loads.size == count[which] else (
+            starts[lab].load, math.inf)
+    B_max = options.B_max or max(3.0, 1.3 * max((s.load for s in starts.values()), default=0.0))
     out_branches, kept = [], {}
     for lab, which, _, w in attached:
         start = starts[lab]
         branch = continue_branch(params, start, stop=(0.0, B_max), N=options.N, max_points=options.max_points)
         kept[lab] = branch
         data = _branch_data(branch, lab, scales, options, params.gamma)
-        data |= {"pitchfork_B": start.load, "pitchfork_IB0_N_per_m": start.load * scales.load,
-                 "symmetry": which, "liftoff_omega": w if math.isfinite(w) else None}
+        B_pf, B_pf_error = loads[lab]
+        data |= {"pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
+                 "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": which,
+                 "liftoff_omega": _finite(w.omega), "liftoff_omega_error": _finite(w.error)}
         out_branches.append(data)
         odd = int(lab[1:])
         if options.connect and which == "S1" and any(q.kind == "break" for q in branch.special):
@@ -343,7 +365,9 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         else:
             out["operating"] = operating_state(params, scales, N)
     if out["operating"] and out["operating"].get("available"):
-        region = coil_region(params, scales, omega_max=max(1.0, 2.0 * params.omega), liftoff_omega=liftoff(params))
+        lift = liftoff_spin_estimate(params)
+        region = coil_region(params, scales, omega_max=max(1.0, 2.0 * params.omega), liftoff_omega=lift.omega)
+        region["liftoff_omega_error"] = _finite(lift.error)
         low = spin_limit(region, params.B)
         rpm = scales.frequency * 60.0 / (2.0 * math.pi)
         region |= {"operating_rpm": params.omega * rpm,

@@ -70,6 +70,7 @@ from ..numerics.eigen import single_blas_thread
 from . import equilibria as eq
 from .linear import NFIELDS
 from .parameters import RodParameters
+from .spectrum import check_resolution
 
 __all__ = [
     "SYMMETRIES",
@@ -82,6 +83,10 @@ __all__ = [
     "RodBranchPoint",
     "Branch",
     "class_loads",
+    "PitchforkLoads",
+    "pitchfork_loads",
+    "LiftoffSpin",
+    "liftoff_estimate",
     "primary_branches",
     "continue_branch",
     "connecting_branch",
@@ -414,6 +419,51 @@ def class_loads(params: RodParameters, which: str, N: int = 32, n: int = 3) -> n
     return r[r > 1e-12][:n]
 
 
+#: relative rounding floor of the error estimates of pitchfork loads and lift-off spins: the
+#: restricted pencils carry differentiation matrices of norm ~N^2, so their eigenvalues agree between
+#: resolutions only to ~1e-12 relative once converged (measured up to N = 64 on the test scenes)
+ROUNDING = 1e-11
+
+
+@dataclass(frozen=True)
+class PitchforkLoads:
+    """The n smallest pitchfork loads B > 0 of the straight rod in one symmetry class,
+    with their discretisation errors (dimensionless).
+
+    ``loads`` at the finer resolution ``N_check``; ``errors``: the change
+    |B(N) - B(N_check)| of the coarser value (each fine root paired with the
+    nearest coarse one), floored at ROUNDING |B|. The collocation converges
+    spectrally, so the change of the coarser value bounds the error of the
+    finer one (checked against N = 64 over a set of scenes in the tests);
+    it overestimates it by the ratio of the two resolutions' errors.
+    """
+
+    which: str
+    N: int
+    N_check: int
+    loads: np.ndarray
+    errors: np.ndarray
+
+
+def _paired_errors(fine: np.ndarray, coarse: np.ndarray) -> np.ndarray:
+    if coarse.size == 0:
+        return np.full(fine.shape, math.inf)
+    d = np.min(np.abs(fine[:, None] - coarse[None, :]), axis=1)
+    return np.maximum(d, ROUNDING * np.abs(fine))
+
+
+@single_blas_thread
+def pitchfork_loads(params: RodParameters, which: str, N: int = 32, n: int = 3,
+                    N_check: int | None = None) -> PitchforkLoads:
+    """:func:`class_loads` at N and N_check (default N + max(8, N // 2)), as a
+    :class:`PitchforkLoads` (value at the finer resolution, error the change of
+    the coarser one). Dimensionless."""
+    Nc = check_resolution(N) if N_check is None else int(N_check)
+    fine = class_loads(params, which, max(int(N), Nc), n)
+    coarse = class_loads(params, which, min(int(N), Nc), n + 2)
+    return PitchforkLoads(_class(which), int(N), Nc, fine, _paired_errors(fine, coarse))
+
+
 @single_blas_thread
 def primary_branches(params: RodParameters, k: int = 1, N: int = 40) -> tuple[BranchStart, BranchStart]:
     """The two branch starts at the k-th pitchfork of the straight rod (dimensionless).
@@ -679,7 +729,7 @@ class ResolutionCheck:
 def resolution_check(branch: Branch, N_check: int | None = None, stride: int = 4) -> ResolutionCheck:
     """Re-solve every ``stride``-th point of ``branch`` (and its last) at N_check
     (default N + max(8, N // 2)) and compare the measures (dimensionless)."""
-    M = branch.N + max(8, branch.N // 2) if N_check is None else int(N_check)
+    M = check_resolution(branch.N) if N_check is None else int(N_check)
     prob = _RodProblem(branch.params, branch.parameter, M, branch.which)
     idx = sorted(set(range(1, len(branch.states), stride)) | {len(branch.states) - 1})
     e1 = e2 = res = 0.0
@@ -700,6 +750,48 @@ def resolution_check(branch: Branch, N_check: int | None = None, stride: int = 4
 
 
 # --- lift-off ----------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class LiftoffSpin:
+    """Lift-off spin of a primary branch with its discretisation error (dimensionless).
+
+    ``omega`` at the finer resolution ``N_check`` (the root of the restricted
+    omega^2 pencil of the straight rod at B = 0 nearest the value tracked at
+    N); ``error`` the change of the N value, floored at ROUNDING omega (as
+    :class:`PitchforkLoads`); NaN for both when the branch does not lift off
+    below omega_max.
+    """
+
+    omega: float
+    error: float
+    N: int
+    N_check: int
+    omega_coarse: float = math.nan  # the value at the coarser resolution
+
+
+def _omega_roots(params: RodParameters, which: str, N: int) -> np.ndarray:
+    """Spins omega > 0 at which the straight rod has a pitchfork at B = 0 inside the class."""
+    A, C, _ = _straight_pencil(params.with_(B=0.0, omega=0.0), N, which, "omega")
+    om2 = _real_roots(A, C)
+    return np.sqrt(om2[om2 > 0])
+
+
+@single_blas_thread
+def liftoff_estimate(params: RodParameters, which: str = "b1", k: int = 1, N: int = 24,
+                     N_check: int | None = None, omega_max: float = 4.0) -> LiftoffSpin:
+    """:func:`liftoff_spin` at N (tracked from omega = 0, which identifies the
+    branch) and its root at N_check (default N + max(8, N // 2)): a
+    :class:`LiftoffSpin`. Dimensionless."""
+    Nc = check_resolution(N) if N_check is None else int(N_check)
+    w = liftoff_spin(params, which, k, N, omega_max)
+    if not math.isfinite(w):
+        return LiftoffSpin(math.nan, math.nan, int(N), Nc)
+    roots = _omega_roots(params, _class(which), Nc)
+    if roots.size == 0:
+        return LiftoffSpin(w, math.inf, int(N), Nc, w)
+    wc = float(roots[np.argmin(np.abs(roots - w))])
+    return LiftoffSpin(wc, max(abs(wc - w), ROUNDING * wc), int(N), Nc, w)
 
 
 @single_blas_thread
@@ -729,9 +821,7 @@ def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 
         if r.size == 0 or np.min(np.abs(r - guess)) > max(0.25 * cur, 0.02) or (cur < 0.5 * roots0[k - 1] and
                                                                                 np.min(r) > 2 * cur):
             # the tracked pitchfork has left B > 0: refine at B = 0 in omega^2
-            A, C, _ = _straight_pencil(base.with_(omega=0.0), N, which, "omega")
-            om2 = _real_roots(A, C)
-            om = np.sqrt(om2[om2 > 0])
+            om = _omega_roots(base, _class(which), N)
             inside = om[(om > w - 1e-9) & (om <= w2 + 1e-9)]
             if inside.size == 0:
                 cand = om[np.argmin(np.abs(om - w2))]
