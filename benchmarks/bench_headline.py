@@ -1,22 +1,33 @@
-"""The headline: time and margins of the draft and the sign-off check of every shipped mission.
+"""The headline of issue 10: every row of its table against its target, in one run.
 
-    python benchmarks/bench_headline.py [--missions missions/set.toml,...] [--no-cli]
+    python benchmarks/bench_headline.py [--quick] [--missions missions/set.toml,...] [--no-missions]
 
-For each mission: the check in this process (draft warm, sign-off), the margins of both and their
-largest relative difference against the sign-off's stated errors; then the cold CLI runs the
-issue's targets name (`etcheck missions/set.toml` with HTML + PDF + JSON, `--format json`,
-`--draft --format json`) with the ratio to each target. One BLAS thread. A measurement, not a test.
+Prints, for each row (the cold CLI runs, the draft check, the damped critical
+load and spin at the operating point, the undamped spin windows, b1 with its
+stability and secondary pitchfork, B*(omega) at 10 spins, the bifurcation
+diagram and the damping map from the CLI, the 40 x 40 damped and undamped
+sweeps), the wall time, the largest stated error and the ratio to the target;
+then the draft and sign-off margins of every shipped mission side by side (the
+trade the user chooses). ``--quick`` skips the rows that took minutes before
+issue 10 (B*(omega) at 10 spins, diagram, damping map, undamped sweep) and
+compares SET only. One BLAS thread; the solvers are called through their
+public functions and the CLI, so the benchmark follows their changes. A row
+whose function does not exist (yet) prints "n/a". A measurement, not a test:
+on a shared machine, repeat it.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import math
 import os
 import subprocess
 import sys
 import tempfile
 import time
-from dataclasses import replace
+from collections.abc import Callable
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -24,12 +35,246 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 from etcheck.checks.pipeline import check  # noqa: E402
 from etcheck.input.mission import load_mission  # noqa: E402
+from etcheck.scaling import scale, scene  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
-#: (command, target wall time [s]) from issue 10
-CLI_TARGETS = ((["missions/set.toml"], 4.0), (["missions/set.toml", "--format", "json"], 1.5),
-               (["missions/set.toml", "--draft", "--format", "json"], 1.0))
+SET = ROOT / "missions" / "set.toml"
+#: a row run in a child process (the CLI, the sweeps) is stopped after this many times its target (at least 2 min)
+PATIENCE = 10.0
 
+
+@dataclass(frozen=True)
+class Row:
+    """One line of the table: what, target wall time [s], whether --quick skips it, how to measure it.
+
+    ``measure()`` returns (wall time [s], largest stated relative error or None, a note) or raises
+    NotImplementedError when the function it needs does not exist.
+    """
+
+    what: str
+    target: float
+    slow: bool
+    measure: Callable[[], tuple[float, float | None, str]]
+
+
+def _operating_point():
+    """SET at its operating point (dimensionless), damped with the mission's (assumed) damping."""
+    return scale(scene(load_mission(SET))).params
+
+
+def _best_cold(fn, p, repeat: int = 3) -> tuple[float, object]:
+    """Best wall time of ``fn(p')`` over ``repeat`` runs, each on a rotary-inertia ratio changed by 1e-9 relative
+    (misses every memo of operators; changes no digit that is reported), after one warm-up for the imports."""
+    fn(p.with_(P=p.P * (1 - 1e-9)))
+    best, out = math.inf, None
+    for k in range(1, repeat + 1):
+        t0 = time.perf_counter()
+        out = fn(p.with_(P=p.P * (1 + 1e-9 * k)))
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+# ----------------------------------------------------------------------------- cold CLI
+
+def _cli(args: list[str], timeout: float, out: Path) -> tuple[float, subprocess.CompletedProcess | None]:
+    t0 = time.perf_counter()
+    try:
+        proc = subprocess.run([sys.executable, "-m", "etcheck", *args, "--out", str(out)], cwd=ROOT,
+                              capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return time.perf_counter() - t0, None
+    return time.perf_counter() - t0, proc
+
+
+def _stopped(wall: float) -> tuple[float, None, str]:
+    return wall, None, f"stopped after {wall:.0f} s"
+
+
+def _cli_check(extra: list[str], target: float):
+    def measure():
+        with tempfile.TemporaryDirectory() as out:
+            wall, proc = _cli([str(SET.relative_to(ROOT)), *extra], max(PATIENCE * target, 120.0), Path(out))
+            if proc is None:
+                return _stopped(wall)
+            results = json.loads((Path(out) / "set" / "results.json").read_text())
+        errors = [m["error"] for m in results["margins"] if m.get("error") is not None]
+        return wall, max(errors, default=None), f"exit {proc.returncode}, {results.get('elapsed_s', math.nan):.2f} s in the check"
+    return measure
+
+
+def _cli_study(args: list[str], target: float, result: str, error: Callable[[dict], float | None]):
+    def measure():
+        with tempfile.TemporaryDirectory() as out:
+            wall, proc = _cli(args, max(PATIENCE * target, 120.0), Path(out))
+            if proc is None:
+                return _stopped(wall)
+            files = sorted(Path(out).glob(f"**/{result}"))
+            if proc.returncode not in (0, 1) or not files:
+                return wall, None, f"exit {proc.returncode}: {proc.stderr.strip()[-200:]}"
+            return wall, error(json.loads(files[0].read_text())), f"exit {proc.returncode}"
+    return measure
+
+
+def _diagram_error(d: dict) -> float | None:
+    errs = [b.get(k) for b in d["diagram"]["branches"] for k in ("measure1_error", "deflection_error")]
+    errs = [e for e in errs if isinstance(e, (int, float)) and math.isfinite(e)]
+    return max(errs, default=None)
+
+
+def _damping_error(d: dict) -> float | None:
+    return d["study"]["largest_error"]
+
+
+# ----------------------------------------------------------------------------- in-process rows
+
+DRAFT = """
+import json, time
+from dataclasses import replace
+from etcheck.checks.pipeline import check
+from etcheck.input.mission import load_mission
+m = replace(load_mission("missions/set.toml"), fidelity="draft")
+t0 = time.perf_counter()
+r = check(m).results
+print(json.dumps({"wall": time.perf_counter() - t0,
+                  "error": max((g["error"] for g in r["margins"] if g["error"] is not None), default=None)}))
+"""
+
+
+def _draft_check():
+    wall, out = _child(DRAFT, [], 0.05)
+    return (wall, None, out) if isinstance(out, str) else (out["wall"], out["error"], "first check in a fresh process")
+
+
+def _damped_root(axis: str):
+    def measure():
+        from etcheck.rod.damped_critical import first_root
+
+        wall, root = _best_cold(lambda p: first_root(p, axis, 1e-8), _operating_point())
+        return wall, root.error, f"{axis} = {root.value:.12g}, N = {root.N}"
+    return measure
+
+
+def _undamped_windows():
+    try:
+        from etcheck.rod.undamped_straight import undamped_critical
+    except ImportError as exc:
+        raise NotImplementedError(str(exc)) from None
+    wall, c = _best_cold(lambda p: undamped_critical(p, 1e-8, windows=True), _operating_point().with_(gamma=0.0))
+    rel = [pt.error / abs(pt.value) for pt in (c.critical_load, c.critical_spin)
+           if math.isfinite(pt.value) and pt.value != 0]
+    return wall, max(rel, default=None), f"{len(c.windows)} stable spin windows up to omega = {c.scanned_to:.3g}"
+
+
+def _b1_with_stability():
+    import numpy as np
+
+    from etcheck.rod import branch_stability as bs
+    from etcheck.rod import branches as br
+
+    p = _operating_point()
+    t0 = time.perf_counter()
+    start = next(s for s in br.primary_branches(p.with_(B=0.0), 1, 32) if s.which == "S1")
+    b1 = br.continue_branch(p, start, stop=(0.0, 4.0 * start.load), N=32)
+    spectra = bs.branch_spectra(b1, p.gamma)
+    pf = bs.secondary_pitchfork(p, p.omega, 32, branch=b1)
+    wall = time.perf_counter() - t0
+    err = max(pf.error / pf.B, float(np.nanmax(spectra.max_real_error)))  # B* and the stability verdicts
+    return wall, err, (f"omega = {p.omega:.3g}: {len(b1.states)} states to B = {b1.values[-1]:.4g}, "
+                       f"B* = {pf.B:.10g} (error {pf.error:.1e})")
+
+
+def _pitchfork_curve():
+    import numpy as np
+
+    from etcheck.rod import branch_stability as bs
+
+    p = _operating_point().with_(B=0.0, omega=0.0)
+    t0 = time.perf_counter()
+    c = bs.secondary_pitchfork_curve(p, np.linspace(0.0, 1.0, 10), N=32)
+    wall = time.perf_counter() - t0
+    return wall, max(pt.error / pt.B for pt in c.points), "omega = 0 ... 1, N = 32 and its check resolution"
+
+
+SWEEP = """
+import json, sys, time
+from dataclasses import replace
+import astropy.units as u
+from etcheck.input.mission import load_mission
+from etcheck.input.sweep_axes import parse_option
+from etcheck.studies.sweep import SweepOptions, sweep
+m = load_mission("missions/set.toml")
+if sys.argv[1] == "undamped":
+    m = replace(m, damping_time=0.0 * u.s)
+axes = (parse_option("length", "50m:5km:40:log"), parse_option("spin", "0rpm:20rpm:40"))
+t0 = time.perf_counter()
+r = sweep(m, axes, SweepOptions(cache=None))
+print(json.dumps({"wall": time.perf_counter() - t0, "error": r["grid"]["max_error"], "workers": r["cost"]["workers"]}))
+"""
+
+
+def _child(code: str, args: list[str], target: float) -> tuple[float, dict | str]:
+    """Run ``code`` in a fresh interpreter; (wall [s], the JSON it printed last) or (wall, why it has none)."""
+    t0 = time.perf_counter()
+    try:
+        proc = subprocess.run([sys.executable, "-c", code, *args], cwd=ROOT, capture_output=True, text=True,
+                              timeout=max(PATIENCE * target, 120.0))
+    except subprocess.TimeoutExpired:
+        return time.perf_counter() - t0, f"stopped after {time.perf_counter() - t0:.0f} s"
+    if proc.returncode != 0:
+        return time.perf_counter() - t0, f"failed: {proc.stderr.strip()[-200:]}"
+    return time.perf_counter() - t0, json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def _sweep(kind: str, target: float):
+    def measure():
+        wall, out = _child(SWEEP, [kind], target)
+        if isinstance(out, str):
+            return wall, None, out
+        return out["wall"], out["error"], f"{out['workers']} workers, in the sweep function"
+    return measure
+
+
+ROWS = (
+    Row("etcheck missions/set.toml (HTML + PDF + JSON), cold", 4.0, False, _cli_check([], 4.0)),
+    Row("etcheck missions/set.toml --format json, cold", 1.5, False, _cli_check(["--format", "json"], 1.5)),
+    Row("etcheck missions/set.toml --draft --format json, cold", 1.0, False,
+        _cli_check(["--draft", "--format", "json"], 1.0)),
+    Row("draft check of SET itself (in a fresh process)", 0.05, False, _draft_check),
+    Row("damped critical load at the operating spin", 0.03, False, _damped_root("B")),
+    Row("damped critical spin at the operating load", 0.03, False, _damped_root("omega")),
+    Row("undamped: critical values and stable spin windows", 0.3, False, _undamped_windows),
+    Row("b1 pitchfork -> 4 B1, stability of every state, B*", 3.0, False, _b1_with_stability),
+    Row("B*(omega) at 10 spins", 5.0, True, _pitchfork_curve),
+    Row("etcheck diagram missions/set.toml --spin 0.25 --branches 3", 10.0, True,
+        _cli_study(["diagram", "missions/set.toml", "--spin", "0.25", "--branches", "3"], 10.0, "diagram.json",
+                   _diagram_error)),
+    Row("etcheck damping-map missions/set.toml", 60.0, True,
+        _cli_study(["damping-map", "missions/set.toml"], 60.0, "damping.json", _damping_error)),
+    Row("40 x 40 length x spin sweep of SET, damped", 5.0, False, _sweep("damped", 5.0)),
+    Row("40 x 40 length x spin sweep of SET, undamped", 60.0, True, _sweep("undamped", 60.0)),
+)
+
+
+def headline(quick: bool) -> None:
+    print(f"{'issue 10, row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8}  note")
+    for row in ROWS:
+        if quick and row.slow:
+            print(f"{row.what:<62} {'skipped':>9} {row.target:>7.3g} {'':>6} {'':>8}  --quick")
+            continue
+        try:
+            wall, err, note = row.measure()
+        except NotImplementedError as exc:
+            print(f"{row.what:<62} {'n/a':>9} {row.target:>7.3g} {'':>6} {'':>8}  not available: {exc}")
+            continue
+        except Exception as exc:  # a failing row must not hide the others
+            print(f"{row.what:<62} {'failed':>9} {row.target:>7.3g} {'':>6} {'':>8}  {type(exc).__name__}: {exc}")
+            continue
+        e = "n/a" if err is None else f"{err:.1e}"
+        print(f"{row.what:<62} {wall:>9.3f} {row.target:>7.3g} {wall / row.target:>6.2f} {e:>8}  {note}",
+              flush=True)
+
+
+# ----------------------------------------------------------------------------- the fidelity trade
 
 def _timed(mission):
     t0 = time.perf_counter()
@@ -38,7 +283,7 @@ def _timed(mission):
 
 
 def missions_table(paths: list[Path]) -> None:
-    print(f"{'mission':<22} {'draft [s]':>9} {'sign-off [s]':>12}  {'margin (sign-off)':>18} {'draft - sign-off':>17}"
+    print(f"\n{'mission':<22} {'draft [s]':>9} {'sign-off [s]':>12}  {'margin (sign-off)':>18} {'draft - sign-off':>17}"
           f" {'stated error':>12}  model")
     for path in paths:
         m = load_mission(path)
@@ -55,28 +300,19 @@ def missions_table(paths: list[Path]) -> None:
             print(f"{label:<22} {times}  {value:>18} {diff:>17.1e} {err:>12}  {b['name'][:40]} [{b['model']}]")
 
 
-def cli_table() -> None:
-    print("\ncold CLI runs (new process each), against the targets of issue 10")
-    for args, target in CLI_TARGETS:
-        with tempfile.TemporaryDirectory() as out:
-            t0 = time.perf_counter()
-            proc = subprocess.run([sys.executable, "-m", "etcheck", *args, "--out", out], cwd=ROOT,
-                                  capture_output=True, text=True)
-            wall = time.perf_counter() - t0
-        print(f"  etcheck {' '.join(args):<48} {wall:6.2f} s  target {target:4.1f} s  ratio {wall / target:5.2f}"
-              f"  exit {proc.returncode}")
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--missions", default=None, help="comma-separated mission files (default: missions/*.toml)")
-    ap.add_argument("--no-cli", action="store_true", help="skip the cold CLI runs")
+    ap.add_argument("--quick", action="store_true", help="skip the rows that took minutes before issue 10")
+    ap.add_argument("--missions", default=None,
+                    help="comma-separated mission files for the draft/sign-off table (default: missions/*.toml; "
+                    "SET with --quick)")
+    ap.add_argument("--no-missions", action="store_true", help="skip the draft/sign-off table")
     args = ap.parse_args()
-    paths = ([Path(p) for p in args.missions.split(",")] if args.missions
-             else sorted((ROOT / "missions").glob("*.toml")))
-    missions_table(paths)
-    if not args.no_cli:
-        cli_table()
+    headline(args.quick)
+    if not args.no_missions:
+        paths = ([Path(p) for p in args.missions.split(",")] if args.missions
+                 else [SET] if args.quick else sorted((ROOT / "missions").glob("*.toml")))
+        missions_table(paths)
 
 
 if __name__ == "__main__":
