@@ -160,7 +160,11 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     With damping the critical values are first roots of the static pencils
     (Kelvin-Tait-Chetaev: one dense QZ per resolution, no scan) and there are
     no stability windows; without damping they come from the spectral scan
-    (flutter possible). ``options.draft`` answers the critical values and the
+    (flutter possible). The map's static curves and damped rows come from
+    :mod:`etcheck.rod.static_map` (one LU per family, small Schur complements
+    per row, rows classified by crossing directions: no eigenvalue solve); the
+    Campbell diagram is one resolution with a two-resolution error on three
+    spins. ``options.draft`` answers the critical values and the
     operating point only (no spectrum when damped, no Campbell diagram, no map).
     ``route`` "exact determinant" (damped only; boundary layers too thin for
     collocation, see :func:`etcheck.checks.plan.straight_route`): the critical

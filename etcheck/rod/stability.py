@@ -120,7 +120,7 @@ class StraightFamily:
 
     def operator(self, B: float, omega: float, T: float, reduced: bool = False):
         """(A0, A1, A2) at the given load, spin and tension (``reduced``: phi, m eliminated)."""
-        r = self.reduced if reduced else self.__dict__
+        r = self.reduced if reduced else vars(self)
         A0 = r["A00"] + B * r["AB"] + T * r["AT"] + omega**2 * r["Aw"]
         A1 = r["A10"] + omega * r["A1w"]
         return A0, A1, r["A2"]
@@ -174,10 +174,6 @@ def _family_cached(params: RodParameters, N: int) -> StraightFamily:
 
 def _family(params: RodParameters, N: int) -> StraightFamily:
     return _family_cached(params.with_(B=0.0, omega=0.0, T=0.0), int(N))
-
-
-def _get(params: RodParameters, axis: str) -> dict:
-    return {"B": params.B, "omega": params.omega, "T": params.T, "axis": axis}
 
 
 @single_blas_thread

@@ -18,7 +18,10 @@ D = diag(B I, omega^2 I). So
   the 4N x 4N S_w(B) = W_ww - B W_wB (I + B W_BB)^-1 W_Bw;
 
 the same values as the static pencils of :class:`etcheck.rod.stability.StraightFamily`
-(one QZ of the 6(N+1) reduced pencil each), at a fraction of the cost.
+(one QZ of the 6(N+1) reduced pencil each), at a fraction of the cost. (The
+Schur complements need the other block regular: a row exactly at a spin root
+of the unloaded rod, or a column exactly at a static load of the rod at rest,
+is ill-conditioned; the grids of a check do not fall on them but by chance.)
 
 **Crossing directions (damped rod).** Where A0 is singular a real eigenvalue
 of A0 + lambda A1 + lambda^2 A2 passes through lambda = 0 with speed
@@ -55,6 +58,8 @@ __all__ = ["StaticPlane", "StaticCurves", "plane", "static_curves", "stable_rows
 CLUSTER = 1e-9
 #: A crossing speed below this (relative to its parts) cannot be told from zero.
 SPEED_FLOOR = 1e-10
+#: Loads about which A0 is expanded, tried in turn until it is regular there (0: the unloaded rod).
+BASE_LOADS = (0.0, 0.01234567, -0.02345678)
 
 
 def _rows(A: np.ndarray) -> np.ndarray:
@@ -62,7 +67,11 @@ def _rows(A: np.ndarray) -> np.ndarray:
 
 
 class StaticPlane:
-    """The static operator A0(B, omega) of one family at tension T, reduced to W = V^T K^-1 U."""
+    """The static operator A0(B, omega) of one family at tension T, reduced to W = V^T K^-1 U.
+
+    K = A0(B0, 0) with B0 the first of ``BASE_LOADS`` where it is regular
+    (0 unless T sits on a compressive root); loads enter as offsets B - B0.
+    """
 
     def __init__(self, fam: StraightFamily, T: float):
         self.fam, self.T = fam, float(T)
@@ -70,8 +79,12 @@ class StaticPlane:
         self.nB = rB.size
         rows = np.concatenate([rB, rw])
         Vt = np.vstack([fam.AB[rB], fam.Aw[rw]])  # V^T: the rows the parameters touch
-        K = fam.A00 + self.T * fam.AT
-        lu = sla.lu_factor(K, check_finite=False)
+        for self.B0 in BASE_LOADS:  # the expansion point: the unloaded rod unless A0 is singular there
+            K = fam.A00 + self.T * fam.AT + self.B0 * fam.AB
+            lu = sla.lu_factor(K, check_finite=False)
+            pivots = np.abs(np.diag(lu[0]))
+            if np.min(pivots) > 1e-12 * np.max(pivots):
+                break
         n = K.shape[0]
         U = np.zeros((n, rows.size))
         U[rows, np.arange(rows.size)] = 1.0
@@ -95,6 +108,8 @@ class StaticPlane:
         """
         a, o = self._blocks(axis)
         W = self.W
+        if axis == "w":
+            other = other - self.B0
         G = sla.lu_factor(np.eye(W[o, o].shape[0]) + other * W[o, o], check_finite=False)
         C = sla.lu_solve(G, W[o, a], check_finite=False)
         S = W[a, a] - other * (W[a, o] @ C)
@@ -102,7 +117,7 @@ class StaticPlane:
         mu = mu[np.abs(mu) > 1e-14 * max(np.max(np.abs(mu), initial=0.0), 1e-300)]
         x = -1.0 / mu
         x = np.sort(x[np.abs(x.imag) <= 1e-8 * np.abs(x)].real)
-        return x, (axis, other, G, C, S)
+        return x + (self.B0 if axis == "B" else 0.0), (axis, other, G, C, S)
 
     def changes(self, roots: np.ndarray, data: tuple, omega: float) -> np.ndarray:
         """Change of the number of unstable eigenvalues across each root (crossing directions, see module docstring).
@@ -113,13 +128,14 @@ class StaticPlane:
         be told (a zero or complex speed). A1 = A10 + omega A1w.
         """
         H = self.H0 + omega * self.H1
+        offsets = roots - self.B0 if data[0] == "B" else roots
         out = np.zeros(roots.size)
         i = 0
         while i < roots.size:
             j = i + 1
             while j < roots.size and roots[j] - roots[i] <= CLUSTER * max(abs(roots[i]), 1.0):
                 j += 1
-            out[i] = self._change(roots[i], j - i, data, H)
+            out[i] = self._change(offsets[i], j - i, data, H)
             i = j
         return out
 
