@@ -616,7 +616,12 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     if not hi > lo:
         raise ValueError("the line needs hi > lo")
     anchor = lo if anchor is None else float(anchor)
-    ps = np.unique(np.concatenate([np.linspace(lo, hi, samples), [anchor]]))
+    # every static point of the line with a sample just either side: an interval bounded by two static
+    # points (between the critical speeds) is never narrower than the sampling
+    static = _static_roots(params, axis, hi)
+    static = static[static > lo]
+    near = np.concatenate([static * (1 - 1e-6), static * (1 + 1e-6)])
+    ps = np.unique(np.concatenate([np.linspace(lo, hi, samples), [anchor], near[(near > lo) & (near < hi)]]))
     line = _Line(params, axis, lo, hi)
     smp = line.samples(ps)
     ia = int(np.nonzero(ps == anchor)[0][0])
@@ -671,13 +676,13 @@ class UndampedCritical:
 
 
 def _static_roots(params: RodParameters, axis: str, upto: float, n: int = 400) -> np.ndarray:
-    """The static points (roots of D_static) on axis in (0, upto], from sign changes on a grid
-    (for the ranges of the lines, not for the critical values)."""
+    """The static points (roots of D_static) on axis in (0, upto] that change its sign on a grid of n,
+    each refined by Brent's method to 1e-9 (sample positions of the lines, not critical values)."""
     fn, _ = _ex._function(params.with_(**{axis: 0.0}), axis, 1.0)
     x = np.linspace(0.0, upto, n + 1)[1:]
     g = fn(x)
     i = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
-    return 0.5 * (x[i] + x[i + 1])
+    return np.array([brentq(lambda t: fn(np.array([t]))[0], x[j], x[j + 1], rtol=1e-9) for j in i])
 
 
 def _spin_hi(params: RodParameters) -> float:
@@ -722,21 +727,50 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     """
     p = params.with_(gamma=0.0)
     w = p.omega
-    evaluations = 0
-    if windows:
-        spin_hi = max(_spin_hi(p), 1.1 * w)
-    else:
+    if windows or p.R == 1.0:  # R = 1: the static points are double, a root mu touches 0 and comes back
+        spin_hi = _spin_hi(p)
+    else:  # stable at rest means unstable past the first static spin: the line need not go further
         first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
-        spin_hi = max(1.02 * first[0] if first.size else 2.0, 1.1 * w, 1e-3)
-    spin_line = stability_line(p, "omega", 0.0, spin_hi)
-    evaluations += spin_line.evaluations
-    pairs = 0
-    if w > 0:
-        rest = stability_line(p.with_(B=0.0), "omega", 0.0, w)
-        pairs, evaluations = rest.pairs_at_hi, evaluations + rest.evaluations
+        spin_hi = max(1.02 * first[0] if first.size else 2.0, 1e-3)
+    if not windows and _diverging(p.with_(omega=0.0)):  # a real pair at rest: no spin is safe
+        spin_line = StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0)
+    else:
+        spin_line = stability_line(p, "omega", 0.0, spin_hi, samples=64 if windows else 25)
+    evaluations = spin_line.evaluations
+    if w <= spin_line.hi:
+        stable = not spin_line.unstable_at(w)
+    elif _diverging(p):  # a real pair of eigenvalues: unstable whatever the complex ones do
+        stable = False
+    else:
+        far = stability_line(p, "omega", 0.0, 1.1 * w)
+        stable, evaluations = not far.unstable_at(w), evaluations + far.evaluations
+    if w > 0 and _diverging(p.with_(B=0.0)):  # the unloaded rod already has a real pair at this spin
+        load = CriticalPoint("B", 0.0, CriticalKind.UNSTABLE_AT_START, (0.0, 0.0), 0.0, True,
+                             f"already unstable at B = 0: a real pair of eigenvalues ({MODEL})", 0)
+        return UndampedCritical(load, _point(spin_line, tol), spin_line.windows, spin_line.hi, stable, evaluations)
     static = _ex.exact_root(p.with_(B=0.0), "B")
+    if w == 0:  # not gyroscopic: K q = mu M q, stable exactly below the first static load
+        line = StabilityLine("B", 0.0, static.value, False, () if math.isinf(static.value) else (
+            Crossing(static.value, static.error * static.value, CriticalKind.DIVERGENCE, 0.0, True,
+                     (static.value, static.value)),), (), 0, static.evaluations)
+        return UndampedCritical(_point(line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi,
+                                stable, evaluations + static.evaluations)
+    rest = stability_line(p.with_(B=0.0), "omega", 0.0, w)
+    pairs, evaluations = rest.pairs_at_hi, evaluations + rest.evaluations
     load_hi = 1.02 * static.value if math.isfinite(static.value) else 16 * _ex._root_scale(p, "B", 1.0)
+    if p.R == 1.0:  # double static points do not end stability: as far as the spectral scan's default
+        roots = _static_roots(p, "B", 16 * _ex._root_scale(p, "B", 1.0))
+        load_hi = 1.1 * roots[2] if roots.size >= 3 else 2.0 * roots[-1] if roots.size else load_hi
     load_line = stability_line(p, "B", 0.0, load_hi, pairs=pairs)
     evaluations += load_line.evaluations + static.evaluations
-    return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_hi,
-                            not spin_line.unstable_at(w), evaluations)
+    return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
+                            evaluations)
+
+
+def _diverging(params: RodParameters, n: int = 64) -> bool:
+    """True when E has a real root mu < 0 at params (a real pair of eigenvalues: unstable), from sign
+    changes on n points between the Rayleigh floor and 0; False when none shows (not a proof)."""
+    mu_lo = _rayleigh_floor(params, params.B, params.omega, params.T)
+    mu = -np.linspace(math.sqrt(-mu_lo), 0.0, n + 1) ** 2
+    E = characteristic_mu(params, mu)
+    return bool(np.any(np.sign(E[:-1]) * np.sign(E[1:]) < 0))
