@@ -1,6 +1,8 @@
 """docs/results.schema.json (issue 12): the documented layout of a check's results.json.
 
-Fresh results (draft and sign-off of the SET mission, the static SET mission, the
+The schema and the TypedDicts of etcheck/checks/sections.py describe the same
+records (with the echo of the inputs in etcheck/input/echo.py): same keys, same
+required keys, compatible value types, and every object of the schema has its type. Fresh results (draft and sign-off of the SET mission, the static SET mission, the
 tensioned and orbit missions, an [uncertainty] study) validate as written (strict
 JSON, no NaN); the schema rejects a bad verdict, a mistyped number and a stale
 schema version, and its enums are the code's.
@@ -12,6 +14,8 @@ import copy
 import dataclasses
 import json
 import math
+import types
+import typing
 from pathlib import Path
 
 import jsonschema
@@ -20,8 +24,10 @@ import pytest
 from etcheck.checks import fidelity as fidelity_module
 from etcheck.checks import margins as margins_module
 from etcheck.checks import plan as plan_module
+from etcheck.checks import sections as S
 from etcheck.checks.pipeline import check
 from etcheck.checks.results import SCHEMA_VERSION
+from etcheck.input import echo as E
 from etcheck.input.mission import load_mission
 from etcheck.report import render
 
@@ -29,6 +35,140 @@ ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = json.loads((ROOT / "docs" / "results.schema.json").read_text(encoding="utf-8"))
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA, format_checker=jsonschema.Draft202012Validator.FORMAT_CHECKER)
 MISSIONS = ROOT / "missions"
+
+
+#: schema location (dotted keys, [] for the items of an array) -> the TypedDict of the object there
+SECTIONS = {
+    "": S.CheckResults,
+    "mission": E.MissionEcho,
+    "mission.tether": E.TetherEcho,
+    "mission.operation": E.OperationEcho,
+    "mission.operation.gravity_gradient": E.TensionProfile,
+    "mission.check": E.CheckEcho,
+    "mission.orbit": E.OrbitEcho,
+    "scene": S.SceneSection,
+    "scene.tension_profile": E.TensionProfile,
+    "scaled": S.ScaledSection,
+    "scales": S.ScalesSection,
+    "plan": S.PlanSection,
+    "fidelity": S.FidelitySection,
+    "straight_rod": S.StraightRodSection,
+    "straight_rod.critical_loads[]": S.StaticCriticalLoad,
+    "straight_rod.first_mode": S.ModeShape,
+    "straight_rod.chi_curve": S.ChiCurve,
+    "straight_rod.natural_frequencies": S.NaturalFrequencies,
+    "straight_rod.natural_frequencies.bending_weak[]": S.NaturalFrequency,
+    "straight_rod.natural_frequencies.bending_stiff[]": S.NaturalFrequency,
+    "straight_rod.natural_frequencies.torsion[]": S.NaturalFrequency,
+    "straight_rod.limits": S.StaticLimits,
+    "linear": S.LinearSection,
+    "linear.operating_spectrum": S.OperatingSpectrum,
+    "linear.operating_spectrum.modes[]": S.Mode,
+    "linear.critical_load": S.CriticalLoad,
+    "linear.critical_spin": S.CriticalSpin,
+    "linear.spin_windows[]": S.SpinWindow,
+    "linear.operating": S.OperatingPoint,
+    "linear.campbell": S.Campbell,
+    "linear.stability_map": S.StabilityMap,
+    "linear.stability_map.stable_rows[]": S.StableRow,
+    "linear.stability_map.static_points": S.StaticPoints,
+    "accuracy[]": S.AccuracyRow,
+    "postbuckling": S.PostbucklingSection,
+    "postbuckling.diagram": S.BifurcationDiagram,
+    "postbuckling.diagram.params": S.DiagramParameters,
+    "postbuckling.diagram.branches[]": S.Branch,
+    "postbuckling.diagram.branches[].special[]": S.SpecialPoint,
+    "postbuckling.diagram.lifted_off[]": S.LiftedOff,
+    "postbuckling.operating": S.BuckledOperatingPoint,
+    "postbuckling.operating.damping_sensitivity[]": S.DampingSensitivity,
+    "postbuckling.operating.shape": S.Shape,
+    "postbuckling.operating.least_damped": S.LeastDamped,
+    "postbuckling.region": S.CoilRegion,
+    "postbuckling.region.rows[]": S.RegionRow,
+    "postbuckling.region.pitchfork_curve": S.RegionCurve,
+    "postbuckling.region.secondary_curve": S.SecondaryCurve,
+    "margins[]": S.MarginRecord,
+    "orbit": S.OrbitSection,
+    "orbit.sampling": S.OrbitSampling,
+    "orbit.worst": S.OrbitWorst,
+    "orbit.percentiles": S.OrbitPercentiles,
+    "orbit.histogram": S.OrbitHistogram,
+    "orbit.margin": S.OrbitMargin,
+    "orbit.first_orbit": S.OrbitSeries,
+    "orbit.series": S.OrbitSeries,
+    "uncertainty": S.UncertaintySection,
+    "uncertainty.inputs": E.UncertaintyInputs,
+    "uncertainty.inputs.inputs[]": E.DistributionRecord,
+    "uncertainty.margins[]": S.MarginSensitivityRecord,
+    "uncertainty.margins[].elasticities[]": S.ElasticityRecord,
+    "uncertainty.margins[].swings[]": S.SwingRecord,
+    "uncertainty.probabilities[]": S.ProbabilityRecord,
+}
+
+
+def branch(node: dict, key: str) -> dict:
+    """The branch of a nullable node (``oneOf``/``anyOf`` with null) that holds ``key``."""
+    return next((b for b in node.get("oneOf", []) + node.get("anyOf", []) if key in b), node)
+
+
+def locate(path: str) -> dict:
+    node = SCHEMA
+    for part in filter(None, path.split(".")):
+        node = branch(node, "properties")["properties"][part.removesuffix("[]")]
+        if part.endswith("[]"):
+            node = branch(node, "items")["items"]
+    return branch(node, "properties")
+
+
+def schema_objects(node: dict, path: str = "") -> set[str]:
+    """Locations of every object with properties in the schema."""
+    found = {path} if "properties" in node else set()
+    for key, sub in node.get("properties", {}).items():
+        found |= schema_objects(sub, f"{path}.{key}" if path else key)
+    for branch in node.get("oneOf", []) + node.get("anyOf", []):
+        found |= schema_objects(branch, path)
+    if "items" in node:
+        found |= schema_objects(node["items"], path + "[]")
+    return found
+
+
+def annotation_types(annotation) -> set[str]:
+    """JSON types a value of this annotation may take (a float may be written as an integer)."""
+    origin = typing.get_origin(annotation)
+    if origin in (typing.Union, types.UnionType):
+        return set().union(*(annotation_types(a) for a in typing.get_args(annotation)))
+    if origin is list:
+        return {"array"}
+    if origin is dict or typing.is_typeddict(annotation):
+        return {"object"}
+    return {float: {"number", "integer"}, int: {"integer"}, bool: {"boolean"}, str: {"string"},
+            type(None): {"null"}}[annotation]
+
+
+def schema_types(node: dict) -> set[str]:
+    """JSON types a schema node admits (type, enum or const, and the branches of oneOf/anyOf)."""
+    if "type" in node:
+        return {node["type"]} if isinstance(node["type"], str) else set(node["type"])
+    values = node.get("enum", [node["const"]] if "const" in node else None)
+    if values is not None:
+        names = {str: "string", int: "integer", float: "number", bool: "boolean", type(None): "null"}
+        return {names[type(v)] for v in values}
+    return set().union(*(schema_types(b) for b in node.get("oneOf", []) + node.get("anyOf", [])))
+
+
+def test_every_object_of_the_schema_has_its_type():
+    assert schema_objects(SCHEMA) == set(SECTIONS)
+
+
+@pytest.mark.parametrize("path", list(SECTIONS), ids=lambda p: p or "results")
+def test_type_and_schema_list_the_same_keys(path):
+    node, typed = locate(path), SECTIONS[path]
+    hints = typing.get_type_hints(typed)
+    assert set(node["properties"]) == set(hints)
+    assert set(node["required"]) == set(typed.__required_keys__)
+    assert node["additionalProperties"] is False
+    for key, annotation in hints.items():
+        assert schema_types(node["properties"][key]) <= annotation_types(annotation), key
 
 
 def as_written(results: dict) -> dict:
@@ -123,6 +263,10 @@ def test_uncertainty_section_validates():
         pytest.param(lambda r: r.update(schema_version=1), id="stale schema version"),
         pytest.param(lambda r: r.pop("margins"), id="missing margins"),
         pytest.param(lambda r: r.update(extra=1), id="unknown top-level key"),
+        pytest.param(lambda r: r["straight_rod"]["limits"].update(extra=1), id="unknown nested key"),
+        pytest.param(lambda r: r["straight_rod"]["critical_loads"][0].pop("beta"), id="missing nested key"),
+        pytest.param(lambda r: r["linear"]["critical_spin"].update(rpm="fast"), id="mistyped nested value"),
+        pytest.param(lambda r: r["scene"].update(length_m=None), id="null for a number"),
         pytest.param(lambda r: r.update(verdict="pass", margins=[dict(r["margins"][0], verdict="fail")]),
                      id="pass over a failed margin"),
     ],

@@ -1,0 +1,675 @@
+"""The sections of a check's results as types: what ``CheckResult.results`` holds, key by key.
+
+Results stay plain JSON-able dicts (the reports and results.json read them as
+such); these TypedDicts give every section and nested record its keys and
+value types for a reader and a type checker, without changing a byte of the
+JSON. ``docs/results.schema.json`` documents the same layout for readers of
+results.json; ``tests/checks/test_results_schema.py`` holds the two in step
+(same keys, same required keys). Units are in the key names (``_m``, ``_N``,
+``_N_per_m``, ``_rad_s``, ``_rpm``, ``_Hz``, ``_s``, ``_T``); keys without a
+unit are dimensionless (the scalings of docs/scaling.md: B, omega, T, gamma,
+P, R, Gamma, f).
+
+``NotRequired`` keys are present only in some results (named in each
+record's docstring); ``X | None`` values are null when not answered.
+"""
+
+# no ``from __future__ import annotations``: TypedDict reads NotRequired from evaluated annotations only
+from typing import NotRequired, TypedDict
+
+# the records of the inputs as read are built in the input layer (which may not import this one)
+from etcheck.input.echo import MissionEcho, TensionProfile, UncertaintyInputs
+
+# --------------------------------------------------------------------------- scene, scalings, plan
+
+
+class SceneSection(TypedDict):
+    """``scene``: the physical problem the rod model solves (SI; the worst case of any range)."""
+
+    worst_current_A: float
+    worst_field_T: float
+    length_m: float
+    EI1_N_m2: float
+    EI2_N_m2: float
+    GJ_N_m2: float
+    mass_per_length_kg_per_m: float
+    P: float
+    load_N_per_m: float
+    spin_rate_rad_s: float
+    tension_N: float
+    tension_profile: NotRequired[TensionProfile | None]
+    damping_time_s: float
+    f: float
+
+
+class ScaledSection(TypedDict):
+    """``scaled``: the dimensionless parameters of the rod (eq. (25) of arXiv:0810.3668 and docs/scaling.md)."""
+
+    P: float
+    R: float
+    Gamma: float
+    f: float
+    B: float
+    omega: float
+    T: float
+    gamma: float
+
+
+class ScalesSection(TypedDict):
+    """``scales``: the units that turn the dimensionless answers back into SI."""
+
+    length_m: float
+    reference_frequency_rad_s: float
+    force_N: float
+    load_N_per_m: float
+
+
+class PlanSection(TypedDict):
+    """``plan``: the rung of the model ladder that answers the check, and why."""
+
+    rung: int
+    model: str
+    reason: str
+    complete: bool
+    route: str  # "", "spectral" or "exact determinant"
+
+
+class FidelitySection(TypedDict):
+    """``fidelity``: sign-off or draft, the tolerance, and what a draft leaves out."""
+
+    name: str
+    tolerance: float
+    left_out: list[str]
+
+
+# --------------------------------------------------------------------------- rung 0: the straight rod at rest
+
+
+class StaticCriticalLoad(TypedDict):
+    """One critical load of the static rod (omega = T = 0, eq. (91)): the k-th zero beta of chi."""
+
+    k: int
+    beta: float
+    B: float
+    IB0_N_per_m: float
+    multiplicity: int
+    chi_residual: float
+    chi_curvature: float
+    relative_error: float
+
+
+class ModeShape(TypedDict):
+    """The first buckling mode on s in [0, 1] (dimensionless)."""
+
+    s: list[float]
+    x: list[float]
+    y: list[float]
+
+
+class ChiCurve(TypedDict):
+    beta: list[float]
+    chi_scaled: list[float]
+
+
+class NaturalFrequency(TypedDict):
+    """mu dimensionless (units of the reference frequency), rad/s and Hz."""
+
+    mu: float
+    rad_s: float
+    Hz: float
+
+
+class NaturalFrequencies(TypedDict):
+    bending_weak: list[NaturalFrequency]
+    bending_stiff: list[NaturalFrequency]
+    torsion: list[NaturalFrequency]
+
+
+class StaticLimits(TypedDict):
+    """Critical current at the worst field and critical length at the operating load (None: no limit)."""
+
+    critical_IB0_N_per_m: float
+    critical_current_A: float | None
+    critical_length_m: float | None
+
+
+class StraightRodSection(TypedDict):
+    """``straight_rod``: rung 0 answers (:func:`etcheck.checks.static_buckling.static_buckling`)."""
+
+    model: str
+    critical_loads: list[StaticCriticalLoad]
+    operating_beta: float
+    loads_exceeded: int
+    operating_B: float
+    first_mode: ModeShape
+    chi_curve: ChiCurve
+    natural_frequencies: NaturalFrequencies
+    limits: StaticLimits
+
+
+# --------------------------------------------------------------------------- rung 1: linear stability
+
+
+class CriticalPoint(TypedDict):
+    """The first critical load or spin (dimensionless ``value``; ``kind`` a CriticalKind value)."""
+
+    value: float | None
+    kind: str
+    bracket: list[float]
+    error: float | None
+    message: str
+    N: int | None
+
+
+class CriticalLoad(CriticalPoint):
+    IB0_N_per_m: float | None
+
+
+class CriticalSpin(CriticalPoint):
+    rad_s: float | None
+    rpm: float | None
+
+
+class Mode(TypedDict):
+    """One eigenvalue of the operating point: re, im in units of the reference frequency."""
+
+    re: float
+    im: float
+    error: float
+    frequency_Hz: float
+    growth_rate_per_s: float
+    damping_ratio: float | None
+
+
+class OperatingSpectrum(TypedDict):
+    N: int
+    N_check: int | None
+    message: str
+    modes: list[Mode]
+    least_damped: int | None
+    stable: bool
+
+
+class SpinWindow(TypedDict):
+    """A window of stable spins [low, high]: dimensionless and in rpm."""
+
+    omega: list[float]
+    rpm: list[float]
+
+
+class OperatingPoint(TypedDict):
+    B: float
+    omega: float
+    IB0_N_per_m: float
+    spin_rpm: float
+
+
+class Campbell(TypedDict):
+    """Frequencies and growth rates of the lowest modes against the spin (sign-off, spectral route)."""
+
+    omega: list[float]
+    spin_rpm: list[float]
+    frequency_Hz: list[list[float | None]]
+    growth_rate_per_s: list[list[float | None]]
+    N: int
+    N_check: int | None
+    checked_spin_rpm: list[float]  # the spins checked at N_check
+    error: float | None  # largest difference N vs N_check at the checked spins (dimensionless)
+
+
+class StableRow(TypedDict):
+    """At one spin: the intervals of I B0 (N/m) where the straight tether is stable."""
+
+    omega: float
+    spin_rpm: float
+    IB0_N_per_m: list[list[float]]
+
+
+class StaticPoints(TypedDict):
+    IB0_N_per_m: list[float]
+    spin_rpm: list[float]
+
+
+class StabilityMap(TypedDict):
+    """The (load, spin) plane: stable rows (damped) or the largest growth rate on a grid (undamped)."""
+
+    B: list[float]
+    omega: list[float]
+    IB0_N_per_m: list[float]
+    spin_rpm: list[float]
+    max_growth: list[list[float]] | None
+    stable_rows: list[StableRow] | None
+    static_points: StaticPoints
+
+
+class LinearSection(TypedDict):
+    """``linear``: rung 1 (:func:`etcheck.checks.straight.linear_stability`); the pictures (campbell,
+    stability_map) are None in a draft."""
+
+    model: str
+    route: str
+    threshold: float
+    operating_stable: bool
+    operating_spectrum: OperatingSpectrum | None
+    critical_load: CriticalLoad
+    critical_spin: CriticalSpin
+    spin_windows: list[SpinWindow]
+    spin_windows_scanned_to_rpm: float | None
+    operating: OperatingPoint
+    campbell: Campbell | None
+    stability_map: StabilityMap | None
+
+
+class AccuracyRow(TypedDict):
+    """One resolution of the spectral accuracy table (``accuracy``)."""
+
+    N: int
+    solve_time_s: float
+    eigenvalue_error: float | None
+    load_error: float | None
+
+
+# --------------------------------------------------------------------------- rungs 2-3: the buckled tether
+
+
+class SpecialPoint(TypedDict):
+    """A branch point, secondary pitchfork or fold on a branch."""
+
+    kind: str
+    B: float
+    IB0_N_per_m: float
+    measure1: float
+    bracket: list[float]
+
+
+class Shape(TypedDict):
+    """A buckled shape on s in [0, 1]: dimensionless and in metres."""
+
+    s: list[float]
+    x: list[float]
+    y: list[float]
+    z: list[float]
+    x_m: list[float]
+    y_m: list[float]
+    z_m: list[float]
+
+
+class BranchShape(Shape):
+    B: float
+    measure1: float
+
+
+#: ``from`` (connecting branches: the primary branch they leave) is a Python keyword: functional syntax
+_ConnectingBranch = TypedDict("_ConnectingBranch", {"from": NotRequired[str]})
+
+
+class Branch(_ConnectingBranch):
+    """One continued branch of whirling equilibria (``postbuckling.diagram.branches``).
+
+    Stability keys (stable, max_growth, growth_error, check_time) where the
+    branch's stability was computed; pitchfork keys on primary branches;
+    ``from`` on connecting branches."""
+
+    name: str
+    parameter: str
+    N: int
+    symmetry: str | None
+    values: list[float]
+    measure1: list[float]
+    measure2: list[float]
+    max_deflection: list[float]
+    special: list[SpecialPoint]
+    time: float
+    reason: str
+    residual: float
+    label: str
+    points: int
+    IB0_N_per_m: list[float]
+    max_deflection_m: list[float]
+    measure1_error: float | None
+    deflection_error: float | None
+    N_check: int | None
+    stable: NotRequired[list[bool | None]]
+    max_growth: NotRequired[list[float | None]]
+    growth_error: NotRequired[list[float | None]]
+    shapes: dict[str, BranchShape]
+    check_time: NotRequired[float]
+    pitchfork_B: NotRequired[float]
+    pitchfork_IB0_N_per_m: NotRequired[float]
+    liftoff_omega: NotRequired[float | None]
+
+
+class DiagramParameters(TypedDict):
+    P: float
+    R: float
+    Gamma: float
+    f: float
+    omega: float
+    T: float
+    gamma: float
+
+
+class LiftedOff(TypedDict):
+    label: str
+    liftoff_omega: float
+
+
+class BifurcationDiagram(TypedDict):
+    """``postbuckling.diagram``: branches of whirling equilibria (rung 2)."""
+
+    model: str
+    params: DiagramParameters
+    B_max: float
+    IB0_max_N_per_m: float
+    N: int
+    branches: list[Branch]
+    lifted_off: list[LiftedOff]
+    time_s: float
+
+
+class DampingSensitivity(TypedDict):
+    factor: float
+    gamma: float
+    damping_time_s: float
+    growth_rate_per_s: float | None
+    damping_ratio: float | None
+    decay_time_s: float | None
+    stable: bool
+
+
+class LeastDamped(TypedDict):
+    re: float
+    im: float
+    growth_rate_per_s: float
+    frequency_Hz: float
+    damping_ratio: float | None
+    decay_time_s: float | None
+    error: float
+
+
+class BuckledOperatingPoint(TypedDict):
+    """The buckled tether at the operating load (rung 3); only ``available`` and ``reason`` when it has none."""
+
+    available: bool
+    reason: NotRequired[str]
+    damping_sensitivity: NotRequired[list[DampingSensitivity]]
+    branch: NotRequired[str]
+    B: NotRequired[float]
+    measure1: NotRequired[float]
+    max_deflection: NotRequired[float]
+    max_deflection_m: NotRequired[float]
+    end_shortening_m: NotRequired[float]
+    end_force_N: NotRequired[dict[str, list[float]]]  # {"s=0": [3 components], "s=L": [...]}
+    end_moment_N_m: NotRequired[dict[str, list[float]]]
+    shape: NotRequired[Shape]
+    deflection_error_m: NotRequired[float | None]
+    residual: NotRequired[float]
+    N: NotRequired[int]
+    N_check: NotRequired[int | None]
+    stable: NotRequired[bool]
+    spectrum_converged: NotRequired[bool]
+    least_damped: NotRequired[LeastDamped | None]
+    points: NotRequired[int]
+    time_s: NotRequired[float]
+
+
+class RegionRow(TypedDict):
+    omega: float
+    spin_rpm: float
+    pitchfork_B: float | None
+    secondary_B: float | None
+    pitchfork_IB0_N_per_m: float | None
+    secondary_IB0_N_per_m: float | None
+
+
+class RegionCurve(TypedDict):
+    omega: list[float]
+    spin_rpm: list[float]
+    B: list[float]
+    IB0_N_per_m: list[float]
+
+
+class SecondaryCurve(RegionCurve):
+    interpolation: str
+    interpolation_error_B: float | None
+    interpolation_error_IB0_N_per_m: float | None
+
+
+class CoilRegion(TypedDict):
+    """``postbuckling.region``: where b1 is stable in the (spin, load) plane (rung 3)."""
+
+    rows: list[RegionRow]
+    N: int
+    liftoff_omega: float | None
+    liftoff_rpm: float | None
+    pitchfork_curve: RegionCurve
+    secondary_curve: SecondaryCurve
+    time_s: float
+    operating_rpm: float
+    lowest_stable_spin_rpm: float | None
+
+
+class PostbucklingSection(TypedDict):
+    """``postbuckling``: rungs 2-3, or why they were not computed (``computed`` False with a ``reason``).
+
+    With ``computed`` True: the diagram and, where b1 was found, its secondary
+    pitchfork and stability; ``operating`` and ``region`` where the operating
+    load lies on b1 (:func:`etcheck.checks.buckled.postbuckling_check`)."""
+
+    computed: bool
+    B_c: float | None
+    load_ratio: float | None
+    reason: NotRequired[str]
+    diagram: NotRequired[BifurcationDiagram]
+    secondary_pitchfork_B: NotRequired[float | None]
+    secondary_pitchfork_error: NotRequired[float | None]
+    secondary_pitchfork_IB0_N_per_m: NotRequired[float | None]
+    secondary_pitchfork_reason: NotRequired[str]
+    b1_first_unstable_B: NotRequired[float | None]
+    b1_stable_at_start: NotRequired[bool | None]
+    operating: NotRequired[BuckledOperatingPoint | None]
+    region: NotRequired[CoilRegion | None]
+    time_s: NotRequired[float]
+
+
+# --------------------------------------------------------------------------- margins and verdict
+
+
+class MarginRecord(TypedDict):
+    """One margin = critical / operating (:meth:`etcheck.checks.margins.Margin.as_dict`)."""
+
+    name: str
+    unit: str
+    critical: float | None
+    operating: float
+    value: float | None
+    required: float
+    verdict: str  # a Verdict value: pass, fail, incomplete
+    rung: int
+    error: float | None
+    why: str
+    route: str
+    model: str
+
+
+# --------------------------------------------------------------------------- along the orbit
+
+
+class OrbitSampling(TypedDict):
+    step_s: float
+    step_change: float
+    converged: bool
+    tolerance: float
+    steps_s: list[float]
+    worst_by_step_T: list[float]
+    samples: int
+
+
+class OrbitWorst(TypedDict):
+    """Where and when the axial field is worst (T, s, UTC, degrees, m)."""
+
+    axial_field_T: float
+    time_s: float
+    utc: str
+    latitude_deg: float
+    longitude_deg: float
+    altitude_m: float
+    pitch_deg: float
+    roll_deg: float
+
+
+class OrbitPercentiles(TypedDict):
+    levels: list[float]
+    axial_worst_T: list[float]
+    axial_nominal_T: list[float]
+
+
+class OrbitHistogram(TypedDict):
+    counts: list[int]
+    edges_T: list[float]
+
+
+class OrbitMargin(TypedDict):
+    """The load margin over the orbit: ``smallest`` at the worst field (None with no load)."""
+
+    name: str
+    critical_N_per_m: float | None
+    smallest: float | None
+    required: float
+
+
+class OrbitSeries(TypedDict):
+    """Samples along the orbit (None where not finite; load_margin None without a critical load)."""
+
+    time_s: list[float | None]
+    latitude_deg: list[float | None]
+    longitude_deg: list[float | None]
+    altitude_m: list[float | None]
+    b_up_T: list[float | None]
+    b_along_T: list[float | None]
+    b_cross_T: list[float | None]
+    axial_nominal_T: list[float | None]
+    axial_worst_T: list[float | None]
+    load_N_per_m: list[float | None]
+    load_margin: list[float | None] | None
+
+
+class OrbitSection(TypedDict):
+    """``orbit`` (missions with an [orbit] table): the field and the load margin along the orbit
+    (:func:`etcheck.checks.orbit_load.orbit_results`)."""
+
+    model: str
+    start: str
+    duration_s: float
+    period_s: float
+    libration_in_plane_deg: float
+    libration_out_of_plane_deg: float
+    sampling: OrbitSampling
+    worst: OrbitWorst
+    worst_nominal_T: float
+    percentiles: OrbitPercentiles
+    histogram: OrbitHistogram
+    worst_current_A: float
+    worst_load_N_per_m: float
+    margin: OrbitMargin | None
+    statement: str
+    first_orbit: OrbitSeries
+    series: OrbitSeries
+    series_note: str
+
+
+# --------------------------------------------------------------------------- uncertainty study
+
+
+class ElasticityRecord(TypedDict):
+    """d ln margin / d ln input (None where not differentiable), and how it was found."""
+
+    input: str
+    label: str
+    value: float | None
+    method: str
+
+
+class SwingRecord(TypedDict):
+    """The margin with one input at the ends of its tolerance range."""
+
+    input: str
+    label: str
+    low: float | None
+    high: float | None
+    margin_low: float | None
+    margin_high: float | None
+
+
+class MarginSensitivityRecord(TypedDict):
+    margin: str
+    nominal: float | None
+    elasticities: list[ElasticityRecord]
+    hinges_on: list[str]
+    does_not_matter: list[str]
+    swings: list[SwingRecord]
+
+
+class ProbabilityRecord(TypedDict):
+    """P(margin < required) with its 95 % interval (:class:`etcheck.studies.uncertainty.Probability`)."""
+
+    margin: str
+    required: float
+    value: float | None
+    low: float | None
+    high: float | None
+    relative_half_width: float | None
+    samples: int
+    evaluations: int
+    model: str
+    method: str
+    conditioned_on: str | None
+    settled: bool
+    note: str
+
+
+class UncertaintySection(TypedDict):
+    """``uncertainty`` (missions with an [uncertainty] table; :meth:`etcheck.studies.uncertainty.UncertaintyStudy.as_dict`)."""
+
+    route: str
+    required_margin: float
+    step: float
+    nominal_inputs_SI: dict[str, float | None]
+    inputs: UncertaintyInputs
+    margins: list[MarginSensitivityRecord]
+    probabilities: list[ProbabilityRecord]
+    sensitivity_time_s: float
+    elapsed_s: float
+
+
+# --------------------------------------------------------------------------- the whole
+
+
+class ResultsHeader(TypedDict):
+    """The common head of every results file (:func:`etcheck.checks.results.results_header`)."""
+
+    schema_version: int
+    etcheck_version: str
+    generated: str  # UTC, ISO 8601
+    mission: MissionEcho
+
+
+class CheckResults(ResultsHeader):
+    """A check's results (``CheckResult.results``; results.json)."""
+
+    scene: SceneSection
+    scaled: ScaledSection
+    scales: ScalesSection
+    plan: PlanSection
+    fidelity: FidelitySection
+    straight_rod: StraightRodSection
+    linear: LinearSection | None
+    postbuckling: PostbucklingSection | None
+    accuracy: list[AccuracyRow] | None
+    margins: list[MarginRecord]
+    verdict: str  # a Verdict value
+    validity: list[str]
+    orbit: NotRequired[OrbitSection | None]
+    elapsed_s: float
+    uncertainty: NotRequired[UncertaintySection]
+
