@@ -9,6 +9,7 @@ from pathlib import Path
 
 from etcheck import __version__
 from etcheck.cli.common import EXIT_TEXT, add_output_options, formats, guarded
+from etcheck.report.background import renderer
 
 NAME = "check"
 FORMATS = ("html", "pdf", "json")
@@ -30,7 +31,7 @@ def add_parser(sub) -> None:
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     fmts = formats(args, parser)
 
-    def action():
+    def action(render):
         from etcheck.checks.pipeline import check
         from etcheck.input.mission import load_mission
         from etcheck.report import write_reports
@@ -45,9 +46,10 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             from etcheck.studies.uncertainty import attach
 
             attach(result.results, mission)
-        return result, write_reports(result.results, Path(args.out) / mission.slug, fmts)
+        return result, write_reports(result.results, Path(args.out) / mission.slug, fmts, renderer=render)
 
-    out = guarded(action, "no report written")
+    with renderer(fmts) as render:  # started first: the report stack loads while the check runs
+        out = guarded(lambda: action(render), "no report written")
     if isinstance(out, int):
         return out
     result, paths = out

@@ -14,6 +14,7 @@ import math
 from pathlib import Path
 
 from etcheck.cli.common import add_output_options, formats, run_and_summarise
+from etcheck.report.background import renderer
 
 NAME = "damping-map"
 FORMATS = ("html", "pdf", "json")
@@ -61,7 +62,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if not 16 <= args.N <= 64:
         parser.error("--N must lie in [16, 64]")
 
-    def action():
+    def action(render):
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
         from etcheck.input.mission import load_mission
         from etcheck.report import write_reports
@@ -70,9 +71,11 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
         mission = load_mission(args.mission)
         results = damping_results(mission, args.gammas or HOPF_GAMMAS, args.B_max, args.spin_max, n_B, n_w, args.N)
-        return results, write_reports(results, Path(args.out) / mission.slug / "damping-map", fmts, kind="damping")
+        return results, write_reports(results, Path(args.out) / mission.slug / "damping-map", fmts, kind="damping",
+                                      renderer=render)
 
-    return run_and_summarise(action, _summary)
+    with renderer(fmts) as render:  # started first: the report stack loads while the study runs
+        return run_and_summarise(lambda: action(render), _summary)
 
 
 def _summary(results: dict, paths: list) -> None:

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from etcheck.cli.common import add_output_options, formats, run_and_summarise
 from etcheck.errors import MissionError
+from etcheck.report.background import renderer
 
 NAME = "diagram"
 FORMATS = ("html", "pdf", "json")
@@ -70,7 +71,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.B_max is not None and not 0 < args.B_max <= 1e3:
         parser.error("--B-max must lie in (0, 1000]")
 
-    def action():
+    def action(render):
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
         from etcheck.checks.buckled import DiagramOptions
         from etcheck.input.mission import load_mission
@@ -84,9 +85,10 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         options = DiagramOptions(branches=args.branches, B_max=args.B_max, N=args.N, stability=not args.no_stability)
         results = diagram_study(mission, omega, args.R, options)
         tag = folder_name(results["diagram"]["params"]["omega"], args.R)
-        return results, write_reports(results, Path(args.out) / mission.slug / tag, fmts, kind="diagram")
+        return results, write_reports(results, Path(args.out) / mission.slug / tag, fmts, kind="diagram", renderer=render)
 
-    return run_and_summarise(action, _summary)
+    with renderer(fmts) as render:  # started first: the report stack loads while the study runs
+        return run_and_summarise(lambda: action(render), _summary)
 
 
 def _summary(results: dict, paths: list) -> None:

@@ -11,6 +11,7 @@ import argparse
 from pathlib import Path
 
 from etcheck.cli.common import EXIT_TEXT, add_output_options, formats, guarded
+from etcheck.report.background import renderer
 
 NAME = "sweep"
 FORMATS = ("html", "pdf", "json", "csv", "nc")
@@ -49,7 +50,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     if args.tolerance is not None and not 1e-13 <= args.tolerance <= 1e-3:
         parser.error("--tolerance must lie in [1e-13, 1e-3]")
 
-    def action():
+    def action(render):
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
         from etcheck.cli.progress import ProgressBar
         from etcheck.input.mission import load_mission
@@ -64,9 +65,10 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
                                scheduler=args.scheduler, cache=None if args.no_cache else folder / "cache",
                                buckled=args.buckled)
         results = sweep(mission, axes, options, progress=ProgressBar(f"etcheck sweep {mission.name}"))
-        return results, write_reports(results, folder, fmts, kind="sweep")
+        return results, write_reports(results, folder, fmts, kind="sweep", renderer=render)
 
-    out = guarded(action, "rerun the same command to resume")
+    with renderer(fmts) as render:  # started first: the report stack loads while the sweep runs
+        out = guarded(lambda: action(render), "rerun the same command to resume")
     if isinstance(out, int):
         return out
     results, paths = out

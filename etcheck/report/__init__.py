@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 from etcheck.errors import ReportError
@@ -55,10 +56,15 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
 
 
 def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html", "pdf", "json"),
-                  kind: str = "check") -> list[Path]:
-    """Render and atomically write the reports into ``folder``; returns the paths."""
+                  kind: str = "check", renderer: Callable[[dict, tuple[str, ...], str], dict[str, bytes]] | None = None
+                  ) -> list[Path]:
+    """Render and atomically write the reports into ``folder``; returns the paths.
+
+    ``renderer``: a function like :func:`render` (default), e.g. the report process of
+    :func:`etcheck.report.background.renderer`.
+    """
     names = {"sweep": SWEEP_FILENAMES, "diagram": DIAGRAM_FILENAMES, "damping": DAMPING_FILENAMES}.get(kind, FILENAMES)
-    rendered = render(results, formats, kind)
+    rendered = (renderer or render)(results, formats, kind)
     folder = Path(folder)
     try:
         folder.mkdir(parents=True, exist_ok=True)

@@ -1,0 +1,107 @@
+"""Reports rendered by a second process that loads the report stack while the caller computes.
+
+matplotlib, jinja2 and WeasyPrint take about a second to import, and a check
+or a study needs none of them. :func:`renderer` starts a process for that before the
+caller's own imports and computation, and returns a function with the signature
+of :func:`etcheck.report.render` that hands the results to it: on two or more
+cores the report stack costs no wall time. The process is a fork of a small
+one (the CLI before numpy is loaded, with one thread), on Linux only; anywhere
+else, for data-only formats, or on one core, the reports are rendered in this
+process, with the same bytes.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import threading
+from collections.abc import Callable, Iterator
+
+from etcheck.errors import EtcheckError, ReportError
+from etcheck.report import render
+
+#: the formats a report process is started for (JSON and data files need no report stack)
+DRAWN = ("html", "pdf")
+
+
+@contextlib.contextmanager
+def renderer(formats: tuple[str, ...]) -> Iterator[Callable[[dict, tuple[str, ...], str], dict[str, bytes]]]:
+    """A ``render(results, formats, kind)`` that runs in a report process started now (when it can help).
+
+    Use as ``with renderer(fmts) as render: ... write_reports(..., render=render)``; leaving the block
+    ends the process whether or not it was used.
+    """
+    if not _worth_a_process(formats):
+        yield render
+        return
+    import multiprocessing
+
+    sys.stdout.flush()  # nothing buffered may be written twice
+    sys.stderr.flush()
+    ctx = multiprocessing.get_context("fork")
+    ours, theirs = ctx.Pipe()
+    proc = ctx.Process(target=_serve, args=(theirs, ours, formats), daemon=True, name="etcheck-report")
+    proc.start()
+    theirs.close()
+
+    def remote(results: dict, fmts: tuple[str, ...], kind: str = "check") -> dict[str, bytes]:
+        try:
+            ours.send((results, fmts, kind))
+            status, value = ours.recv()
+        except (EOFError, OSError):
+            raise ReportError("the report process ended unexpectedly; run again with --format json "
+                              "to get the results without the report") from None
+        if status == "ok":
+            return value
+        if status == "report":
+            raise ReportError(value)
+        raise RuntimeError(value)
+
+    try:
+        yield remote
+    finally:
+        ours.close()  # the process reads end-of-file and exits
+        proc.join(timeout=5)
+        if proc.is_alive():
+            proc.terminate()
+            proc.join()
+
+
+def _worth_a_process(formats: tuple[str, ...]) -> bool:
+    """A fork is cheap and safe here: Linux, two or more cores, one thread, numpy not loaded yet."""
+    return (any(f in DRAWN for f in formats) and sys.platform.startswith("linux")
+            and len(os.sched_getaffinity(0)) >= 2 and threading.active_count() == 1 and "numpy" not in sys.modules)
+
+
+def _serve(conn, parent_end, formats: tuple[str, ...]) -> None:
+    """The report process: load and warm the report stack, then render what the parent sends until it closes."""
+    parent_end.close()
+    try:
+        _warm(formats)
+        while True:
+            try:
+                results, fmts, kind = conn.recv()
+            except EOFError:
+                return
+            try:
+                conn.send(("ok", render(results, fmts, kind)))
+            except EtcheckError as exc:
+                conn.send(("report", str(exc)))
+            except Exception as exc:  # a bug: the parent reports it as an internal error
+                conn.send(("bug", f"{type(exc).__name__}: {exc}"))
+    except KeyboardInterrupt:  # Ctrl-C reaches the whole process group; the parent says so
+        return
+
+
+def _warm(formats: tuple[str, ...]) -> None:
+    """Import the report stack: jinja2, matplotlib with the report style and, for a PDF, WeasyPrint."""
+    import jinja2  # noqa: F401
+
+    from etcheck.report import html  # noqa: F401  (the templates' helpers and the figure modules)
+    from etcheck.report.figures.common import pyplot
+
+    pyplot()
+    if "pdf" in formats:
+        with contextlib.suppress(ImportError, OSError):  # a missing PDF engine is reported when a PDF is rendered
+            import weasyprint  # noqa: F401

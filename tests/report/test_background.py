@@ -1,0 +1,51 @@
+"""The report process renders the same bytes as this process (the HTML is deterministic: same results, same
+bytes), and its failures come back as errors."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy  # noqa: F401  (loaded, as in any test run: no fork from here)
+import pytest
+
+from etcheck.report.background import _worth_a_process
+
+ROOT = Path(__file__).resolve().parents[2]
+
+PROBE = """
+import json, sys
+from etcheck.errors import ReportError
+from etcheck.report import render
+from etcheck.report.background import renderer
+results = json.loads(open(sys.argv[1]).read())
+with renderer(("html", "json")) as remote:
+    assert remote is not render, "no report process was started"
+    got = remote(results, ("html", "json"), "check")
+    try:
+        remote({"broken": True}, ("html",), "check")
+    except RuntimeError as exc:
+        bug = str(exc)
+    try:
+        remote(results, ("html",), "no such kind")
+    except (RuntimeError, ReportError) as exc:
+        other = str(exc)
+    again = remote(results, ("json",), "check")  # still serving after an error
+assert got == render(results, ("html", "json"), "check"), "different bytes"
+assert again["json"] == got["json"]
+print(bug)
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the report process is a fork (Linux)")
+def test_the_report_process_renders_the_same_bytes_and_reports_failures():
+    run = subprocess.run([sys.executable, "-c", PROBE, str(ROOT / "reports" / "set-static" / "results.json")],
+                         cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert run.stdout.startswith("KeyError"), run.stdout  # the missing key, named
+
+
+def test_no_process_for_data_only_formats_or_after_numpy():
+    assert not _worth_a_process(("json",))
+    assert not _worth_a_process(("html", "pdf"))  # this test process has numpy loaded: rendered in place
