@@ -41,12 +41,22 @@ from functools import lru_cache
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sp
+from scipy.sparse.csgraph import connected_components
 
-from ..numerics.eigen import eliminate_static, match_spectra, single_blas_thread
+from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, single_blas_thread
 from .base_state import straight
 from .linear import NFIELDS, linear_operator
 from .parameters import RodParameters
-from .spectrum import ERROR_FLOOR, check_resolution, nearest_eigenvalues, prefers_dense, select_pairs
+from .spectrum import (
+    ERROR_FLOOR,
+    SIGMA,
+    check_resolution,
+    damping_cluster,
+    nearest_eigenvalues,
+    prefers_dense,
+    select_pairs,
+)
 
 __all__ = [
     "THRESHOLD",
@@ -88,6 +98,43 @@ _DELTA = 1e-6
 _AXES = ("B", "omega", "T")
 
 
+_BLOCKS = ("A00", "AB", "AT", "Aw", "A10", "A1w", "A2")
+
+
+def _uncoupled(fam) -> list[tuple[np.ndarray, np.ndarray]]:
+    """(rows, columns) of the parts of the family's operator that share no row or column (one part if any is not square)."""
+    pattern = sum(np.abs(getattr(fam, name)) for name in _BLOCKS) != 0.0
+    n = pattern.shape[0]
+    graph = sp.bmat([[None, sp.csr_matrix(pattern)], [sp.csr_matrix(pattern.T), None]])
+    _, label = connected_components(graph, directed=False)
+    parts = [(np.nonzero(label[:n] == c)[0], np.nonzero(label[n:] == c)[0]) for c in np.unique(label)]
+    if any(rows.size != cols.size for rows, cols in parts):
+        return [(np.arange(n), np.arange(n))]
+    return parts
+
+
+class _Part:
+    """One uncoupled part of a family, phi and m eliminated; constant parts keep their eigenvalues."""
+
+    def __init__(self, fam, rows: np.ndarray, cols: np.ndarray):
+        sub = {name: getattr(fam, name)[np.ix_(rows, cols)] for name in _BLOCKS}
+        static = np.nonzero(np.isin(cols, fam.static_cols))[0]
+        el = eliminate_static(sub["A00"], sub["A10"], sub["A2"], static)
+        self.r = {name: el.reduce(sub[name]) for name in _BLOCKS}
+        self.gamma = fam.params.gamma
+        self.constant = not any(np.any(self.r[name]) for name in ("AB", "AT", "Aw", "A1w"))
+        self.all = qep_dense(self.r["A00"], self.r["A10"], self.r["A2"]) if self.constant else None
+
+    def nearest(self, B: float, omega: float, T: float, nev: int, past_cluster: bool, dense: bool) -> np.ndarray:
+        """The nev eigenvalues of this part nearest the shift (all of a constant part)."""
+        if self.constant:
+            return self.all[~damping_cluster(self.all, self.gamma)] if past_cluster else self.all
+        r = self.r
+        A0 = r["A00"] + B * r["AB"] + T * r["AT"] + omega**2 * r["Aw"]
+        return nearest_eigenvalues(A0, r["A10"] + omega * r["A1w"], r["A2"], nev, self.gamma,
+                                   past_cluster=past_cluster, dense=dense, reduced=True)
+
+
 class StraightFamily:
     """Operators of the straight rod as exact polynomials in (B, omega, T).
 
@@ -96,7 +143,11 @@ class StraightFamily:
     The lambda-free unknowns phi, m enter A0 through columns that none of
     B, omega, T touches, so one QR eliminates them for the whole family: every
     block is also kept reduced (``reduced``: Q2^T A[:, keep], size 6(N+1)),
-    on which the eigenvalue solves and the static pencils run.
+    on which the static pencils run. For the eigenvalues the operator is
+    also split into its uncoupled parts (read off the sparsity of all blocks;
+    for the straight rod: bending xi1,2, a1,2 with phi1,2, m1,2; torsion a3, m3;
+    axial xi3, phi3), each reduced the same way; a part that none of B, omega,
+    T reaches (torsion, axial) is solved once, densely, for the family.
     """
 
     def __init__(self, params: RodParameters, N: int):
@@ -116,7 +167,8 @@ class StraightFamily:
         n = self.N + 1
         self.static_cols = np.arange(6 * n, NFIELDS * n)
         el = eliminate_static(A00, A10, A2, self.static_cols)
-        self.reduced = {name: el.reduce(getattr(self, name)) for name in ("A00", "AB", "AT", "Aw", "A10", "A1w", "A2")}
+        self.reduced = {name: el.reduce(getattr(self, name)) for name in _BLOCKS}
+        self.parts = [_Part(self, rows, cols) for rows, cols in _uncoupled(self)]
 
     def operator(self, B: float, omega: float, T: float, reduced: bool = False):
         """(A0, A1, A2) at the given load, spin and tension (``reduced``: phi, m eliminated)."""
@@ -126,7 +178,7 @@ class StraightFamily:
         return A0, A1, r["A2"]
 
     def eigenvalues(self, B: float, omega: float, T: float, nev: int, past_cluster: bool = False) -> np.ndarray:
-        """The nev eigenvalues nearest the shift (solved on the reduced operator).
+        """The nev eigenvalues nearest the shift (the nearest of every uncoupled part, merged).
 
         ``past_cluster=True`` removes the Kelvin-Voigt damping cluster and asks
         for more until nev lie outside it (for display). The stability
@@ -134,9 +186,9 @@ class StraightFamily:
         >= 1/gamma, and with damping the only way to lose stability is through
         lambda = 0, next to the shift (Kelvin-Tait-Chetaev).
         """
-        A0, A1, A2 = self.operator(B, omega, T, reduced=True)
-        return nearest_eigenvalues(A0, A1, A2, nev, self.params.gamma, past_cluster=past_cluster,
-                                   dense=prefers_dense(self.params, nev), reduced=True)
+        dense = prefers_dense(self.params, nev)
+        lam = np.concatenate([part.nearest(B, omega, T, nev, past_cluster, dense) for part in self.parts])
+        return lam[np.argsort(np.abs(lam - SIGMA), kind="stable")][:nev]
 
     def growth(self, B: float, omega: float, T: float, k: int = K_MODES) -> float:
         """max Re lambda over the k least-|lambda| pairs."""

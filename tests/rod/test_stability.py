@@ -150,3 +150,21 @@ def test_map_and_campbell():
     assert cb.error < 1e-11
     coarse = campbell(SET, np.linspace(0, 1, 5), k=4, N=8, N_check=24)
     assert coarse.error > 1e-4  # N = 8 is off by ~1e-1 (accuracy table)
+
+
+@pytest.mark.parametrize("gamma", [0.0, 0.04375])
+def test_family_eigenvalues_from_its_uncoupled_parts(gamma):
+    # bending, torsion and axial parts solved apart (torsion once) give the spectrum of the whole operator
+    from etcheck.rod.spectrum import nearest_eigenvalues
+    from etcheck.rod.stability import StraightFamily
+
+    p = SET.with_(gamma=gamma)
+    fam = StraightFamily(p, 16)
+    assert [(part.r["A00"].shape[0], part.constant) for part in fam.parts] == [(68, False), (17, True), (17, True)]
+    for w in (0.0, 0.8):
+        whole = nearest_eigenvalues(*fam.operator(0.3, w, 0.1, reduced=True), 22, gamma, reduced=True)
+        parts = fam.eigenvalues(0.3, w, 0.1, 22, past_cluster=True)
+        inside = np.abs(whole) < 0.999 * np.max(np.abs(whole))
+        assert np.count_nonzero(np.abs(parts) < 0.999 * np.max(np.abs(whole))) == np.count_nonzero(inside)
+        for z in whole[inside]:
+            assert np.min(np.abs(parts - z)) <= 1e-10 * max(abs(z), 0.1)
