@@ -367,7 +367,7 @@ def _trial_point(problem, br: _Bracket, s_a: float, sig: float, name: str, W, op
     return q
 
 
-def _locate(problem, a: Point, b: Point, name: str, W, opts) -> SpecialPoint:
+def _locate(problem, a: Point, b: Point, name: str, W, opts) -> tuple[SpecialPoint, tuple[Point, Point]]:
     """Bracketed root of tests[name] between the accepted points a and b.
 
     Illinois (modified regula falsi: the value at an end kept twice in a row
@@ -383,7 +383,8 @@ def _locate(problem, a: Point, b: Point, name: str, W, opts) -> SpecialPoint:
     says nothing about the root. A trial that fails or jumps is replaced by
     points ever closer to the converged ends. The root is interpolated
     linearly between the two converged bracket ends; the point is
-    ``converged`` when the bracket is narrower than ``LOCATE_WIDTH``.
+    ``converged`` when the bracket is narrower than ``LOCATE_WIDTH``. Returns
+    the point and the two ends of the final bracket.
     """
     fa, fb = a.tests[name], b.tests[name]
     br = _Bracket(0.0, b.s - a.s, fa, fb, fa, fb, a, b)
@@ -405,7 +406,7 @@ def _locate(problem, a: Point, b: Point, name: str, W, opts) -> SpecialPoint:
         br.update(sig, q, q.tests[name])
         if br.lo == br.hi:
             break
-    return _located(name, a, br, reason)
+    return _located(name, a, br, reason), (br.plo, br.phi)
 
 
 def _located(name: str, a: Point, br: _Bracket, reason: str) -> SpecialPoint:
@@ -472,39 +473,51 @@ def _advance(problem, a: Point, ds: float, W, opts) -> tuple[Point | None, int, 
 
 def _special_between(problem, a: Point, b: Point, index: int, W, opts) -> tuple[list, str]:
     """Special points located between consecutive points a and b (sign changes of their
-    tests), and the first kind among them at which the continuation stops ("" if none)."""
-    found, stop_kind = [], ""
-    for name, fa in a.tests.items():
-        fb = b.tests.get(name)
+    tests; folds first), and the first kind among them at which the continuation stops
+    ("" if none)."""
+    found, stop_kind, folds = [], "", []
+    for name in sorted(a.tests, key=lambda k: k != "fold"):
+        fa, fb = a.tests[name], b.tests.get(name)
         if fb is None or fa == 0.0 or (fa > 0) == (fb > 0):
             continue
-        found.append(replace(_locate(problem, a, b, name, W, opts), index=index))
+        sp = _fold_twin(folds, name)
+        if sp is None:
+            sp, ends = _locate(problem, a, b, name, W, opts)
+            if name == "fold" and sp.converged:
+                folds.append((sp, ends))
+            elif name == "bp":
+                sp = _fold_twin(folds, name, sp) or sp
+        found.append(replace(sp, index=index))
         if name in opts.stop_on and not stop_kind:
             stop_kind = name
-    return _pitchfork_folds(found), stop_kind
+    return found, stop_kind
 
 
-def _pitchfork_folds(found: list) -> list:
-    """A branch point met at a fold of the branch (a pitchfork reached along its
-    bifurcating branch, where the parameter is extremal) takes the fold's location
-    when both are located in the same step and agree to twice the spread of the
-    branch point's parameter bracket.
+def _fold_twin(folds: list, name: str, located: SpecialPoint | None = None) -> SpecialPoint | None:
+    """The branch point as the fold it coincides with (None if it does not).
 
-    Next to such a point the corrector of the determinant test keeps landing on
-    the crossing branch and the test is nearly a step function, so its bracket
-    ends can lie on different branches and their interpolated parameter is off
-    (by 1e-8 in T for the SET b1, 1e-6 in the straight tether's load); the fold
-    test (the parameter component of the tangent) is smooth there and its root
-    is located to rounding.
+    A pitchfork reached along its bifurcating branch is a fold of that branch
+    (the parameter is extremal there). Next to it the corrector of the
+    determinant test keeps landing on the crossing branch and that test is
+    nearly a step function, so its own bracket can end on two different
+    branches (for the SET b1 met by its tension continuation: 3e-9 off in T,
+    2e-8 in the straight tether's load, against 2e-11 from the fold). The fold
+    test (the parameter component of the tangent) is smooth there. So a branch
+    point found in the same step as a converged fold is that fold when the
+    fold's final bracket also brackets the determinant's sign change (then it
+    is not located at all) or, once located, when the two parameter values
+    agree to twice the spread of the branch point's own parameter bracket.
     """
-    folds = [q for q in found if q.kind == "fold" and q.converged]
-    out = []
-    for q in found:
-        spread = abs(q.p_bracket[1] - q.p_bracket[0])
-        twin = next((f for f in folds if q.kind == "bp" and abs(f.p - q.p) <= 2.0 * spread + 1e-12), None)
-        out.append(q if twin is None else replace(q, point=twin.point, p=twin.p, p_bracket=twin.p_bracket,
-                                                   bracket=twin.bracket, converged=True, reason=""))
-    return out
+    if name != "bp":
+        return None
+    for f, (lo, hi) in folds:
+        flo, fhi = lo.tests.get("bp"), hi.tests.get("bp")
+        straddles = flo is not None and fhi is not None and (flo == 0.0 or fhi == 0.0 or (flo > 0) != (fhi > 0))
+        spread = math.inf if located is None else abs(located.p_bracket[1] - located.p_bracket[0])
+        near = located is not None and abs(f.p - located.p) <= 2.0 * spread + 1e-12
+        if (located is None and straddles) or near:
+            return replace(f, kind="bp", value=0.0)
+    return None
 
 
 def _next_step(ds: float, newton: int, opts) -> float:
