@@ -181,6 +181,19 @@ def test_trivial_branch_reproduces_rung1():
         assert np.max(np.abs(X - Y)) <= 1e-12 * max(1.0, np.max(np.abs(Y)))
 
 
+def test_damped_operator_splits_by_rows_on_a_buckled_spun_state(b1_spun):
+    """damped_operator builds once (gamma = 1) and splits A1 by rows: the Kelvin-Voigt term
+    lives only in the constitutive rows, the gyroscopic terms only outside them."""
+    st = b1_spun.states[len(b1_spun.states) // 2]
+    assert st.params.omega > 1.0
+    op = bs.damped_operator(st.params, st, N)
+    A1g = linear_operator(st.params.with_(gamma=0.0), st, N)[1]
+    assert np.max(np.abs(A1g[3 * N:6 * N])) == 0.0 and np.max(np.abs(op.A1d)) > 0.1
+    assert np.max(np.abs(op.A1g - A1g)) <= 1e-13 * np.max(np.abs(A1g))
+    for X, Y in zip(op.at(GAMMA_SET), linear_operator(st.params.with_(gamma=GAMMA_SET), st, N)):
+        assert np.max(np.abs(X - Y)) <= 1e-12 * max(1.0, np.max(np.abs(Y)))
+
+
 def test_mode_labels_of_the_straight_rod():
     """Unloaded straight rod: weak-axis bending (about d2) lowest, stiff-axis
     bending (about d1) next, the first torsion mode at pi sqrt(Gamma/(2 P f))."""
