@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from etcheck.checks.sections import FidelitySection
+
 #: relative two-resolution agreement of a draft's critical values and eigenvalues
 DRAFT_TOLERANCE = 1e-6
 
@@ -30,7 +32,7 @@ class Fidelity:
     def draft(self) -> bool:
         return self.name == "draft"
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> FidelitySection:
         return {"name": self.name, "tolerance": self.tolerance, "left_out": list(self.left_out)}
 
 

@@ -6,6 +6,7 @@ from dataclasses import asdict, dataclass, replace
 from enum import StrEnum
 
 from etcheck.checks.plan import EXACT, EXACT_MODEL, RUNG_NAMES, Plan
+from etcheck.checks.sections import LinearSection, MarginRecord, StraightRodSection
 from etcheck.input.mission import Mission
 from etcheck.rod.stability import CriticalKind
 from etcheck.scaling import RPM, Scaled, Scene
@@ -48,7 +49,7 @@ class Margin:
     def model(self) -> str:
         return EXACT_MODEL if self.route == EXACT and self.rung == 1 else RUNG_NAMES[self.rung]
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> MarginRecord:
         return asdict(self) | {"model": self.model}
 
 
@@ -84,7 +85,8 @@ def overall_verdict(margins: list[Margin]) -> str:
 # The margin rules of each rung (what is compared with what).
 
 
-def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: dict, linear: dict | None) -> list[Margin]:
+def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: StraightRodSection,
+                     linear: LinearSection | None) -> list[Margin]:
     required = mission.required_margin
     first = static["critical_loads"][0]
     if linear is not None:
@@ -105,7 +107,7 @@ def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, 
     return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.rung, chosen.reason)]
 
 
-def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: dict) -> list[Margin]:
+def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSection) -> list[Margin]:
     """Load margin at the operating spin; spin margin at the operating load (rung 1)."""
     p = scaled.params
     load, spin = linear["critical_load"], linear["critical_spin"]

@@ -20,11 +20,11 @@ degrees (named ``_deg``).
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from etcheck.checks.margins import Margin
+from etcheck.checks.sections import OrbitSection, OrbitSeries
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
 
@@ -37,7 +37,7 @@ def load_margin(margins: list[Margin]) -> Margin | None:
     return next((m for m in margins if m.unit == "N/m" and m.name.startswith("magnetic load") and m.critical is not None), None)
 
 
-def _series(s, idx: np.ndarray, current: float, critical: float | None) -> dict[str, Any]:
+def _series(s, idx: np.ndarray, current: float, critical: float | None) -> OrbitSeries:
     load = current * s.axial_worst[idx]  # N/m
     with np.errstate(divide="ignore"):
         margin = critical / load if critical is not None else None
@@ -56,7 +56,7 @@ def _series(s, idx: np.ndarray, current: float, critical: float | None) -> dict[
     }
 
 
-def orbit_results(mission: Mission, margins: list[Margin]) -> dict[str, Any] | None:
+def orbit_results(mission: Mission, margins: list[Margin]) -> OrbitSection | None:
     """The field and the load margin along the mission's orbit (None without an [orbit] table)."""
     env = mission.orbit_envelope
     if env is None:

@@ -9,7 +9,6 @@ from __future__ import annotations
 import time
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
-from typing import Any
 
 from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
 from etcheck.checks.fidelity import fidelity_of
@@ -17,6 +16,13 @@ from etcheck.checks.margins import FAIL, INCOMPLETE, PASS, buckled_margins, over
 from etcheck.checks.orbit_load import orbit_results
 from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, plan
 from etcheck.checks.results import results_header
+from etcheck.checks.sections import (
+    CheckResults,
+    LinearSection,
+    PostbucklingSection,
+    SceneSection,
+    StraightRodSection,
+)
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, linear_stability
 from etcheck.checks.validity import validity
@@ -30,9 +36,10 @@ N_LOADS = 5
 
 @dataclass(frozen=True)
 class CheckResult:
-    """What a check produced: JSON-able ``results`` and the CLI exit code."""
+    """What a check produced: JSON-able ``results`` (typed section by section in
+    :mod:`etcheck.checks.sections`) and the CLI exit code."""
 
-    results: dict[str, Any]
+    results: CheckResults
 
     @property
     def verdict(self) -> str:
@@ -58,8 +65,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     scaled = scale(sc)
     chosen = plan(scaled.params, mission.fidelity)
     fid = fidelity_of(mission.fidelity, mission.tolerance)
-    static = static_buckling(scaled)
-    static["limits"] = static_limits(static, mission, sc)
+    rung0 = static_buckling(scaled)
+    static: StraightRodSection = {**rung0, "limits": static_limits(rung0, mission, sc)}
     linear = accuracy_rows = None
     options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
@@ -72,7 +79,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
-    results = {
+    results: CheckResults = {
         **results_header(mission),
         "scene": _scene_dict(mission, sc),
         "scaled": asdict(scaled.params),
@@ -98,7 +105,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     return CheckResult(results=results)
 
 
-def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict | None) -> dict | None:
+def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
+                  linear: LinearSection | None) -> PostbucklingSection | None:
     """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load."""
     p = scaled.params
     if linear is not None:
@@ -122,7 +130,7 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict |
     return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
 
 
-def _scene_dict(mission: Mission, sc: Scene) -> dict[str, Any]:
+def _scene_dict(mission: Mission, sc: Scene) -> SceneSection:
     return {
         "worst_current_A": float(mission.worst_current.to_value("A")),
         "worst_field_T": float(mission.worst_field.to_value("T")),

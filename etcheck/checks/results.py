@@ -7,16 +7,16 @@ with the schema version, the etcheck version, the time and the mission echo.
 from __future__ import annotations
 
 import datetime as dt
-from typing import Any
 
 from etcheck import __version__
+from etcheck.checks.sections import ResultsHeader
 from etcheck.input.mission import Mission
 
 #: version of the results.json layout (bump when a field changes meaning or moves)
 SCHEMA_VERSION = 2  # 2: fidelity, plan.route, margin route
 
 
-def results_header(mission: Mission, schema_version: int = SCHEMA_VERSION) -> dict[str, Any]:
+def results_header(mission: Mission, schema_version: int = SCHEMA_VERSION) -> ResultsHeader:
     """Schema version, etcheck version, UTC time stamp and the mission as read."""
     return {"schema_version": schema_version, "etcheck_version": __version__,
             "generated": dt.datetime.now(dt.UTC).isoformat(timespec="seconds"), "mission": mission.echo()}

@@ -133,8 +133,8 @@ class StaticLimits(TypedDict):
     critical_length_m: float | None
 
 
-class StraightRodSection(TypedDict):
-    """``straight_rod``: rung 0 answers (:func:`etcheck.checks.static_buckling.static_buckling`)."""
+class StaticBuckling(TypedDict):
+    """Rung 0 answers of the scene (:func:`etcheck.checks.static_buckling.static_buckling`)."""
 
     model: str
     critical_loads: list[StaticCriticalLoad]
@@ -144,6 +144,12 @@ class StraightRodSection(TypedDict):
     first_mode: ModeShape
     chi_curve: ChiCurve
     natural_frequencies: NaturalFrequencies
+
+
+class StraightRodSection(StaticBuckling):
+    """``straight_rod``: rung 0 answers and the limits they set on the mission
+    (:func:`etcheck.checks.static_buckling.static_limits`)."""
+
     limits: StaticLimits
 
 

@@ -9,10 +9,10 @@ answers with their SI counterparts (I·B0 in N/m, frequencies in rad/s and Hz).
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
+from etcheck.checks.sections import StaticBuckling, StaticLimits
 from etcheck.input.mission import Mission
 from etcheck.rod import analytic
 from etcheck.scaling import Scaled, Scene
@@ -21,7 +21,7 @@ from etcheck.scaling import Scaled, Scene
 N_LOADS = 5
 
 
-def static_buckling(scaled: Scaled) -> dict[str, Any]:
+def static_buckling(scaled: Scaled) -> StaticBuckling:
     """Rung 0 answers for the scene: critical loads, frequencies, mode shape.
 
     All loads are at omega = 0, T = 0 (eq. (91)); dimensionless B
@@ -77,7 +77,7 @@ def static_buckling(scaled: Scaled) -> dict[str, Any]:
     }
 
 
-def static_limits(static: dict, mission: Mission, sc: Scene) -> dict[str, Any]:
+def static_limits(static: StaticBuckling, mission: Mission, sc: Scene) -> StaticLimits:
     """Critical current at the worst field and critical length at the operating load.
 
     Static buckling (omega = T = 0): B ∝ L^3 and the static loads do not

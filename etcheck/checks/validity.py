@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 from etcheck.checks.plan import EXACT, Plan
+from etcheck.checks.sections import PostbucklingSection
 from etcheck.input.mission import Mission
 from etcheck.scaling import Scaled
 
 
-def _after_buckling(post: dict | None) -> str:
+def _after_buckling(post: PostbucklingSection | None) -> str:
     if post and post.get("computed"):
         return ("Past (or near) the first critical load the first post-buckling branch b1 is followed as nonlinear "
                 "whirling equilibria (rung 2, Chebyshev collocation, Newton with the exact Jacobian, pseudo-arclength "
@@ -17,7 +18,7 @@ def _after_buckling(post: dict | None) -> str:
             "point is within the required margin of that load, the buckled tether is analysed too (rungs 2-3).")
 
 
-def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: dict | None = None) -> list[str]:
+def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: PostbucklingSection | None = None) -> list[str]:
     p = scaled.params
     items = [
         "Model: inextensible, unshearable, intrinsically straight Kirchhoff rod, welded (clamped) at both ends, "

@@ -46,6 +46,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from etcheck.errors import MissionError
+from etcheck.input.echo import TensionProfile
 from etcheck.input.units import QuantityProblem, to_quantity
 
 if TYPE_CHECKING:
@@ -122,7 +123,7 @@ class GravityGradient:
     def minimum_at(self) -> str:
         return "upper end" if self.upper_end <= self.lower_end else "lower end"
 
-    def as_dict(self) -> dict[str, Any]:
+    def as_dict(self) -> TensionProfile:
         """JSON-able profile (SI, keys carry their unit)."""
         return {
             "model": "gravity gradient, tether on the local vertical of a circular orbit",

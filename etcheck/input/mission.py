@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import astropy.units as u
 
 from etcheck.errors import MissionError
+from etcheck.input.echo import MissionEcho
 from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
 from etcheck.input.orbit_field import check_one_field_source, orbit_axial_field, orbit_echo, orbit_notes
 from etcheck.input.sweep_axes import AXES, Axis, parse_table
@@ -164,7 +165,7 @@ class Mission:
         """Worst-case magnetic load per length |I| |B0| [N/m]."""
         return (self.worst_current * self.worst_field).to(u.N / u.m)
 
-    def echo(self) -> dict[str, Any]:
+    def echo(self) -> MissionEcho:
         """The inputs as JSON-able {field: "value unit"} for reports."""
 
         def q(x):

@@ -19,6 +19,7 @@ import math
 from typing import TYPE_CHECKING, Any
 
 from etcheck.errors import MissionError
+from etcheck.input.echo import OrbitEcho
 
 if TYPE_CHECKING:
     from etcheck.orbit.envelope import AxialFieldEnvelope
@@ -71,7 +72,7 @@ def orbit_notes(spec: OrbitSpec, env: AxialFieldEnvelope) -> list[str]:
     return notes
 
 
-def orbit_echo(spec: OrbitSpec, env: AxialFieldEnvelope) -> dict[str, Any]:
+def orbit_echo(spec: OrbitSpec, env: AxialFieldEnvelope) -> OrbitEcho:
     """The orbit as read and the envelope's worst case, JSON-able (degrees, km, µT for the reader)."""
     from etcheck.orbit.elements import KeplerianElements
     from etcheck.orbit.envelope import orbital_period

@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from etcheck.errors import MissionError
+from etcheck.input.echo import DistributionRecord, UncertaintyInputs
 from etcheck.input.units import KINDS, QuantityProblem, to_quantity
 
 #: input -> (quantity kind of etcheck.input.units, what it is, lower physical limit, strict)
@@ -161,7 +162,7 @@ class Distribution:
                 s += f", truncated to [{g(self.lower)}, {g(self.upper)}]{unit}"
         return s + (" (factor on the mission's value)" if self.factor else "")
 
-    def as_dict(self) -> dict[str, Any]:
+    def as_dict(self) -> DistributionRecord:
         lo, hi = self.interval()
         return {"input": self.input, "written": self.text, "distribution": self.shape, "nominal": self.nominal,
                 "factor": self.factor, "unit": "" if self.factor else self.unit, "describe": self.describe(),
@@ -182,7 +183,7 @@ class Uncertainty:
     def names(self) -> tuple[str, ...]:
         return tuple(d.input for d in self.inputs)
 
-    def as_dict(self) -> dict[str, Any]:
+    def as_dict(self) -> UncertaintyInputs:
         return {"inputs": [d.as_dict() for d in self.inputs], "notes": list(self.notes)}
 
 

@@ -55,6 +55,7 @@ from typing import Any
 import numpy as np
 
 from etcheck.checks.plan import plan
+from etcheck.checks.sections import CheckResults, UncertaintySection
 from etcheck.input.mission import Mission
 from etcheck.input.uncertainty import Distribution, Uncertainty
 from etcheck.numerics.eigen import single_blas_thread
@@ -728,7 +729,7 @@ class UncertaintyStudy:
     elapsed_s: float = 0.0
     sensitivity_time_s: float = 0.0
 
-    def as_dict(self) -> dict[str, Any]:
+    def as_dict(self) -> UncertaintySection:
         """JSON-able (None where not finite)."""
 
         def num(x):
@@ -787,7 +788,7 @@ def spin_rpm(rad_s: float) -> float:
     return rad_s * RPM
 
 
-def attach(results: dict[str, Any], mission: Mission, **options: Any) -> dict[str, Any]:
+def attach(results: CheckResults, mission: Mission, **options: Any) -> CheckResults:
     """Add the study to check results under "uncertainty" when the mission has an [uncertainty]
     table (the check's results are otherwise unchanged); returns results."""
     if mission.uncertainty is not None:
@@ -795,7 +796,7 @@ def attach(results: dict[str, Any], mission: Mission, **options: Any) -> dict[st
     return results
 
 
-def summary_lines(results: dict[str, Any]) -> list[str]:
+def summary_lines(results: CheckResults) -> list[str]:
     """Lines for the CLI summary: the probability of each margin falling short."""
     lines = []
     for p in (results.get("uncertainty") or {}).get("probabilities", []):

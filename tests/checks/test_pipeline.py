@@ -435,7 +435,7 @@ def test_subprocess_all_formats(tmp_path):
     assert sorted(p.name for p in folder.iterdir()) == ["report.html", "report.pdf", "results.json"]
     html = (folder / "report.html").read_text(encoding="utf-8")
     assert "<html" in html.lower() and "SET" in html
-    assert "<svg" in html  # figures inline
+    assert '<img src="data:image/png;base64,' in html  # figures inline
     assert "0.5853" in html or "0.585" in html
     assert (folder / "report.pdf").read_bytes().startswith(b"%PDF")
 

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
-from etcheck.report.figures.common import svg as _svg
 
 COLOURS = ["#1f4e79", "#c0392b", "#27ae60", "#8e44ad", "#d35400", "#16a085", "#7f8c8d", "#2c3e50"]
 MARKERS = {"break": ("s", "secondary pitchfork"), "fold": ("^", "fold"), "bp": ("D", "branch point")}
@@ -53,7 +53,7 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     ax.set_title(title, fontsize=9)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7, loc="best")
-    return _svg(fig)
+    return _image(fig)
 
 
 def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str) -> None:
@@ -145,7 +145,7 @@ def shapes_plot(shapes: list[tuple[str, dict]], length_m: float | None = None) -
     if len(shapes) > 1:
         ax1.legend(fontsize=7, loc="best")
     fig.subplots_adjust(left=0.0, right=0.98, top=0.93, bottom=0.1)
-    return _svg(fig)
+    return _image(fig)
 
 
 def eigen_paths_plot(paths: dict, xlabel: str, title: str) -> str:
@@ -171,7 +171,7 @@ def eigen_paths_plot(paths: dict, xlabel: str, title: str) -> str:
     a1.legend(fontsize=7)
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
-    return _svg(fig)
+    return _image(fig)
 
 
 def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
@@ -246,4 +246,4 @@ def damping_maps(r: dict) -> str:
     fig.legend(handles, labels, fontsize=7, loc="lower center", ncol=3, bbox_to_anchor=(0.45, -0.04))
     if mesh is not None:
         fig.colorbar(mesh, ax=axes.ravel().tolist(), label="damping ratio ζ of the least-damped mode", shrink=0.9)
-    return _svg(fig)
+    return _image(fig)

@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 
 from etcheck.input.sweep_axes import AXES
+from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
-from etcheck.report.figures.common import svg as _svg
 from etcheck.report.sweep_files import grid_array
 
 STABLE, UNSTABLE, BUCKLED, NOANSWER = "#d8efdd", "#f6d5d1", "#d6e4f5", "#9a9a9a"
@@ -60,7 +60,7 @@ def margin_map(results: dict, field: str, title: str) -> str:
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, framealpha=0.85)
-    return _svg(fig)
+    return _image(fig)
 
 
 def _shade_regions(ax, results: dict, field: str, region: np.ndarray, x: np.ndarray, y: np.ndarray) -> None:
@@ -204,7 +204,7 @@ def critical_length_plot(results: dict) -> str:
     ax.set_xlabel(f"{a['label']} [{a['unit']}]")
     ax.set_ylabel("critical length [m]")
     ax.legend(fontsize=7)
-    return _svg(fig)
+    return _image(fig)
 
 
 def margin_lines(results: dict) -> str:
@@ -234,7 +234,7 @@ def margin_lines(results: dict) -> str:
     ax.set_xlabel(xlabel)
     ax.set_ylabel("margin = critical / operating [-]")
     ax.legend(fontsize=7)
-    return _svg(fig)
+    return _image(fig)
 
 
 def sweep_figures(results: dict) -> dict[str, str]:
