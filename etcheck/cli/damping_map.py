@@ -74,7 +74,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         return results, write_reports(results, Path(args.out) / mission.slug / "damping-map", fmts, kind="damping",
                                       renderer=render)
 
-    with renderer(fmts) as render:  # started first: the report stack loads while the study runs
+    with renderer(fmts, "damping") as render:  # started first: the report stack loads while the study runs
         return run_and_summarise(lambda: action(render), _summary)
 
 

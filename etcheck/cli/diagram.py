@@ -87,7 +87,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         tag = folder_name(results["diagram"]["params"]["omega"], args.R)
         return results, write_reports(results, Path(args.out) / mission.slug / tag, fmts, kind="diagram", renderer=render)
 
-    with renderer(fmts) as render:  # started first: the report stack loads while the study runs
+    with renderer(fmts, "diagram") as render:  # started first: the report stack loads while the study runs
         return run_and_summarise(lambda: action(render), _summary)
 
 

@@ -67,7 +67,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         results = sweep(mission, axes, options, progress=ProgressBar(f"etcheck sweep {mission.name}"))
         return results, write_reports(results, folder, fmts, kind="sweep", renderer=render)
 
-    with renderer(fmts) as render:  # started first: the report stack loads while the sweep runs
+    with renderer(fmts, "sweep") as render:  # started first: the report stack loads while the sweep runs
         out = guarded(lambda: action(render), "rerun the same command to resume")
     if isinstance(out, int):
         return out

@@ -26,8 +26,10 @@ DRAWN = ("html", "pdf")
 
 
 @contextlib.contextmanager
-def renderer(formats: tuple[str, ...]) -> Iterator[Callable[[dict, tuple[str, ...], str], dict[str, bytes]]]:
-    """A ``render(results, formats, kind)`` that runs in a report process started now (when it can help).
+def renderer(formats: tuple[str, ...], kind: str = "check"
+             ) -> Iterator[Callable[[dict, tuple[str, ...], str], dict[str, bytes]]]:
+    """A ``render(results, formats, kind)`` that runs in a report process started now (when it can help);
+    ``kind``: the report it will mostly render (its template is compiled while waiting).
 
     Use as ``with renderer(fmts) as render: ... write_reports(..., render=render)``; leaving the block
     ends the process whether or not it was used.
@@ -41,7 +43,7 @@ def renderer(formats: tuple[str, ...]) -> Iterator[Callable[[dict, tuple[str, ..
     sys.stderr.flush()
     ctx = multiprocessing.get_context("fork")
     ours, theirs = ctx.Pipe()
-    proc = ctx.Process(target=_serve, args=(theirs, ours, formats), daemon=True, name="etcheck-report")
+    proc = ctx.Process(target=_serve, args=(theirs, ours, formats, kind), daemon=True, name="etcheck-report")
     proc.start()
     theirs.close()
 
@@ -74,11 +76,11 @@ def _worth_a_process(formats: tuple[str, ...]) -> bool:
             and len(os.sched_getaffinity(0)) >= 2 and threading.active_count() == 1 and "numpy" not in sys.modules)
 
 
-def _serve(conn, parent_end, formats: tuple[str, ...]) -> None:
+def _serve(conn, parent_end, formats: tuple[str, ...], kind: str) -> None:
     """The report process: load and warm the report stack, then render what the parent sends until it closes."""
     parent_end.close()
     try:
-        _warm(formats)
+        _warm(formats, kind)
         while True:
             try:
                 results, fmts, kind = conn.recv()
@@ -94,13 +96,13 @@ def _serve(conn, parent_end, formats: tuple[str, ...]) -> None:
         return
 
 
-def _warm(formats: tuple[str, ...]) -> None:
-    """Import the report stack: jinja2, matplotlib with the report style and, for a PDF, WeasyPrint."""
-    import jinja2  # noqa: F401
-
-    from etcheck.report import html  # noqa: F401  (the templates' helpers and the figure modules)
+def _warm(formats: tuple[str, ...], kind: str) -> None:
+    """Import the report stack (jinja2, matplotlib with the report style and, for a PDF, WeasyPrint) and compile
+    the template."""
+    from etcheck.report import html
     from etcheck.report.figures.common import pyplot
 
+    html.environment().get_template(html.TEMPLATES[kind])
     pyplot()
     if "pdf" in formats:
         with contextlib.suppress(ImportError, OSError):  # a missing PDF engine is reported when a PDF is rendered

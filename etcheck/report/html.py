@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from collections import Counter
 
@@ -55,7 +56,14 @@ class FigureNumbers:
         return self.n
 
 
-def _environment():
+#: the template of each kind of report
+TEMPLATES = {"check": "report.html.j2", "sweep": "sweep.html.j2", "diagram": "diagram.html.j2",
+             "damping": "damping.html.j2"}
+
+
+@functools.lru_cache(maxsize=1)
+def environment():
+    """The jinja2 environment of the report templates (one per process: each template is compiled once)."""
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(
@@ -75,13 +83,13 @@ def _fig(source: str) -> Markup:
 
 
 def _render(template: str, **context) -> str:
-    return _environment().get_template(template).render(fignum=FigureNumbers(), **context)
+    return environment().get_template(template).render(fignum=FigureNumbers(), **context)
 
 
 def render_html(results: dict) -> str:
     """The self-contained HTML report for check results (JSON-able dict)."""
     figs = {name: _fig(fig) for name, fig in figures(results).items()}
-    return _render("report.html.j2", r=results, figs=figs)
+    return _render(TEMPLATES["check"], r=results, figs=figs)
 
 
 def render_sweep_html(results: dict) -> str:
@@ -96,14 +104,14 @@ def render_sweep_html(results: dict) -> str:
             failures.append({"values": [grids[k][i] for k, i in enumerate(idx)], "status": status,
                              "reason": np.array(g["reason"], dtype=object)[idx]})
     figs = {name: _fig(fig) for name, fig in sweep_figures(results).items()}
-    return _render("sweep.html.j2", r=results, figs=figs, models=dict(models),
+    return _render(TEMPLATES["sweep"], r=results, figs=figs, models=dict(models),
                                                                failures=failures[:50])
 
 
 def render_diagram_html(results: dict) -> str:
     """The self-contained HTML report of a bifurcation diagram."""
     figs = {name: _fig(fig) for name, fig in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
-    return _render("diagram.html.j2", r=results, d=results["diagram"], figs=figs)
+    return _render(TEMPLATES["diagram"], r=results, d=results["diagram"], figs=figs)
 
 
 def render_damping_html(results: dict) -> str:
@@ -113,4 +121,4 @@ def render_damping_html(results: dict) -> str:
             "paths": _fig(eigen_paths_plot(paths, "spin ω (dimensionless)",
                                              f"b1 at B = {paths['B']:g}, γ = {paths['gamma']:g}: lowest eigenvalues "
                                              "against spin"))}
-    return _render("damping.html.j2", r=results, figs=figs)
+    return _render(TEMPLATES["damping"], r=results, figs=figs)
