@@ -284,7 +284,7 @@ class _Line:
     """E along one axis ("B" or "omega"; T, P, R, f from params) on a fixed mu grid."""
 
     def __init__(self, params: RodParameters, axis: str, lo: float, hi: float, route: str = "auto",
-                 factor: float = 1.0, shift: int = 0, density: float = 8.0):
+                 factor: float = 1.0, shift: int = 0, density: float = 5.0):
         self.params, self.axis, self.route, self.factor, self.shift = params, axis, route, factor, shift
         ends = [params.with_(**{axis: x}) for x in (lo, hi)]
         B_max = max(abs(e.B) for e in ends)
