@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
 from enum import StrEnum
+from typing import cast
 
 from etcheck.checks.plan import EXACT, EXACT_MODEL, RUNG_NAMES, Plan
-from etcheck.checks.sections import LinearSection, MarginRecord, StraightRodSection
+from etcheck.checks.sections import LinearSection, MarginRecord, PostbucklingSection, StraightRodSection
 from etcheck.input.mission import Mission
 from etcheck.rod.stability import CriticalKind
 from etcheck.scaling import RPM, Scaled, Scene
@@ -50,7 +51,7 @@ class Margin:
         return EXACT_MODEL if self.route == EXACT and self.rung == 1 else RUNG_NAMES[self.rung]
 
     def as_dict(self) -> MarginRecord:
-        return asdict(self) | {"model": self.model}
+        return cast(MarginRecord, asdict(self) | {"model": self.model})
 
 
 def ratio_margin(
@@ -162,7 +163,7 @@ def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, r
     return ratio_margin(name, unit, critical, operating, required, 1, error, f"{why} ({kind})")
 
 
-def buckled_margins(post: dict, sc: Scene, scaled: Scaled, required: float) -> list[Margin]:
+def buckled_margins(post: PostbucklingSection, sc: Scene, scaled: Scaled, required: float) -> list[Margin]:
     """Load margin of the buckled tether on b1 up to its secondary pitchfork (rungs 2-3)."""
     B_star = post.get("secondary_pitchfork_B")
     op = post.get("operating")

@@ -9,6 +9,7 @@ from __future__ import annotations
 import time
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
+from typing import cast
 
 from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
 from etcheck.checks.fidelity import fidelity_of
@@ -20,6 +21,7 @@ from etcheck.checks.sections import (
     CheckResults,
     LinearSection,
     PostbucklingSection,
+    ScaledSection,
     SceneSection,
     StraightRodSection,
 )
@@ -82,7 +84,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     results: CheckResults = {
         **results_header(mission),
         "scene": _scene_dict(mission, sc),
-        "scaled": asdict(scaled.params),
+        "scaled": cast(ScaledSection, asdict(scaled.params)),
         "scales": {
             "length_m": scaled.scales.length,
             "reference_frequency_rad_s": scaled.scales.frequency,

@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from etcheck.checks.sections import StaticBuckling, StaticLimits
+from etcheck.checks.sections import NaturalFrequency, StaticBuckling, StaticCriticalLoad, StaticLimits
 from etcheck.input.mission import Mission
 from etcheck.rod import analytic
 from etcheck.scaling import Scaled, Scene
@@ -29,7 +29,7 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
     """
     p, scales = scaled.params, scaled.scales
     roots = analytic.characteristic_roots(N_LOADS)
-    loads = []
+    loads: list[StaticCriticalLoad] = []
     for r, B in zip(roots, analytic.critical_loads(p.R, p.f, N_LOADS)):
         B = float(B)
         loads.append(
@@ -52,11 +52,6 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
     exceeded = sum(r.beta <= op_beta for r in roots)
     if op_beta > roots[-1].beta:
         exceeded = int((op_beta - math.pi / 3) // (2 * math.pi))
-    freq = {
-        "bending_weak": analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak"),
-        "bending_stiff": analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff"),
-        "torsion": analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5),
-    }
     wc = scales.frequency
     return {
         "model": "rung 0 (analytic)",
@@ -67,14 +62,17 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
         "first_mode": {"s": s.tolist(), "x": x.tolist(), "y": y.tolist()},
         "chi_curve": {"beta": beta_grid.tolist(), "chi_scaled": analytic.chi_scaled(beta_grid).tolist()},
         "natural_frequencies": {
-            name: [
-                {"mu": float(m), "rad_s": float(m * wc), "Hz": float(m * wc / (2 * math.pi))}
-                for m in values
-                if math.isfinite(m)
-            ]
-            for name, values in freq.items()
+            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak"), wc),
+            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff"), wc),
+            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5), wc),
         },
     }
+
+
+def _frequencies(mus, wc: float) -> list[NaturalFrequency]:
+    """The finite dimensionless frequencies mu (units of the reference frequency ``wc``, rad/s) in rad/s and Hz."""
+    return [{"mu": float(m), "rad_s": float(m * wc), "Hz": float(m * wc / (2 * math.pi))} for m in mus
+            if math.isfinite(m)]
 
 
 def static_limits(static: StaticBuckling, mission: Mission, sc: Scene) -> StaticLimits:

@@ -177,7 +177,7 @@ class Mission:
         def microtesla(p):
             return [f"{x.to_value(u.uT):.6g} µT" for x in ([p[0]] if p[0] == p[1] else p)]
 
-        return {
+        out: MissionEcho = {
             "name": self.name,
             "description": self.description,
             "source": self.source,
@@ -210,7 +210,10 @@ class Mission:
                 "tolerance": self.tolerance,
             },
             "notes": list(self.notes),
-        } | ({"orbit": orbit_echo(self.orbit, self.orbit_envelope)} if self.orbit_envelope is not None else {})
+        }
+        if self.orbit is not None and self.orbit_envelope is not None:
+            out["orbit"] = orbit_echo(self.orbit, self.orbit_envelope)
+        return out
 
 
 _UNIT_TEXT = {"m2 N": "N m²", "kg / m": "kg/m", "rad / s": "rad/s", "m2": "m²"}

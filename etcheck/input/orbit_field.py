@@ -16,7 +16,7 @@ mission has an ``[orbit]`` table.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from etcheck.errors import MissionError
 from etcheck.input.echo import OrbitEcho
@@ -86,7 +86,7 @@ def orbit_echo(spec: OrbitSpec, env: AxialFieldEnvelope) -> OrbitEcho:
     else:
         orbit = {"kind": "tle", "lines": [o.line1, o.line2], "epoch": o.epoch,
                  "perigee_altitude_km": o.perigee_altitude / 1e3}
-    return {
+    return cast(OrbitEcho, {
         **orbit,
         "period_s": orbital_period(spec),
         "start": spec.start,
@@ -97,7 +97,7 @@ def orbit_echo(spec: OrbitSpec, env: AxialFieldEnvelope) -> OrbitEcho:
         "model": env.model,
         "worst_axial_field_uT": env.worst * 1e6,
         "statement": statement(env),
-    }
+    })
 
 
 __all__ = ["check_one_field_source", "orbit_axial_field", "orbit_echo", "orbit_notes", "statement"]

@@ -50,12 +50,13 @@ import os
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
 from etcheck.checks.plan import plan
-from etcheck.checks.sections import CheckResults, UncertaintySection
+from etcheck.checks.sections import CheckResults, MarginSensitivityRecord, ProbabilityRecord, UncertaintySection
+from etcheck.input.echo import UncertaintyInputs
 from etcheck.input.mission import Mission
 from etcheck.input.uncertainty import Distribution, Uncertainty
 from etcheck.numerics.eigen import single_blas_thread
@@ -735,7 +736,7 @@ class UncertaintyStudy:
         def num(x):
             return None if x is None or not math.isfinite(x) else float(x)
 
-        margins = []
+        margins: list[MarginSensitivityRecord] = []
         for s in self.sensitivities:
             ranked = sorted((e for e in s.elasticities if e.value is not None), key=lambda e: -abs(e.value))
             margins.append({
@@ -753,10 +754,10 @@ class UncertaintyStudy:
             "required_margin": self.required,
             "step": STEP,
             "nominal_inputs_SI": dict(self.nominal),
-            "inputs": self.inputs,
+            "inputs": cast(UncertaintyInputs, self.inputs),
             "margins": margins,
-            "probabilities": [{k: (num(v) if isinstance(v, float) else v) for k, v in p.__dict__.items()}
-                              for p in self.probabilities],
+            "probabilities": [cast(ProbabilityRecord, {k: (num(v) if isinstance(v, float) else v)
+                                                       for k, v in p.__dict__.items()}) for p in self.probabilities],
             "sensitivity_time_s": self.sensitivity_time_s,
             "elapsed_s": self.elapsed_s,
         }
