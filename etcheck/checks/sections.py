@@ -309,7 +309,7 @@ class BranchShape(Shape):
 _ConnectingBranch = TypedDict("_ConnectingBranch", {"from": NotRequired[str]})
 
 
-class Branch(_ConnectingBranch):
+class BranchRecord(_ConnectingBranch):
     """One continued branch of whirling equilibria (``postbuckling.diagram.branches``).
 
     Stability keys (stable, max_growth, growth_error, check_time) where the
@@ -368,7 +368,7 @@ class BifurcationDiagram(TypedDict):
     B_max: float
     IB0_max_N_per_m: float
     N: int
-    branches: list[Branch]
+    branches: list[BranchRecord]
     lifted_off: list[LiftedOff]
     time_s: float
 

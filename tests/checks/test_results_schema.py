@@ -76,7 +76,7 @@ SECTIONS = {
     "postbuckling": S.PostbucklingSection,
     "postbuckling.diagram": S.BifurcationDiagram,
     "postbuckling.diagram.params": S.DiagramParameters,
-    "postbuckling.diagram.branches[]": S.Branch,
+    "postbuckling.diagram.branches[]": S.BranchRecord,
     "postbuckling.diagram.branches[].special[]": S.SpecialPoint,
     "postbuckling.diagram.lifted_off[]": S.LiftedOff,
     "postbuckling.operating": S.BuckledOperatingPoint,
