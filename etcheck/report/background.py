@@ -20,6 +20,7 @@ from collections.abc import Callable, Iterator
 
 from etcheck.errors import EtcheckError, ReportError
 from etcheck.report import render
+from etcheck.report.figures.common import forking_allowed
 
 #: the formats a report process is started for (JSON and data files need no report stack)
 DRAWN = ("html", "pdf")
@@ -87,7 +88,9 @@ def _serve(conn, parent_end, formats: tuple[str, ...], kind: str) -> None:
             except EOFError:
                 return
             try:
-                conn.send(("ok", render(results, fmts, kind)))
+                with forking_allowed():  # this process has one thread: the figures may be drawn two at a time
+                    rendered = render(results, fmts, kind)
+                conn.send(("ok", rendered))
             except EtcheckError as exc:
                 conn.send(("report", str(exc)))
             except Exception as exc:  # a bug: the parent reports it as an internal error

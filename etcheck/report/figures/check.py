@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from etcheck.report.figures.common import draw
 from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
 from etcheck.report.figures.diagram import branch_plot, shapes_plot
@@ -323,22 +324,21 @@ def _operating_mark(results: dict, op: dict | None):
 
 
 def figures(results: dict) -> dict[str, str]:
-    """All figures the report shows, keyed by name."""
-    out = {"chi": chi_plot(results), "mode": mode_plot(results)}
+    """All figures the report shows, keyed by name (drawn by :func:`~etcheck.report.figures.common.draw`)."""
+    jobs = {"chi": lambda: {"chi": chi_plot(results)}, "mode": lambda: {"mode": mode_plot(results)}}
     lin = results.get("linear") or {}
     if lin.get("campbell"):  # neither in a draft; no Campbell diagram on the exact-determinant route
-        out["campbell"] = campbell_plot(results)
+        jobs["campbell"] = lambda: {"campbell": campbell_plot(results)}
     if lin.get("stability_map"):
-        out["map"] = stability_map_plot(results)
+        jobs["map"] = lambda: {"map": stability_map_plot(results)}
     if (results.get("postbuckling") or {}).get("computed"):
-        out |= postbuckling_plots(results)
+        jobs["postbuckling"] = lambda: postbuckling_plots(results)
     if results.get("uncertainty"):
         from etcheck.report.figures.uncertainty import tornado_plot
 
-        out["uncertainty"] = tornado_plot(results)
+        jobs["uncertainty"] = lambda: {"uncertainty": tornado_plot(results)}
     if results.get("orbit"):
         from etcheck.report.figures.orbit import orbit_figures
 
-        out |= orbit_figures(results)
-    return out
-
+        jobs["orbit"] = lambda: orbit_figures(results)
+    return draw(jobs)

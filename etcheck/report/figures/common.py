@@ -14,7 +14,13 @@ etcheck, the solvers or a JSON-only run never loads it.
 from __future__ import annotations
 
 import base64
+import contextlib
+import contextvars
 import io
+import os
+import pickle
+import threading
+from collections.abc import Callable, Iterator
 
 #: dots per inch of the figures (sharp on paper at the figures' printed size)
 PRINT_DPI = 220
@@ -63,6 +69,56 @@ def image(fig) -> FigureImage:
 
 #: the former name, still imported by figures/diagram.py and figures/sweep.py
 svg = image
+
+#: whether :func:`draw` may fork a helper (only in the report process, which has one thread)
+_FORK_OK: contextvars.ContextVar[bool] = contextvars.ContextVar("etcheck_fork_ok", default=False)
+
+
+@contextlib.contextmanager
+def forking_allowed() -> Iterator[None]:
+    """Within the block :func:`draw` may draw half of the figures in a forked helper (on two or more cores)."""
+    token = _FORK_OK.set(True)
+    try:
+        yield
+    finally:
+        _FORK_OK.reset(token)
+
+
+def draw(jobs: dict[str, Callable[[], dict[str, FigureImage]]]) -> dict[str, FigureImage]:
+    """Run each job (one or a few figures each, keyed by figure name) and merge their figures.
+
+    Inside :func:`forking_allowed` on two or more cores every second job runs in a forked helper at the same
+    time (each figure is half a second of matplotlib; the helper is a copy of this process, so the bytes are
+    the same); if the helper fails its jobs are run here.
+    """
+    names = list(jobs)
+    if not (_FORK_OK.get() and len(names) > 1 and len(os.sched_getaffinity(0)) >= 2
+            and threading.active_count() == 1):
+        return {k: v for name in names for k, v in jobs[name]().items()}
+    theirs = names[1::2]
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the helper: draw its jobs, send the PNGs, leave without any clean-up of the parent's state
+        code = 1
+        try:
+            os.close(read)
+            out = {k: (str(v), v.png) for name in theirs for k, v in jobs[name]().items()}
+            with os.fdopen(write, "wb") as fh:
+                pickle.dump(out, fh)
+            code = 0
+        finally:
+            os._exit(code)
+    os.close(write)
+    mine = {k: v for name in names[0::2] for k, v in jobs[name]().items()}
+    with os.fdopen(read, "rb") as fh:
+        data = fh.read()
+    _, status = os.waitpid(pid, 0)
+    if status != 0 or not data:  # the helper failed: draw its figures here (an error is raised here, with its traceback)
+        return mine | {k: v for name in theirs for k, v in jobs[name]().items()}
+    for k, (text, png) in pickle.loads(data).items():
+        mine[k] = FigureImage(text)
+        mine[k].png = png
+    return mine
 
 
 def _cropped_png(fig) -> bytes:
