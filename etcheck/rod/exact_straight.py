@@ -107,6 +107,8 @@ AXES = ("B", "omega", "T", "ray")
 _EPS = np.finfo(float).eps
 #: Relative gap between two exponents below which the exponential basis is not used.
 _CONFLUENT = 1e-4
+#: The same where the exponents span more than 4 decades (the Schur route is then the worse one).
+_CONFLUENT_WIDE = 1e-12
 #: |k| below which an exponent is treated as near zero (Schur route).
 _SMALL_K = 1e-3
 #: Boundary-value rows of the scaled state: u, u', v, v' (real) or w, w' (complex).
@@ -246,15 +248,57 @@ def _roots(c: np.ndarray) -> np.ndarray:
     return r
 
 
-def _separated(k: np.ndarray, small: bool = True) -> np.ndarray:
+def _separated(k: np.ndarray, small: bool = True, wide=False) -> np.ndarray:
     """Rows of k (n, m) where no two exponents nearly coincide (and, with ``small``,
-    none is near zero)."""
+    none is near zero). Near-coincident exponents cost the exponential basis eps / gap
+    (nearly parallel columns) and the Schur route eps x (largest / smallest exponent) / gap,
+    so where the exponents span more than 4 decades (``wide``, per row) the exponential
+    basis is kept down to relative gaps of ``_CONFLUENT_WIDE``."""
     d = np.abs(k[:, :, None] - k[:, None, :])
     ak = np.abs(k)
     scale = np.maximum(ak[:, :, None], ak[:, None, :])
     d[:, np.arange(k.shape[1]), np.arange(k.shape[1])] = np.inf
-    ok = np.all(d >= _CONFLUENT * scale, axis=(1, 2)) & np.all(np.isfinite(k), axis=1)
+    gap = np.where(np.asarray(wide), _CONFLUENT_WIDE, _CONFLUENT)
+    gap = np.broadcast_to(gap, (k.shape[0],))[:, None, None]
+    ok = np.all(d >= gap * scale, axis=(1, 2)) & np.all(np.isfinite(k), axis=1)
     return ok & np.all(ak >= _SMALL_K, axis=1) if small else ok
+
+
+def _spread(k: np.ndarray) -> np.ndarray:
+    """Largest over smallest non-zero |exponent| of each row of k."""
+    ak = np.abs(k)
+    small = np.min(np.where(ak > 0, ak, np.inf), axis=1)
+    return np.max(ak, axis=1) / small
+
+
+def _polish_factored(kap: np.ndarray, lu: float, lv: float, a: np.ndarray, b: np.ndarray, w2: np.ndarray,
+                     B: np.ndarray, static: bool) -> np.ndarray:
+    """Newton steps on the roots kappa = k^2 of Pu Pv + B^2 kappa evaluated in factored form
+    (Pu = lu kappa^2 - a kappa - w2, Pv = lv kappa^2 - b kappa - w2; divided by kappa when
+    static). The expanded polynomial loses the u and v string roots when a and b nearly
+    coincide (strong tension, small P omega^2): its coefficients cancel to eps relative to
+    a b, so the pair is split only to sqrt(eps); each factor keeps its own root to eps."""
+    a, b, w2, B2 = a[:, None], b[:, None], w2[:, None], (B**2)[:, None]
+    for _ in range(3):
+        if static:
+            u1, v1 = lu * kap - a, lv * kap - b
+            p = kap * u1 * v1 + B2
+            dp = u1 * v1 + kap * (lu * v1 + lv * u1)
+        else:
+            Pu, Pv = lu * kap**2 - a * kap - w2, lv * kap**2 - b * kap - w2
+            p = Pu * Pv + B2 * kap
+            dp = (2 * lu * kap - a) * Pv + Pu * (2 * lv * kap - b) + B2
+        step = np.where(dp != 0, p / np.where(dp != 0, dp, 1.0), 0.0)
+        new = kap - np.where(np.isfinite(step), step, 0.0)
+        better = np.abs(_factored(new, lu, lv, a, b, w2, B2, static)) <= np.abs(p)
+        kap = np.where(better, new, kap)
+    return kap
+
+
+def _factored(kap, lu, lv, a, b, w2, B2, static):
+    if static:
+        return kap * (lu * kap - a) * (lv * kap - b) + B2
+    return (lu * kap**2 - a * kap - w2) * (lv * kap**2 - b * kap - w2) + B2 * kap
 
 
 def _log_vandermonde(k: np.ndarray) -> np.ndarray:
@@ -304,10 +348,10 @@ def _exponential_batch(P: float, R: float, f: float, B: np.ndarray, w2: np.ndarr
     if static:
         c = c[:, :4]  # k^2 = 0 is a root: the constants u = 1, v = 1 solve the problem
     with np.errstate(all="ignore"):
-        kap = _roots(c)
+        kap = _polish_factored(_roots(c), R / f, 1.0 / f, a, b, w2, B, static)
         r = np.sqrt(kap)
         k = np.concatenate([r, -r], axis=1)
-        ok = _separated(k, small=False) & (B != 0)
+        ok = _separated(k, small=False, wide=_spread(k) > 1e4) & (B != 0)
         Bc = B[:, None]
         Pu = R / f * k**4 - a[:, None] * k**2 - w2[:, None]
         Pv = k**4 / f - b[:, None] * k**2 - w2[:, None]

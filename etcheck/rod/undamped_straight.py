@@ -757,9 +757,10 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
                                 stable, evaluations + static.evaluations)
     rest = stability_line(p.with_(B=0.0), "omega", 0.0, w)
     pairs, evaluations = rest.pairs_at_hi, evaluations + rest.evaluations
-    load_hi = 1.02 * static.value if math.isfinite(static.value) else 16 * _ex._root_scale(p, "B", 1.0)
+    scale = _ex._root_scale(p, "B", 1.0)
+    load_hi = max(1.02 * static.value, 1e-3 * scale) if math.isfinite(static.value) else 16 * scale
     if p.R == 1.0:  # double static points do not end stability: as far as the spectral scan's default
-        roots = _static_roots(p, "B", 16 * _ex._root_scale(p, "B", 1.0))
+        roots = _static_roots(p, "B", 16 * scale)
         load_hi = 1.1 * roots[2] if roots.size >= 3 else 2.0 * roots[-1] if roots.size else load_hi
     load_line = stability_line(p, "B", 0.0, load_hi, pairs=pairs)
     evaluations += load_line.evaluations + static.evaluations

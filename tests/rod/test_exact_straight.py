@@ -273,3 +273,19 @@ def test_string_limit_with_spin_and_rotary_inertia():
         p = RodParameters(P=0.02, R=0.3, Gamma=0.77, T=Tf / F, omega=5.0)
         x = exact_root(p, "B").value
         assert abs(string_limit_load(p, 2) - x) < 3 * (Tf / 1e4) ** -1.5 * x
+
+
+@pytest.mark.parametrize("B", [0.0, 1000.0])
+def test_critical_spin_under_extreme_tension_is_the_whirling_string(B, R=2.5e-6):
+    """Issue 11: at T = 1e7 the u and v string exponents differ by P omega^2 (1 - R) / T ~ 1e-8
+    relative. The expanded quartic split that pair only to sqrt(eps) and the route fell back to
+    Schur (error eps x 1e7 / gap): a spurious root 1.3e-3 low (9921.29) and formulations 2.8e-3 apart.
+    The whirling string with welded ends: omega^2 = pi^2 a (1 + 2 eps_u)^2 - B^2 / (4 T), to O(eps_u^2)."""
+    p = RodParameters(P=1e-9, R=R, Gamma=1 / 1.3, T=1e7, B=B, gamma=0.04375)
+    r = exact_root(p.with_(omega=0.0), "omega")
+    w = r.value
+    a = p.T + p.P * p.R * w * w
+    eps = math.sqrt(p.R / (p.f * a))
+    string = math.sqrt((math.pi * math.sqrt(a) * (1 + 2 * eps)) ** 2 - B**2 / (4 * p.T))
+    assert r.error < 1e-12
+    assert w == pytest.approx(string, rel=1e-12 + 20 * eps**2)
