@@ -5,16 +5,23 @@ For each resolution N: trace b1 from BP1 to B = 3, b2 to measure_1 = 0.05,
 switch onto b12 at b1's secondary pitchfork and follow it back to BP1; print
 time, points, largest residual, a two-resolution error (resolution_check:
 every 4th point re-solved at N + max(8, N/2)), and B at measure_1 = 0.04 on
-each branch with its difference from the finest N. Then the lift-off spins.
-One core (BLAS pinned).  Run:  python benchmarks/bench_rung2.py
+each branch with its difference from the finest N. Then the lift-off spins and
+the primary pitchfork loads with their stated errors (two resolutions) against
+N = 64, and the rung-2 part of issue 10's target "b1 from its pitchfork to
+4 B1 with B* located" (time, stated error, ratio to the 3 s of the whole
+target, whose stability part bench_rung3.py adds). One core (BLAS pinned).
+Run:  python benchmarks/bench_rung2.py [--targets-only]
 """
 
 from __future__ import annotations
 
+import sys
 import time
 
+import numpy as np
 from threadpoolctl import threadpool_limits
 
+from etcheck.rod import branch_stability as bs
 from etcheck.rod import branches as br
 from etcheck.rod import equilibria as eq
 from etcheck.rod.analytic import critical_loads
@@ -23,12 +30,47 @@ from etcheck.rod.parameters import RodParameters
 RESOLUTIONS = (20, 24, 32, 40, 48)
 
 
+def targets(scene: RodParameters) -> None:
+    """Time and stated error of the rung-2 target, and the stated errors of the primary pitchforks."""
+    t0 = time.perf_counter()
+    start = br.primary_branches(scene, 1, 32)[0]
+    b1 = br.continue_branch(scene, start, stop=(0.0, 4.0 * start.load))
+    pf = bs.secondary_pitchfork(scene, 0.0, N=32, N_check=48, branch=b1)
+    wall = time.perf_counter() - t0
+    print(f"== target: b1 pitchfork -> 4 B1 ({len(b1.states)} states) and B* located: {wall:.2f} s "
+          f"(ratio to the 3 s of the whole target {wall / 3.0:.2f}); B* = {pf.B:.10f}, stated error {pf.error:.1e}, "
+          f"independent 1.94246251: {abs(pf.B - 1.94246251):.1e}")
+    print("== primary pitchforks and lift-off spins: stated error (two resolutions) vs true error (N = 64)")
+    for p in (scene, scene.with_(omega=0.3, T=0.5), scene.with_(P=0.05, R=0.1, omega=0.2, T=-0.3)):
+        for which in ("S1", "S2"):
+            t0 = time.perf_counter()
+            est = br.pitchfork_loads(p, which, 24, 2)
+            dt = time.perf_counter() - t0
+            true = np.abs(est.loads - br.class_loads(p, which, 64, 2))
+            print(f"  omega {p.omega:4.2f} T {p.T:5.2f} R {p.R:.3f} {which}: B = {np.array2string(est.loads, precision=10)}"
+                  f" stated {np.array2string(est.errors, precision=1)} true {np.array2string(true, precision=1)}"
+                  f" ({dt * 1e3:.0f} ms)")
+        for which in ("b1", "b2"):
+            t0 = time.perf_counter()
+            w = br.liftoff_estimate(p, which, 1, N=24)
+            dt = time.perf_counter() - t0
+            if not np.isfinite(w.omega):
+                print(f"  {which} does not lift off below omega = 4")
+                continue
+            roots = br._omega_roots(p, br.BRANCH_CLASS[which], 64)
+            true = float(np.min(np.abs(roots - w.omega)))
+            print(f"  {which} lift-off omega = {w.omega:.12f} stated {w.error:.1e} true {true:.1e} ({dt:.2f} s)")
+
+
 def main() -> None:
     scene = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3)
     Bc = critical_loads(scene.R, scene.f, 1)[0]
     rows = {}
     with threadpool_limits(limits=1):
         br.primary_branches(scene, 1, 16)  # warm imports and caches
+        targets(scene)
+        if "--targets-only" in sys.argv[1:]:
+            return
         for N in RESOLUTIONS:
             t0 = time.perf_counter()
             s1, s2 = br.primary_branches(scene, 1, N)

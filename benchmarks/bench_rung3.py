@@ -1,10 +1,16 @@
 """Rung 3 benchmark: stability of buckled, whirling SET tethers (dimensionless).
 
-Prints, per curve, the wall time (one core, BLAS pinned to one thread with
-threadpoolctl) and the estimated numerical error (two resolutions of the
-operator and of the base state). Not a test: nothing here is asserted.
+First the targets of issue 10 for rungs 2-3, each with its wall time, its
+largest stated error and the ratio of the time to the target (b1 from its
+pitchfork to 4 B1 with the stability of every state and B* located; B*(omega)
+at 10 spins; the bifurcation diagram at spin 0.25 with 3 branches and the
+damping map at their defaults, in-process: the CLI adds its imports and the
+report). Then, per curve, the wall time (one core, BLAS pinned to one thread
+with threadpoolctl) and the estimated numerical error (two resolutions of the
+operator and of the base state). Not a test: nothing here is asserted; on a
+shared machine, repeat it.
 
-    python benchmarks/bench_rung3.py [--quick]
+    python benchmarks/bench_rung3.py [--quick] [--targets-only]
 """
 
 from __future__ import annotations
@@ -26,6 +32,51 @@ from etcheck.rod import equilibria as eq  # noqa: E402
 from etcheck.rod.parameters import RodParameters  # noqa: E402
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3)  # Gamma = 1/(1 + nu), nu = 0.3, as the missions
+#: B* of b1 at omega = 0 from an independent solver (README, docs/validation.md)
+B_STAR_INDEPENDENT = 1.94246251
+MISSION = os.path.join(os.path.dirname(__file__), "..", "missions", "set.toml")
+
+
+def _row(what: str, target: float, wall: float, error: float | None, note: str = "") -> None:
+    err = "      -" if error is None else f"{error:7.1e}"
+    print(f"  {what:<58s} {wall:7.2f} s  target {target:5.1f} s  ratio {wall / target:5.2f}  error {err}  {note}")
+
+
+def targets(quick: bool) -> None:
+    """The rung 2-3 targets of issue 10: time, largest stated error, ratio to the target."""
+    print("[0] targets (wall time, time / target, largest stated error: relative for B*, absolute for "
+          "Re lambda and the measures)")
+    t = time.perf_counter()
+    start = br.primary_branches(SET, 1, 32)[0]
+    b1 = br.continue_branch(SET, start, stop=(0.0, 4.0 * start.load))
+    sp = bs.branch_spectra(b1, 0.04375, k=6)
+    pf = bs.secondary_pitchfork(SET, 0.0, N=32, N_check=48, branch=b1)
+    wall = time.perf_counter() - t
+    _row("b1 pitchfork -> 4 B1, stability of every state, B*", 3.0, wall,
+         max(pf.error / pf.B, float(np.nanmax(sp.max_real_error))),
+         f"B* = {pf.B:.10f} (stated {pf.error:.1e}, independent {B_STAR_INDEPENDENT}: "
+         f"{abs(pf.B - B_STAR_INDEPENDENT):.1e}), {len(b1.states)} states")
+    t = time.perf_counter()
+    c = bs.secondary_pitchfork_curve(SET, np.linspace(0.0, 1.0, 10), N=32, N_check=48)
+    _row("B*(omega) at 10 spins (0 ... 1, N = 32 and 48)", 5.0, time.perf_counter() - t,
+         max(p.error / p.B for p in c.points), f"B*(0) = {c.points[0].B:.10f}, B*(1) = {c.points[-1].B:.8f}")
+    if quick:
+        return
+    from etcheck.input.mission import load_mission
+    from etcheck.studies.damping_map import damping_results
+    from etcheck.studies.diagram import diagram_study
+
+    m = load_mission(MISSION)
+    t = time.perf_counter()
+    d = diagram_study(m, omega=0.25)
+    errs = [b.get(k) for b in d["diagram"]["branches"] for k in ("measure1_error", "deflection_error")]
+    _row("diagram at spin 0.25, 3 branches (in-process)", 10.0, time.perf_counter() - t,
+         max((e for e in errs if e is not None), default=None),
+         ", ".join(f"{b['label']} {b['points']}" for b in d["diagram"]["branches"]))
+    t = time.perf_counter()
+    r = damping_results(m)
+    _row("damping map at its defaults (in-process)", 60.0, time.perf_counter() - t, r["study"]["largest_error"],
+         f"{r['study']['timing']['points']} b1 states, curve {r['study']['curve_time_s']:.1f} s")
 
 
 def pitchfork_curve(omegas, N, N_check):
@@ -135,10 +186,14 @@ def damping(B_grid, omega_grid, N):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--targets-only", action="store_true")
     ap.add_argument("--json", default=None, help="write the damping map and curve here")
     a = ap.parse_args()
     with threadpool_limits(limits=1):
         t0 = time.perf_counter()
+        targets(a.quick)
+        if a.targets_only:
+            return
         omegas = [0.0, 0.25, 0.5, 1.0] if a.quick else [0.0, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0]
         curve = pitchfork_curve(omegas, 32, 40)
         if not a.quick:  # high spin: the coiled states at B* ~ 6..16 need more points

@@ -116,17 +116,14 @@ def damping_sensitivity(state: eq.Equilibrium, scales: Scales) -> list[dict]:
     return rows
 
 
-def secondary_pitchfork_at(params: RodParameters, omega: float, N: int, N_check: int | None, B_ref: float, B_max: float,
-               B_limit: float = 60.0):
-    """b1's secondary pitchfork at spin omega, looking up to B_max and doubling the range
-    (continuing b1 far past B* is the expensive part); None if not found below B_limit."""
-    while True:
-        try:
-            return secondary_pitchfork(params, omega, N=N, N_check=N_check, B_ref=B_ref, B_max=B_max)
-        except ValueError:
-            if B_max >= B_limit:
-                return None
-            B_max = min(2.0 * B_max, B_limit)
+def secondary_pitchfork_at(params: RodParameters, omega: float, N: int, N_check: int | None, B_ref: float,
+                           B_max: float = 60.0):
+    """b1's secondary pitchfork at spin omega (b1 is continued from B_ref only up to its first
+    secondary pitchfork); None if there is none below B_max."""
+    try:
+        return secondary_pitchfork(params, omega, N=N, N_check=N_check, B_ref=B_ref, B_max=B_max)
+    except ValueError:
+        return None
 
 
 def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff_omega: float, n: int = 6,
@@ -163,7 +160,7 @@ def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff
 
     for w in np.linspace(0.0, omega_max, n):
         p = params.with_(omega=float(w))
-        pt = secondary_pitchfork_at(p, float(w), N, N, B_ref, 3.0 * B_ref)
+        pt = secondary_pitchfork_at(p, float(w), N, N, B_ref)
         star = pt.B if pt is not None else math.inf
         rows.append({"omega": float(w), "spin_rpm": float(w * scales.frequency * RPM),
                      "pitchfork_B": pitchfork(float(w)),

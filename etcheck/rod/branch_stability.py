@@ -502,12 +502,31 @@ def b1_state(params: RodParameters, B: float, omega: float, N: int = 32, B_ref: 
     return eq.solve_equilibrium(st.params.with_(B=float(B)), st)
 
 
-def _b1_in_B(params: RodParameters, omega: float, N: int, B_ref: float, B_max: float, lower: float | None = None):
-    """b1 at fixed omega continued in B upward from B_ref to its first secondary pitchfork
-    (or B_max), and downward to ``lower``."""
+_UP_CACHE: dict = {}
+
+
+def _b1_up(params: RodParameters, omega: float, N: int, B_ref: float, B_max: float):
+    """b1 at fixed omega continued in B upward from B_ref to its first secondary pitchfork (or
+    B_max); cached per (P, R, Gamma, f, T, omega, N, B_ref), a cached branch serving every B_max
+    it reached (the damping map and the B*(omega) curve continue the same b1)."""
+    key = (params.P, params.R, params.Gamma, params.f, params.T, float(omega), int(N), float(B_ref))
+    got = _UP_CACHE.get(key)
+    if got is not None and (got.reason == "special point (break)" or got.values[-1] >= B_max):
+        return got
     st = _spin_state(params, B_ref, omega, N)
     up = br.continue_branch(st.params, st, parameter="B", stop=(B_ref - 1e-9, B_max), which="S1", ds=0.05,
                             ds_max=0.25, stop_on=("break",))
+    if len(_UP_CACHE) > 64:
+        _UP_CACHE.clear()
+    _UP_CACHE[key] = up
+    return up
+
+
+def _b1_in_B(params: RodParameters, omega: float, N: int, B_ref: float, B_max: float, lower: float | None = None):
+    """b1 at fixed omega continued in B upward from B_ref to its first secondary pitchfork
+    (or B_max; :func:`_b1_up`), and downward to ``lower``."""
+    up = _b1_up(params, omega, N, B_ref, B_max)
+    st = up.states[0]
     down = None
     if lower is not None and lower < B_ref:
         down = br.continue_branch(st.params, st, parameter="B", stop=(lower, B_ref + 1e-9), which="S1", ds=0.05,

@@ -43,15 +43,16 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     B_max = B_max or 5.0 * pf0
     B = np.linspace(0.0, B_max, n_B + 1)[1:]
     w = np.linspace(0.0, omega_max, n_omega)
-    m = damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref)
+    # the curve first: its continuations of b1 up to B* at N are cached and serve the map's grid
     t_curve = time.perf_counter()
     curve = []
     for n in (N, check_resolution(N)):
         b1_spin_branch(params, B_ref, omega_max, n)  # one continuation in spin serves every point of the curve
     for wi in w:
-        pt = secondary_pitchfork_at(params, float(wi), N, None, B_ref, 3.0 * B_ref)
+        pt = secondary_pitchfork_at(params, float(wi), N, None, B_ref)
         curve.append({"omega": float(wi), "B": None if pt is None else pt.B, "error": None if pt is None else pt.error})
     t_curve = time.perf_counter() - t_curve
+    m = damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref)
     wc = scales.frequency
     zeta = m.zeta
     unstable = np.nan_to_num(m.max_real, nan=-1.0) > 0
