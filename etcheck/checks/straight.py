@@ -14,11 +14,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from etcheck.checks.plan import EXACT, SPECTRAL
+from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum
 from etcheck.errors import SolverError
 from etcheck.jsonable import finite_or_none
 from etcheck.rod.analytic import critical_loads
@@ -64,7 +64,7 @@ class WhirlOptions:
 DEFAULT_OPTIONS = WhirlOptions()
 
 
-def _critical(point, what: str) -> dict[str, Any]:
+def _critical(point, what: str) -> CriticalPoint:
     """A CriticalPoint as data; refuses one whose location did not converge."""
     located = CriticalKind(point.kind).located
     if located and not point.converged:
@@ -79,7 +79,7 @@ def _critical(point, what: str) -> dict[str, Any]:
     }
 
 
-def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
+def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
     """A first pencil root (damped rod, Kelvin-Tait-Chetaev) as a critical point; refuses an unconverged one."""
     if not root.converged:
         raise SolverError(f"rung 1: the {what} was not located to tolerance ({root.model}): error estimate "
@@ -97,7 +97,7 @@ def _pencil_critical(root, what: str, hi: float) -> dict[str, Any]:
             "N": root.N}
 
 
-def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, bool, float]:
+def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoint, CriticalPoint, bool, float]:
     """Critical load at the operating spin and critical spin at the operating load of a damped
     tether from the static pencils or the exact determinant (milliseconds), and whether the
     operating point is stable, and the spin that destabilises the unloaded tether (dimensionless)."""
@@ -114,7 +114,7 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[dict, dict, 
     return load, spin, dc.stable, dc.spin_at_rest.value
 
 
-def _operating_spectrum(op, wc: float) -> dict[str, Any]:
+def _operating_spectrum(op, wc: float) -> OperatingSpectrum:
     lam = op.eigenvalues
     return {
         "N": op.N,
@@ -148,7 +148,7 @@ def _exact_rows(p, w_rows, B_hi: float, rest: float, tol: float) -> list[list[fl
     return rows
 
 
-def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL) -> dict[str, Any]:
+def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL) -> LinearSection:
     """All rung-1 answers for the scene, dimensionless and in SI.
 
     Returns a JSON-able dict: the operating spectrum (with two-resolution
@@ -278,7 +278,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     }
 
 
-def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: int = 10) -> list[dict[str, float]]:
+def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: int = 10) -> list[AccuracyRow]:
     """Time and error of the lowest k eigenvalue pairs and of B_c versus N.
 
     A measurement for this scene (BLAS on one thread, one solve per N), against
