@@ -16,22 +16,30 @@ ROOT = Path(__file__).resolve().parents[2]
 
 PROBE = """
 import json, sys
+import etcheck.report.pdf
 from etcheck.errors import ReportError
 from etcheck.report import render
 from etcheck.report.background import renderer
+
+def no_engine(html):
+    raise ReportError("the PDF engine cannot load")
+
+etcheck.report.pdf.render_pdf = no_engine  # before the fork: the report process has no PDF engine either
 results = json.loads(open(sys.argv[1]).read())
 with renderer(("html", "json")) as remote:
     assert remote is not render, "no report process was started"
     got = remote(results, ("html", "json"), "check")
     try:
         remote({"broken": True}, ("html",), "check")
+        raise AssertionError("the failure was not reported")
     except RuntimeError as exc:
         bug = str(exc)
     try:
-        remote(results, ("html",), "no such kind")
-    except (RuntimeError, ReportError) as exc:
-        other = str(exc)
-    again = remote(results, ("json",), "check")  # still serving after an error
+        remote(results, ("pdf",), "check")
+        raise AssertionError("the missing PDF engine was not reported")
+    except ReportError as exc:
+        assert str(exc) == "the PDF engine cannot load", exc
+    again = remote(results, ("json",), "check")  # still serving after the errors
 assert got == render(results, ("html", "json"), "check"), "different bytes"
 assert again["json"] == got["json"]
 print(bug)
