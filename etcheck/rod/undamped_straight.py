@@ -295,7 +295,7 @@ class _Line:
         self.mu_cut = max(max((c4 * kc**4 + abs(T + pc * w_max**2) * kc**2 + w_max**2) / (1 + pc * kc**2)
                               for c4, pc in ((R / f, P * R), (1.0 / f, P))), 16 * w_max**2)
         # negative side: uniform in sqrt(-mu); positive side: uniform in the Weyl mode count
-        neg = -np.linspace(math.sqrt(-self.mu_lo), 0.0, 16, endpoint=False) ** 2
+        neg = -np.linspace(math.sqrt(-self.mu_lo), 0.0, 48, endpoint=False) ** 2
         fine = np.concatenate([[0.0], np.geomspace(1e-9 * self.mu_cut, self.mu_cut, 4000)])
         count = _mode_count(params, fine, T)
         n = max(int(math.ceil(density * count[-1])), 16)
@@ -732,7 +732,8 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     else:  # stable at rest means unstable past the first static spin: the line need not go further
         first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
         spin_hi = max(1.02 * first[0] if first.size else 2.0, 1e-3)
-    if not windows and _diverging(p.with_(omega=0.0)):  # a real pair at rest: no spin is safe
+    rest_load = _ex.exact_root(p.with_(B=0.0, omega=0.0), "B").value  # at rest: stable iff B below it (T >= 0)
+    if not windows and (p.B >= rest_load or _diverging(p.with_(omega=0.0))):  # a real pair at rest
         spin_line = StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0)
     else:
         spin_line = stability_line(p, "omega", 0.0, spin_hi, samples=64 if windows else 25)
