@@ -256,6 +256,8 @@ ROWS = (
 
 
 def headline(quick: bool) -> None:
+    print(f"{len(os.sched_getaffinity(0))} cores, load average {os.getloadavg()[0]:.1f} at the start "
+          "(times are wall times: on a busy machine they are longer)")
     print(f"{'issue 10, row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8}  note")
     for row in ROWS:
         if quick and row.slow:
