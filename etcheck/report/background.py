@@ -32,7 +32,7 @@ def renderer(formats: tuple[str, ...], kind: str = "check"
     """A ``render(results, formats, kind)`` that runs in a report process started now (when it can help);
     ``kind``: the report it will mostly render (its template is compiled while waiting).
 
-    Use as ``with renderer(fmts) as render: ... write_reports(..., render=render)``; leaving the block
+    Use as ``with renderer(fmts) as render: ... write_reports(..., renderer=render)``; leaving the block
     ends the process whether or not it was used.
     """
     if not _worth_a_process(formats):

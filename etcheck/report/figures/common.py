@@ -88,8 +88,8 @@ def draw(jobs: dict[str, Callable[[], dict[str, FigureImage]]]) -> dict[str, Fig
     """Run each job (one or a few figures each, keyed by figure name) and merge their figures.
 
     Inside :func:`forking_allowed` on two or more cores every second job runs in a forked helper at the same
-    time (each figure is half a second of matplotlib; the helper is a copy of this process, so the bytes are
-    the same); if the helper fails its jobs are run here.
+    time (a figure is a few tenths of a second of matplotlib; the helper is a copy of this process, so the
+    bytes are the same); if the helper fails, its jobs are run here.
     """
     names = list(jobs)
     if not (_FORK_OK.get() and len(names) > 1 and len(os.sched_getaffinity(0)) >= 2
