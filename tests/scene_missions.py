@@ -6,9 +6,9 @@ rotary inertia P, tension T, damping gamma, spin omega as a multiple of the unlo
 spin, and turned into SI fields of a mission file at a drawn length (1 m - 100 km) with EI1 = 38 N m2
 and 0.1 kg/m, so that the same dimensionless scene is reached through a short or a long tether.
 
-The hypothesis profiles of these tests: ``subcommands`` (default: very few derandomised examples,
-the diagram and damping-map runs cost seconds each) and ``subcommands-thorough`` (selected by
-HYPOTHESIS_PROFILE=thorough).
+The tests' hypothesis settings come from :func:`profile`: by default very few derandomised examples
+(a diagram or damping-map run costs seconds), many more with HYPOTHESIS_PROFILE=thorough, e.g.
+``HYPOTHESIS_PROFILE=thorough pytest tests/cli tests/studies/test_diagram_properties.py -n 0``.
 """
 
 from __future__ import annotations
