@@ -22,6 +22,7 @@ import argparse
 import json
 import math
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -76,13 +77,23 @@ def _best_cold(fn, p, repeat: int = 3) -> tuple[float, object]:
 
 # ----------------------------------------------------------------------------- cold CLI
 
+def _run(cmd: list[str], timeout: float) -> subprocess.CompletedProcess | None:
+    """``cmd`` in its own process group; None when it ran past ``timeout`` [s] (then the whole group is ended:
+    a study's worker and report processes too)."""
+    with subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                          start_new_session=True) as proc:
+        try:
+            out, err = proc.communicate(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.communicate()
+            return None
+    return subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+
+
 def _cli(args: list[str], timeout: float, out: Path) -> tuple[float, subprocess.CompletedProcess | None]:
     t0 = time.perf_counter()
-    try:
-        proc = subprocess.run([sys.executable, "-m", "etcheck", *args, "--out", str(out)], cwd=ROOT,
-                              capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return time.perf_counter() - t0, None
+    proc = _run([sys.executable, "-m", "etcheck", *args, "--out", str(out)], timeout)
     return time.perf_counter() - t0, proc
 
 
@@ -215,10 +226,8 @@ print(json.dumps({"wall": time.perf_counter() - t0, "error": r["grid"]["max_erro
 def _child(code: str, args: list[str], target: float) -> tuple[float, dict | str]:
     """Run ``code`` in a fresh interpreter; (wall [s], the JSON it printed last) or (wall, why it has none)."""
     t0 = time.perf_counter()
-    try:
-        proc = subprocess.run([sys.executable, "-c", code, *args], cwd=ROOT, capture_output=True, text=True,
-                              timeout=max(PATIENCE * target, 120.0))
-    except subprocess.TimeoutExpired:
+    proc = _run([sys.executable, "-c", code, *args], max(PATIENCE * target, 120.0))
+    if proc is None:
         return time.perf_counter() - t0, f"stopped after {time.perf_counter() - t0:.0f} s"
     if proc.returncode != 0:
         return time.perf_counter() - t0, f"failed: {proc.stderr.strip()[-200:]}"
