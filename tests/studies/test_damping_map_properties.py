@@ -16,6 +16,7 @@ import contextlib
 import io
 import math
 
+import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 from scene_missions import (
@@ -81,10 +82,15 @@ def test_damping_map_of_a_valid_scene(tmp_path_factory, s, spin_max):
     assert m["largest_error"] is not None
     stars = m["secondary_pitchfork_B"]
     assert len(stars) == len(m["omega"]) == len(m["secondary_pitchfork_error"])
-    # with damping b1 is stable between its pitchfork and B*: no point of the map grows
-    assert m["unstable_points"] == 0
     zeta = [z for plane in m["damping_ratio"] for row in plane for z in row if z is not None]
-    assert all(0 < z <= 1 for z in zeta), zeta
+    growth = [g for plane in m["max_real"] for row in plane for g in row if g is not None]
+    assert all(-1 <= z <= 1 for z in zeta), zeta
+    assert m["unstable_points"] == sum(g > 0 for g in growth)
+    if s["T"] == 0 and s["R"] < 1:
+        # the paper's setting (Sec. VII B): b1 is born stable from the double pitchfork and, with damping,
+        # stays stable up to B*: no point of the map grows (under tension b2's pitchfork comes first and b1
+        # is born unstable; at R = 1 b1 and b2 are one degenerate pair)
+        assert m["unstable_points"] == 0 and all(z > 0 for z in zeta), (m["max_real"], zeta)
     # B*(omega) at rest: the check's B*, within the two stated errors
     star = check_secondary_pitchfork(s)
     if stars[0] is None or star.get("secondary_pitchfork_B") is None:
@@ -95,3 +101,15 @@ def test_damping_map_of_a_valid_scene(tmp_path_factory, s, spin_max):
     assert abs(stars[0] - B_check) <= tolerance, (stars[0], B_check, tolerance)
     assert math.isfinite(tolerance)
 
+
+
+@pytest.mark.skipif(not THOROUGH, reason="a damping map costs seconds: run with HYPOTHESIS_PROFILE=thorough")
+@pytest.mark.xfail(strict=True, reason=(
+    "exit 3: 'internal error (ValueError: B = 287.9525621771212 not reached on branch b1 (191.969 .. 275.476))': "
+    "under strong tension (T = 30, R = 0.01, end boundary layers 8e-4 of the length, outside rungs 2-3's "
+    "validated range) b1 is not followed to the map's reference load 1.5 x its pitchfork"))
+def test_damping_map_regression_strong_tension(tmp_path):
+    s = dict(R=0.01, P=1e-5, T=30.0, gamma=0.5, omega_factor=0.0, omega=0.0, length=1.0)
+    code, err = run_damping_map(write_mission(mission_dict(s), tmp_path), tmp_path / "out", "--points", "2x2",
+                                "--gammas", "0.5", "--spin-max", "1.5", "--N", str(N))
+    assert_clean_exit(code, err, allowed=(0,))
