@@ -67,9 +67,6 @@ def image(fig) -> FigureImage:
     return out
 
 
-#: the former name, still imported by figures/diagram.py and figures/sweep.py
-svg = image
-
 #: whether :func:`draw` may fork a helper (only in the report process, which has one thread)
 _FORK_OK: contextvars.ContextVar[bool] = contextvars.ContextVar("etcheck_fork_ok", default=False)
 
