@@ -273,6 +273,7 @@ class AccuracyRow(TypedDict):
     solve_time_s: float
     eigenvalue_error: float | None
     load_error: float | None
+    reference_N: int
 
 
 # --------------------------------------------------------------------------- rungs 2-3: the buckled tether
@@ -343,6 +344,8 @@ class BranchRecord(_ConnectingBranch):
     pitchfork_B: NotRequired[float]
     pitchfork_IB0_N_per_m: NotRequired[float]
     liftoff_omega: NotRequired[float | None]
+    pitchfork_B_error: NotRequired[float | None]
+    liftoff_omega_error: NotRequired[float | None]
 
 
 class DiagramParameters(TypedDict):
@@ -358,6 +361,7 @@ class DiagramParameters(TypedDict):
 class LiftedOff(TypedDict):
     label: str
     liftoff_omega: float
+    liftoff_omega_error: float | None
 
 
 class BifurcationDiagram(TypedDict):
@@ -447,6 +451,7 @@ class CoilRegion(TypedDict):
     rows: list[RegionRow]
     N: int
     liftoff_omega: float | None
+    liftoff_omega_error: float | None
     liftoff_rpm: float | None
     pitchfork_curve: RegionCurve
     secondary_curve: SecondaryCurve

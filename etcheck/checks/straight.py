@@ -22,7 +22,7 @@ from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, O
 from etcheck.errors import SolverError
 from etcheck.jsonable import finite_or_none
 from etcheck.rod.analytic import critical_loads
-from etcheck.rod.convergence import accuracy_table
+from etcheck.rod.convergence import accuracy_table, reference_resolution
 from etcheck.rod.damped_critical import damped_critical
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.spectrum import spectrum
@@ -286,10 +286,11 @@ def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: i
     (N = 48 for the default Ns, 96 up to N = 64); see
     :func:`etcheck.rod.convergence.accuracy_table`.
     """
-    rows = accuracy_table(scaled.params, Ns=Ns, k=k)
+    N_ref = reference_resolution(Ns)
+    rows = accuracy_table(scaled.params, Ns=Ns, k=k, N_ref=N_ref)
     return [
         {"N": r.N, "solve_time_s": r.solve_time, "eigenvalue_error": finite_or_none(r.eig_error),
-         "load_error": finite_or_none(r.load_error)}
+         "load_error": finite_or_none(r.load_error), "reference_N": N_ref}
         for r in rows
     ]
 

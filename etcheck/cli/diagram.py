@@ -97,10 +97,17 @@ def _summary(results: dict, paths: list) -> None:
           f"(R = {d['params']['R']:.4g}), B up to {d['B_max']:.4g}, {d['time_s']:.1f} s")
     for b in d["branches"]:
         sp = ", ".join(f"{q['kind']} at B = {q['B']:.6g}" for q in b["special"]) or "no special points"
-        start = f"pitchfork B = {b['pitchfork_B']:.10g}" if b.get("pitchfork_B") is not None else f"from {b.get('from')}"
+        start = (f"pitchfork B = {b['pitchfork_B']:.10g} +- {_err(b.get('pitchfork_B_error'))}"
+                 if b.get("pitchfork_B") is not None else f"from {b.get('from')}")
         print(f"  {b['label']}: {start}; {b['points']} points, N = {b['N']}, {b['time']:.2f} s, "
               f"measure1 error {b['measure1_error']:.1e}; {sp}")
     for lifted in d["lifted_off"]:
-        print(f"  {lifted['label']}: lifted off at omega = {lifted['liftoff_omega']:.6g} (no longer bifurcates)")
+        print(f"  {lifted['label']}: lifted off at omega = {lifted['liftoff_omega']:.6g} "
+              f"+- {_err(lifted.get('liftoff_omega_error'))} (no longer bifurcates)")
     for path in paths:
         print(f"  wrote {path}")
+
+
+def _err(x) -> str:
+    """A stated error for the terminal: one significant digit, or "n/a" where none was stated."""
+    return "n/a" if x is None else f"{x:.0e}"
