@@ -306,12 +306,6 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: 
 MAX_LOAD_RATIO = 6.0
 
 
-def needs_postbuckling(B: float, B_c: float | None, required: float) -> bool:
-    """The scene needs rungs 2-3 when the operating load is past, or within the
-    required margin of, the first critical load (dimensionless loads)."""
-    return B_c is not None and B > 0 and B * required >= B_c
-
-
 def _secondary_pitchfork(params: RodParameters, branch: Branch, N: int) -> dict:
     """b1's first secondary pitchfork at the scene's spin: :func:`~etcheck.rod.branch_stability.secondary_pitchfork`
     (the one implementation of B*) on the diagram's b1 at N and b1 recomputed at 1.5 N; the value at 1.5 N,

@@ -180,3 +180,9 @@ def buckled_margins(post: PostbucklingSection, sc: Scene, scaled: Scaled, requir
                          post["secondary_pitchfork_error"],
                          "the buckled (coiled) tether on b1 stays stable up to its symmetry-breaking secondary "
                          "pitchfork at the operating spin and tension (rungs 2-3)")]
+
+
+def needs_postbuckling(B: float, B_c: float | None, required: float) -> bool:
+    """The scene needs rungs 2-3 when the operating load is past, or within the
+    required margin of, the first critical load (dimensionless loads)."""
+    return B_c is not None and B > 0 and B * required >= B_c

@@ -11,9 +11,16 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import cast
 
-from etcheck.checks.buckled import needs_postbuckling, postbuckling_check
 from etcheck.checks.fidelity import fidelity_of
-from etcheck.checks.margins import FAIL, INCOMPLETE, PASS, buckled_margins, overall_verdict, straight_margins
+from etcheck.checks.margins import (
+    FAIL,
+    INCOMPLETE,
+    PASS,
+    buckled_margins,
+    needs_postbuckling,
+    overall_verdict,
+    straight_margins,
+)
 from etcheck.checks.orbit_load import orbit_results
 from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, plan
 from etcheck.checks.results import results_header
@@ -129,6 +136,9 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
                 "reason": f"beyond rungs 2-3: the buckled tether's end boundary layers ({layer:.2g} of its length, "
                 f"or a string-like weak axis, R = {p.R:.2g}) are thinner than their Chebyshev collocation resolves "
                 f"(they need layers wider than {LAYER_MIN:g} of the length and R >= {R_MIN_SPECTRAL:g})"}
+    # imported here on purpose: rungs 2-3 (continuation, branch stability) load only for a scene that needs them
+    from etcheck.checks.buckled import postbuckling_check
+
     return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
 
 

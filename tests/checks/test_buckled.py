@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from helpers import set_like, tension_free
 
-from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram, needs_postbuckling
+from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
+from etcheck.checks.margins import needs_postbuckling
 from etcheck.checks.pipeline import check
 from etcheck.cli.main import main
 from etcheck.input.mission import load_mission, mission_from_dict
