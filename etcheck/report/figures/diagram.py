@@ -1,4 +1,4 @@
-"""Figures of bifurcation diagrams and buckled shapes as inline SVG.
+"""Figures of bifurcation diagrams and buckled shapes as inline images (PNG at print resolution, drawn once for HTML and PDF).
 
 Stable parts of a branch are thick and solid, unstable parts thin and dashed
 (when stability was computed); branch labels sit at the branch ends; special

@@ -1,4 +1,4 @@
-"""Figures of a sweep report as inline SVG: margin maps, critical length, 1-D margins.
+"""Figures of a sweep report as inline images (PNG at print resolution): margin maps, critical length, 1-D margins.
 
 Each function takes the JSON-able sweep results; axes carry units, the
 mission's operating point is marked, failed points are drawn (never
