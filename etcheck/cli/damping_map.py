@@ -83,15 +83,30 @@ def _summary(results: dict, paths: list) -> None:
     print(f"etcheck damping-map: {results['mission']['name']}: {len(s['omega'])} spins x {len(s['B'])} loads, "
           f"{len(s['gammas'])} dampings, N = {s['N']}/{s['N_check']}: {s['time_s']:.1f} s "
           f"(equilibria {s['timing']['equilibria_s']:.1f} s, spectra {s['timing']['spectra_s']:.1f} s)")
-    print(f"  largest estimated error of max Re lambda: {s['largest_error']:.1e}; unstable points under the "
-          f"secondary pitchfork: {s['unstable_points']}")
+    largest = "not answered" if s["largest_error"] is None else f"{s['largest_error']:.1e}"
+    print(f"  largest estimated error of max Re lambda: {largest}; unstable points (max Re lambda > "
+          f"{s['unstable_threshold']:g}) under the secondary pitchfork: {s['unstable_points']}")
+    if s.get("b1_born_unstable"):
+        print(f"  note: {s['note']}")
     errs = [e for e in s["secondary_pitchfork_error"] if e is not None]
     print(f"  secondary pitchfork curve B*(omega): {len(errs)} points located at N = {s['N']} and {s['N_check']}, "
-          f"largest difference {max(errs, default=float('nan')):.1e}, {s['curve_time_s']:.1f} s")
+          f"largest difference {_e(max(errs, default=None))}, {s['curve_time_s']:.1f} s")
+    for w, B, why in zip(s["omega"], s["secondary_pitchfork_B"], s["secondary_pitchfork_reason"]):
+        if B is None:
+            print(f"  B*(omega = {w:.4g}) not answered: {why}")
     p = s["spin_paths"]
-    print(f"  b1 at B = {p['B']:.4g} followed in spin to {p['values'][-1]:.3g}, gamma = {p['gamma']:g}: largest Re lambda "
-          f"{p['max_re']:.3e} ({'no Hopf crossing' if p['max_re'] < 0 else 'a mode crosses'}), {p['time_s']:.1f} s")
+    if p["max_re"] is None or not p["values"]:
+        print(f"  b1 at B = {p['B']:.4g} followed in spin: not answered ({p.get('reason') or 'no eigenvalue located'})")
+    else:
+        print(f"  b1 at B = {p['B']:.4g} followed in spin to {p['values'][-1]:.3g}, gamma = {p['gamma']:g}: largest Re "
+              f"lambda {p['max_re']:.3e} ({'no Hopf crossing' if p['max_re'] < 0 else 'a mode crosses'}), "
+              f"{p['time_s']:.1f} s")
     for g, z in zip(s["gammas"], s["smallest_damping_ratio"]):
         print(f"  gamma = {g:g}: smallest damping ratio of b1 over the map {z if z is None else f'{z:.3e}'}")
     for path in paths:
         print(f"  wrote {path}")
+
+
+def _e(x) -> str:
+    """An error for the terminal, or "n/a" where none was located."""
+    return "n/a" if x is None else f"{x:.1e}"

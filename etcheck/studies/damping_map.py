@@ -17,13 +17,16 @@ import numpy as np
 
 from etcheck.checks.coil import eigenvalue_paths, secondary_pitchfork_at
 from etcheck.checks.results import results_header
+from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
 from etcheck.rod import branches as br
 from etcheck.rod.branch_stability import HOPF_GAMMAS, b1_spin_branch, damping_map
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import check_resolution
+from etcheck.rod.stability import THRESHOLD, divergence_loads
 from etcheck.scaling import RPM, Scales, scale, scene
+from etcheck.studies.diagram import refuse_outside_limit
 
 
 def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_max: float | None = None,
@@ -46,21 +49,40 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     # the curve first: its continuations of b1 up to B* at N are cached and serve the map's grid
     t_curve = time.perf_counter()
     curve = []
+    spin_branch_failed = None
     for n in (N, check_resolution(N)):
-        b1_spin_branch(params, B_ref, omega_max, n)  # one continuation in spin serves every point of the curve
+        try:  # one continuation in spin serves every point of the curve
+            b1_spin_branch(params, B_ref, omega_max, n)
+        except _UNANSWERED as exc:
+            spin_branch_failed = f"b1 at B = {B_ref:.4g} was not followed in spin to {omega_max:g} at N = {n} ({exc})"
     for wi in w:
-        pt = secondary_pitchfork_at(params, float(wi), N, None, B_ref)
-        curve.append({"omega": float(wi), "B": None if pt is None else pt.B, "error": None if pt is None else pt.error})
+        curve.append(_curve_point(params, float(wi), N, B_ref, spin_branch_failed))
     t_curve = time.perf_counter() - t_curve
     m = damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref)
     wc = scales.frequency
     zeta = m.zeta
-    unstable = np.nan_to_num(m.max_real, nan=-1.0) > 0
+    # unstable as the stability module defines it (max Re lambda above its threshold), not merely > 0
+    unstable = np.nan_to_num(m.max_real, nan=-1.0) > THRESHOLD
     # b1 at fixed load followed in spin: the paper's Hopf test (Sec. VII B, B = 1.2), at the smallest damping
     B_path = max(B_ref, min(1.2, 2.05 * pf0))  # the paper's B = 1.2 for SET
-    paths = eigenvalue_paths(b1_spin_branch(params, B_path, omega_max, N), min(m.gammas))
+    try:
+        paths = eigenvalue_paths(b1_spin_branch(params, B_path, omega_max, N), min(m.gammas))
+    except _UNANSWERED as exc:
+        paths = {"computed": False, "parameter": "omega", "values": [], "gamma": min(m.gammas), "re": [], "im": [],
+                 "labels": [], "error": None, "N": N, "N_check": check_resolution(N), "max_re": None, "time_s": 0.0,
+                 "reason": f"b1 at B = {B_path:.4g} was not followed in spin to {omega_max:g} ({exc})"}
     paths["B"] = B_path
+    first = divergence_loads(params.with_(B=0.0, omega=0.0), n=1, N=N)
+    born_unstable = bool(first.size) and float(first[0]) < pf0 * (1 - 1e-6)
+    note = (f"b1 is born unstable: at rest the straight tether first buckles at B = {float(first[0]):.6g} into "
+            f"b2 (class S2), below b1's pitchfork B = {pf0:.6g} (end tension T = {params.T:.4g}), so b1 bifurcates "
+            "from an already unstable straight state; the map gives its growth rates, not a stable region under B*"
+            if born_unstable else
+            "b1 is born stable at its pitchfork (the first of the straight tether) and, with damping, stays stable "
+            "up to its secondary pitchfork B*(omega) (Sec. VII B)")
     return {
+        "b1_born_unstable": born_unstable,
+        "note": note,
         "spin_paths": paths,
         "model": "rungs 2-3: b1 (whirling equilibria) and the lowest eigenvalues about each state",
         "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "T")},
@@ -70,6 +92,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         "IB0_N_per_m": (B * scales.load).tolist(), "spin_rpm": (w * wc * RPM).tolist(),
         "secondary_pitchfork_B": [c["B"] for c in curve],
         "secondary_pitchfork_error": [c["error"] for c in curve],
+        "secondary_pitchfork_reason": [c["reason"] for c in curve],
         "secondary_pitchfork_IB0_N_per_m": [None if c["B"] is None else c["B"] * scales.load for c in curve],
         "curve_time_s": t_curve,
         "primary_pitchfork_B": finite_or_none(m.primary_B),
@@ -77,6 +100,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         "damping_ratio": finite_or_none(zeta), "log_decrement": finite_or_none(m.log_decrement),
         "frequency_Hz": finite_or_none(m.frequency * wc / (2 * math.pi)), "error": finite_or_none(m.error),
         "unstable_points": int(np.count_nonzero(unstable)),
+        "unstable_threshold": THRESHOLD,
         "smallest_damping_ratio": [float(np.nanmin(zeta[i])) if np.isfinite(zeta[i]).any() else None
                                    for i in range(len(m.gammas))],
         "largest_error": float(np.nanmax(m.error)) if np.isfinite(m.error).any() else None,
@@ -86,10 +110,32 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     }
 
 
+#: what a failed continuation or solve of one point raises: that point is "not answered", with the reason
+_UNANSWERED = (ValueError, SolverError, np.linalg.LinAlgError, ArithmeticError)
+
+
+def _curve_point(params: RodParameters, omega: float, N: int, B_ref: float, failed: str | None) -> dict[str, Any]:
+    """B*(omega) at one spin, or None with the reason it was not answered."""
+    try:
+        pt = secondary_pitchfork_at(params, omega, N, None, B_ref)
+    except _UNANSWERED as exc:
+        pt, failed = None, f"b1 was not followed to its secondary pitchfork at this spin ({exc})"
+    if pt is not None:
+        return {"omega": omega, "B": pt.B, "error": pt.error, "reason": None}
+    return {"omega": omega, "B": None, "error": None,
+            "reason": failed or (f"not found: b1, followed in load from B = {B_ref:.4g}, reaches no secondary "
+                                 "pitchfork below B = 60 (or could not be followed that far)")}
+
+
 def damping_results(mission: Mission, gammas=HOPF_GAMMAS, B_max: float | None = None, omega_max: float = 4.0,
                     n_B: int = 14, n_omega: int = 12, N: int = 24) -> dict[str, Any]:
     """:func:`damping_study` of the mission's tether (its P, R, Gamma, tension), as a results file."""
     scaled = scale(scene(mission))
+    at_rest = scaled.params.with_(omega=0.0)
+    # the thinnest boundary layers are at the fastest spin of the map; refused before any solve
+    refuse_outside_limit(mission, at_rest, "the damping map")
+    refuse_outside_limit(mission, at_rest.with_(omega=omega_max), f"the damping map up to spin {omega_max:g}",
+                         "--spin-max")
     study = damping_study(scaled.params, scaled.scales, gammas, B_max, omega_max, n_B, n_omega, N)
     return results_header(mission) | {"mission_gamma": scaled.params.gamma,
                                       "operating": {"B": scaled.params.B, "omega": scaled.params.omega},

@@ -10,9 +10,45 @@ from __future__ import annotations
 from typing import Any
 
 from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
+from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
 from etcheck.checks.results import results_header
+from etcheck.errors import MissionError
 from etcheck.input.mission import Mission
+from etcheck.rod.parameters import RodParameters
 from etcheck.scaling import RPM, scale, scene
+
+
+def postbuckling_limit(params: RodParameters) -> str | None:
+    """Why rungs 2-3 (the buckled branches) are outside their validated range at ``params``, or None.
+
+    The check's own limit (:mod:`etcheck.checks.plan`): end boundary layers thinner than LAYER_MIN of
+    the length, or a nearly string-like weak axis (R < R_MIN_SPECTRAL), are not resolved by the Chebyshev
+    collocation of the buckled tether; the text names the number exceeded and the limit.
+    """
+    layer = boundary_layer(params)
+    if layer < LAYER_MIN:
+        return (f"the end boundary layers are {layer:.2g} of the tether's length (spin {params.omega:.4g}, "
+                f"tension T = {params.T:.4g}, R = {params.R:.4g}), thinner than the {LAYER_MIN:g} the buckled "
+                "branches (rungs 2-3) are validated for")
+    if params.R < R_MIN_SPECTRAL:
+        return (f"the weak axis is nearly a string (R = {params.R:.2g} < {R_MIN_SPECTRAL:g}), below the "
+                "stiffness ratio the buckled branches (rungs 2-3) are validated for")
+    return None
+
+
+def refuse_outside_limit(mission: Mission, params: RodParameters, what: str, field: str | None = None) -> None:
+    """A :class:`~etcheck.errors.MissionError` (exit 2) when ``params`` are outside rungs 2-3's validated
+    range (:func:`postbuckling_limit`), before any solve; ``what`` names the study."""
+    why = postbuckling_limit(params)
+    if why is not None:
+        if field is None:
+            field = ("tether.bending_stiffness" if params.R < R_MIN_SPECTRAL
+                     else "operation.end_tension" if params.T > 0 else "operation.spin_rate")
+        raise MissionError(mission.file or "mission", field,
+                           f"{what} is outside the model's validated range: {why}",
+                           "lower the end tension or spin, or raise EI2 (tether.bending_stiffness), so that "
+                           f"the boundary layers sqrt(R / (f T_eff)) are at least {LAYER_MIN:g} of the length; "
+                           "the straight tether's critical loads are given by 'etcheck MISSION' (rung 1)")
 
 
 def diagram_study(mission: Mission, omega: float | None = None, R: float | None = None,
@@ -23,6 +59,7 @@ def diagram_study(mission: Mission, omega: float | None = None, R: float | None 
     params = scaled.params if omega is None else scaled.params.with_(omega=omega)
     if R is not None:
         params = params.with_(R=R)
+    refuse_outside_limit(mission, params, "the bifurcation diagram", "--R" if R is not None else None)
     d = bifurcation_diagram(params, scaled.scales, options or DiagramOptions())
     return results_header(mission) | {
         "spin_rpm": params.omega * scaled.scales.frequency * RPM,

@@ -16,7 +16,6 @@ import contextlib
 import io
 import math
 
-import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 from scene_missions import (
@@ -31,9 +30,10 @@ from scene_missions import (
 )
 
 from etcheck.checks.buckled import postbuckling_check
+from etcheck.checks.plan import LAYER_MIN, boundary_layer
 from etcheck.cli.main import main
 from etcheck.input.mission import mission_from_dict
-from etcheck.rod.stability import divergence_loads
+from etcheck.rod.stability import THRESHOLD, divergence_loads
 from etcheck.scaling import scale, scene
 
 #: resolution of the map (the CLI's smallest; its B* curve is located at N and 1.5 N)
@@ -85,7 +85,14 @@ def test_damping_map_of_a_valid_scene(tmp_path_factory, s, spin_max):
     zeta = [z for plane in m["damping_ratio"] for row in plane for z in row if z is not None]
     growth = [g for plane in m["max_real"] for row in plane for g in row if g is not None]
     assert all(-1 <= z <= 1 for z in zeta), zeta
-    assert m["unstable_points"] == sum(g > 0 for g in growth)
+    # unstable as the stability module counts it: max Re lambda above its threshold, not merely positive
+    assert m["unstable_threshold"] == THRESHOLD
+    assert m["unstable_points"] == sum(g > THRESHOLD for g in growth)
+    for B_star, why in zip(stars, m["secondary_pitchfork_reason"]):
+        assert (B_star is None) == bool(why), (B_star, why)  # a missing B* says why
+    assert isinstance(m["note"], str) and m["note"]
+    if m["b1_born_unstable"]:
+        assert "born unstable" in m["note"]
     if s["T"] == 0 and s["R"] < 1:
         # the paper's setting (Sec. VII B): b1 is born stable from the double pitchfork and, with damping,
         # stays stable up to B*: no point of the map grows (under tension b2's pitchfork comes first and b1
@@ -103,13 +110,17 @@ def test_damping_map_of_a_valid_scene(tmp_path_factory, s, spin_max):
 
 
 
-@pytest.mark.skipif(not THOROUGH, reason="a damping map costs seconds: run with HYPOTHESIS_PROFILE=thorough")
-@pytest.mark.xfail(strict=True, reason=(
-    "exit 3: 'internal error (ValueError: B = 287.9525621771212 not reached on branch b1 (191.969 .. 275.476))': "
-    "under strong tension (T = 30, R = 0.01, end boundary layers 8e-4 of the length, outside rungs 2-3's "
-    "validated range) b1 is not followed to the map's reference load 1.5 x its pitchfork"))
 def test_damping_map_regression_strong_tension(tmp_path):
+    """Found by the property above: exit 3 ('internal error (ValueError: B = 287.95... not reached on branch
+    b1 (191.969 .. 275.476))') under strong tension (T = 30, R = 0.01): the end boundary layers, 8e-4 of the
+    length, are outside rungs 2-3's validated range; refused (exit 2) before any solve, naming the limit."""
     s = dict(R=0.01, P=1e-5, T=30.0, gamma=0.5, omega_factor=0.0, omega=0.0, length=1.0)
+    p = scale(scene(mission_from_dict(mission_dict(s)))).params
+    layer = boundary_layer(p)
+    assert layer < LAYER_MIN  # the scene is outside the limit; the refusal must say by how much
     code, err = run_damping_map(write_mission(mission_dict(s), tmp_path), tmp_path / "out", "--points", "2x2",
                                 "--gammas", "0.5", "--spin-max", "1.5", "--N", str(N))
-    assert_clean_exit(code, err, allowed=(0,))
+    assert_clean_exit(code, err, allowed=())
+    assert "boundary layers" in err and f"{layer:.2g}" in err and f"{LAYER_MIN:g}" in err, err
+    assert "end_tension" in err, err
+    assert not (tmp_path / "out").exists()
