@@ -14,6 +14,7 @@ from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
 from etcheck.checks.results import results_header
 from etcheck.errors import MissionError
 from etcheck.input.mission import Mission
+from etcheck.rod import branches as br
 from etcheck.rod.parameters import RodParameters
 from etcheck.scaling import RPM, scale, scene
 
@@ -51,6 +52,19 @@ def refuse_outside_limit(mission: Mission, params: RodParameters, what: str, fie
                            "the straight tether's critical loads are given by 'etcheck MISSION' (rung 1)")
 
 
+def _refuse_below_first_pitchfork(params: RodParameters, options: DiagramOptions) -> None:
+    """A usage error (exit 2) naming --B-max when the load range ends at or below the diagram's first
+    pitchfork (the smallest static load of either symmetry class at the scene's spin): no branch would be drawn."""
+    loads = [float(x[0]) for x in (br.class_loads(params.with_(B=0.0), which, options.N, n=1) for which in ("S1", "S2"))
+             if x.size]
+    if loads and options.B_max <= min(loads):
+        raise MissionError("command line", "--B-max",
+                           f"the load range ends at B = {options.B_max:g}, at or below the diagram's first pitchfork "
+                           f"B = {min(loads):.6g} (where the first buckled branch starts): no branch would be drawn",
+                           f"give --B-max above {min(loads):.4g}, or leave it out (default: 3 or 1.3 times the last "
+                           "pitchfork)")
+
+
 def diagram_study(mission: Mission, omega: float | None = None, R: float | None = None,
                   options: DiagramOptions | None = None) -> dict[str, Any]:
     """Branches of the mission's tether at dimensionless spin ``omega`` (default: the mission's)
@@ -60,7 +74,10 @@ def diagram_study(mission: Mission, omega: float | None = None, R: float | None 
     if R is not None:
         params = params.with_(R=R)
     refuse_outside_limit(mission, params, "the bifurcation diagram", "--R" if R is not None else None)
-    d = bifurcation_diagram(params, scaled.scales, options or DiagramOptions())
+    options = options or DiagramOptions()
+    if options.B_max is not None:
+        _refuse_below_first_pitchfork(params, options)
+    d = bifurcation_diagram(params, scaled.scales, options)
     return results_header(mission) | {
         "spin_rpm": params.omega * scaled.scales.frequency * RPM,
         "R_override": R,

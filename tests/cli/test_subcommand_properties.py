@@ -109,6 +109,14 @@ def test_subprocess_usage_errors_name_the_option(tmp_path):
 # --- diagram --------------------------------------------------------------------------------------
 
 
+def test_diagram_load_range_below_the_first_pitchfork_is_refused(tmp_path):
+    """Found by the diagram property: ``--B-max 0.1`` on SET exited 0 and drew b1 with 2 points at
+    B = 0.553 - 0.558 while printing "B up to 0.1"; now exit 2 naming --B-max, nothing written."""
+    code, _, err = run(["diagram", str(SET), "--B-max", "0.1", "--format", "json", "--out", str(tmp_path)])
+    assert code == 2 and "--B-max" in err and "first pitchfork" in err and "Traceback" not in err, err
+    assert not any(tmp_path.iterdir())
+
+
 def _spin_option(s: dict, with_units: bool) -> str:
     """--spin as the dimensionless omega, or the same spin in rpm."""
     if with_units:

@@ -13,7 +13,6 @@ second pitchfork keep each example at about a second.
 
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
@@ -22,7 +21,8 @@ from hypothesis import strategies as st
 from scene_missions import THOROUGH, assert_all_finite, mission_dict, profile, scenes, strict_json
 
 from etcheck import check
-from etcheck.checks.buckled import DiagramOptions
+from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
+from etcheck.checks.plan import LAYER_MIN, boundary_layer
 from etcheck.errors import EtcheckError, SolverError
 from etcheck.input.mission import mission_from_dict
 from etcheck.report import render
@@ -78,6 +78,8 @@ def _well_formed(results: dict) -> dict:
 
 #: strong tension (T = 30, end boundary layers 0.0026 of the length) on a weak axis R = 0.1, at rest
 S_TENSE = dict(R=0.1, P=1e-5, T=30.0, gamma=0.04375, omega_factor=0.0, omega=0.0, length=1.0)
+#: the paper's SET at rest
+S_SET = dict(R=21 / 38, P=1e-3, T=0.0, gamma=0.04375, omega_factor=0.0, omega=0.0, length=100.0)
 #: SET's stiffness ratio spun past b1's lift-off (omega 0.746) but below b2's (1.006)
 S_LIFTED = dict(R=0.5526, P=1e-3, T=0.0, gamma=0.04375, omega_factor=1.2, omega=1.2 * math.sqrt(0.5526), length=100.0)
 
@@ -123,27 +125,41 @@ def test_diagram_of_a_valid_scene(s, branches, stability):
 
 def test_pitchfork_load_states_an_error_that_covers_the_critical_load():
     """Strong tension on a weak axis at the CLI's default N = 32: b2's pitchfork was 189.76155 against the
-    straight tether's critical load 189.74785 (relative 7.2e-5) with no error stated (found by these tests)."""
+    straight tether's critical load 189.74785 (relative 7.2e-5) with no error stated (found by these tests).
+    The diagram study now refuses this scene (its boundary layers are outside rungs 2-3's validated range:
+    test below); the pitchfork loads it would start from are those of the check's own diagram routine."""
     mission = mission_from_dict(mission_dict(S_TENSE, B=B_OPERATING))
     B_c, err, _ = _critical_load(check(mission).results)
+    scaled = scale(scene(mission))
     # the load range ends just past the first pitchfork: b2 is followed one step, b1 (above it) not at all
-    results = diagram_study(mission, None, None, DiagramOptions(branches=2, B_max=1.0001 * B_c, N=32,
-                                                                stability=False, connect=False))
-    first = min(results["diagram"]["branches"], key=lambda b: b["pitchfork_B"])
+    d = bifurcation_diagram(scaled.params, scaled.scales, DiagramOptions(branches=2, B_max=1.0001 * B_c, N=32,
+                                                                         stability=False, connect=False))
+    first = min(d["branches"], key=lambda b: b["pitchfork_B"])
     stated = first.get("pitchfork_B_error")
     assert stated is not None and abs(first["pitchfork_B"] - B_c) <= err + stated, (first["pitchfork_B"], stated, B_c)
 
 
-@pytest.mark.xfail(strict=True, reason="the diagram answers silently where the check refuses rungs 2-3: at T = 30, "
-                   "R = 0.1 the end boundary layers are 0.0026 of the length (the check's limit is 0.02, "
-                   "checks.plan.LAYER_MIN), yet diagram_study returns branches with no word of the limit")
 def test_diagram_outside_the_validated_range_says_so():
+    """Found by these tests: at T = 30, R = 0.1 the end boundary layers are 0.0026 of the length (the check's
+    limit is checks.plan.LAYER_MIN = 0.02) and the diagram answered silently; it refuses now (exit 2),
+    naming the limit and the width that exceeded it."""
     mission = mission_from_dict(mission_dict(S_TENSE, B=B_OPERATING))
-    B_c, _, _ = _critical_load(check(mission).results)
-    try:
-        results = diagram_study(mission, None, None, DiagramOptions(branches=1, B_max=0.99 * B_c, N=16,
-                                                                    stability=False, connect=False))
-    except EtcheckError as exc:
-        assert exc.exit_code == 2 and "boundary layer" in str(exc)
-        return
-    assert "boundary layer" in json.dumps(results)
+    layer = boundary_layer(scale(scene(mission)).params)
+    assert layer < LAYER_MIN
+    with pytest.raises(EtcheckError) as refused:
+        diagram_study(mission, None, None, DiagramOptions(branches=1, B_max=1.0, N=16, stability=False,
+                                                          connect=False))
+    text = str(refused.value)
+    assert refused.value.exit_code == 2 and "boundary layers" in text, text
+    assert f"{layer:.2g}" in text and f"{LAYER_MIN:g}" in text and "end_tension" in text, text
+
+
+def test_a_load_range_below_the_first_pitchfork_is_refused():
+    """Found by these tests: --B-max 0.1 on SET drew b1 with 2 points at B = 0.553 - 0.558 while saying
+    "B up to 0.1"; a load range ending at or below the first pitchfork is refused, naming --B-max and the load."""
+    mission = mission_from_dict(mission_dict(S_SET, B=B_OPERATING))
+    first = float(divergence_loads(scale(scene(mission)).params, n=1)[0])
+    with pytest.raises(EtcheckError) as refused:
+        diagram_study(mission, None, None, DiagramOptions(branches=1, B_max=0.2 * first, N=16, stability=False))
+    text = str(refused.value)
+    assert refused.value.exit_code == 2 and "--B-max" in text and f"{first:.4g}" in text, text
