@@ -76,8 +76,26 @@ def _print_rung1(name, p, pairs, rows, auto) -> None:
 
 
 def _print_rung2(ref, traces) -> None:
+    if ref.liftoff_omega is not None:
+        print(f"b1 has lifted off the straight tether at this spin (lift-off at omega = {ref.liftoff_omega:.6g}, "
+              f"N = {ref.N}): there is no b1 to trace; lower operation.spin_rate below it to measure rung 2")
+        return
     print(f"{'N':>4} {'time [s]':>9} {'points':>7} {'measure1 at end':>16} {'error':>9} {'2nd pitchfork B':>16} {'error':>9}")
     for t in traces:
+        if t.liftoff_omega is not None:
+            print(f"{t.N:>4} {t.time_s:>9.2f} b1 has lifted off at this resolution (omega = {t.liftoff_omega:.6g})")
+            continue
         print(f"{t.N:>4} {t.time_s:>9.2f} {t.points:>7} {t.measure1_end:>16.10f} "
-              f"{abs(t.measure1_end - ref.measure1_end):>9.1e} {t.secondary_pitchfork_B:>16.10f} "
-              f"{abs(t.secondary_pitchfork_B - ref.secondary_pitchfork_B) / ref.secondary_pitchfork_B:>9.1e}")
+              f"{abs(t.measure1_end - ref.measure1_end):>9.1e} {_pitchfork(t, ref)}")
+    if ref.secondary_pitchfork_B is None:
+        print(f"  2nd pitchfork: not found below 4 B_1 (b1 has no secondary pitchfork there at N = {ref.N})")
+
+
+def _pitchfork(t, ref) -> str:
+    """The secondary pitchfork column and its relative error against the reference, or why not."""
+    if t.secondary_pitchfork_B is None:
+        return f"{'not found below 4 B_1':>26}"
+    if ref.secondary_pitchfork_B is None:
+        return f"{t.secondary_pitchfork_B:>16.10f} {'n/a':>9}"
+    rel = abs(t.secondary_pitchfork_B - ref.secondary_pitchfork_B) / ref.secondary_pitchfork_B
+    return f"{t.secondary_pitchfork_B:>16.10f} {rel:>9.1e}"

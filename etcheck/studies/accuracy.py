@@ -47,22 +47,36 @@ def rung1_accuracy(scaled: Scaled, Ns: tuple[int, ...], pairs: int) -> tuple[lis
 
 @dataclass(frozen=True)
 class BranchTrace:
-    """b1 from its pitchfork to 4 times that load at resolution N (dimensionless measures)."""
+    """b1 from its pitchfork to 4 times that load at resolution N (dimensionless measures).
+
+    ``secondary_pitchfork_B`` is None where b1 has no secondary pitchfork below 4 B_1; where b1 has
+    lifted off the straight tether at the scene's spin (``liftoff_omega``, Sec. VII B: its pitchfork
+    has reached B = 0) there is no b1 to trace: ``points`` is 0 and the measures are None.
+    """
 
     N: int
     time_s: float
     points: int
-    measure1_end: float
-    secondary_pitchfork_B: float
+    measure1_end: float | None
+    secondary_pitchfork_B: float | None
+    liftoff_omega: float | None = None
 
 
 @single_blas_thread
 def trace_b1(params: RodParameters, N: int) -> BranchTrace:
-    """Continue b1 at the scene's spin and tension from its pitchfork to 4 B_1 at resolution N."""
+    """Continue b1 at the scene's spin and tension from its pitchfork to 4 B_1 at resolution N.
+
+    Past b1's lift-off spin the first remaining pitchfork of its class belongs to a higher branch
+    (b3), not to b1: the trace then says b1 has lifted off instead of following that branch.
+    """
     t0 = time.perf_counter()
+    if params.omega > 0:
+        lift = br.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N, omega_max=params.omega + 0.1)
+        if math.isfinite(lift) and params.omega >= lift:
+            return BranchTrace(N, time.perf_counter() - t0, 0, None, None, float(lift))
     start = next(s for s in br.primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")
     b1 = br.continue_branch(params, start, stop=(0.0, 4.0 * start.load), N=N)
-    brk = next((q.value for q in b1.special if q.kind == "break"), math.nan)
+    brk = next((float(q.value) for q in b1.special if q.kind == "break"), None)
     return BranchTrace(N, time.perf_counter() - t0, len(b1.values), float(b1.measure1[-1]), brk)
 
 

@@ -36,6 +36,7 @@ from etcheck import check
 from etcheck.cli.main import main
 from etcheck.errors import SolverError
 from etcheck.input.mission import mission_from_dict
+from etcheck.rod.branches import liftoff_spin
 from etcheck.rod.stability import divergence_loads
 from etcheck.scaling import scale, scene
 from etcheck.studies.sweep import solve_point
@@ -245,3 +246,18 @@ def test_accuracy_command_on_a_valid_scene(tmp_path_factory, s, load):
     for row in rows:  # N, time per solve [ms], eigenvalue error, B_c error: all finite numbers
         assert all(math.isfinite(float(x)) for x in row), row
     assert "automatic stability solve" in out and not NOT_FINITE.search(out), out
+
+
+def test_accuracy_rung2_says_when_b1_has_lifted_off(tmp_path):
+    """Past b1's lift-off spin `etcheck accuracy --rung2` traced the first remaining S1 pitchfork (b3) and
+    called it b1; it says b1 has lifted off, with the spin, and prints no NaN."""
+    R = 0.5526
+    s = dict(R=R, P=1e-3, T=0.0, gamma=0.04375, omega_factor=1.2, omega=1.2 * math.sqrt(R), length=100.0)
+    data = mission_dict(s, B=0.3)
+    p = scale(scene(mission_from_dict(data))).params
+    lift = liftoff_spin(p.with_(gamma=0.0), "b1", 1, N=48)  # the reference trace's resolution
+    assert p.omega > lift
+    code, out, err = run(["accuracy", str(write_mission(data, tmp_path)), "--N", "8", "--pairs", "2", "--rung2"])
+    assert code == 0, err
+    assert "b1 has lifted off" in out and f"lift-off at omega = {lift:.6g}" in out, out
+    assert not NOT_FINITE.search(out), out

@@ -20,6 +20,7 @@ from scene_missions import mission_dict, profile, scenes
 
 from etcheck.checks.straight import accuracy
 from etcheck.input.mission import mission_from_dict
+from etcheck.rod.branches import liftoff_spin
 from etcheck.rod.spectrum import spectrum
 from etcheck.scaling import scale, scene
 from etcheck.studies.accuracy import trace_b1
@@ -51,10 +52,25 @@ def test_the_automatic_solve_states_an_error_that_bounds_its_true_error(s, load)
     assert true <= max(estimate, ROUNDOFF), (true, estimate, auto.N, auto.N_check)
 
 
-@pytest.mark.xfail(strict=True, reason="b1 of a weak-axis tether (R = 0.01, at rest) has no secondary pitchfork "
-                   "below 4 B_1: BranchTrace.secondary_pitchfork_B is NaN, and `etcheck accuracy --rung2` prints "
-                   "'nan' in its '2nd pitchfork B' and error columns instead of saying it was not found")
 def test_rung2_trace_says_when_b1_has_no_secondary_pitchfork():
+    """Found by these tests: b1 of a weak-axis tether (R = 0.01, at rest) has no secondary pitchfork below
+    4 B_1; the trace held NaN and `etcheck accuracy --rung2` printed 'nan'. Now None ("not found")."""
     scaled = _scaled(dict(R=0.01, P=1e-3, T=0.0, gamma=0.04375, omega=0.0, length=100.0), 0.3)
     trace = trace_b1(scaled.params, 16)
+    assert trace.points >= 2 and trace.liftoff_omega is None
     assert trace.secondary_pitchfork_B is None or math.isfinite(trace.secondary_pitchfork_B)
+
+
+def test_rung2_trace_says_when_b1_has_lifted_off():
+    """Past b1's lift-off spin (SET's R, 1.2 times the critical spin; b1 lifts off at 0.746, b2 at 1.006)
+    the first pitchfork of class S1 belongs to b3: the trace says b1 has lifted off instead of tracing b3."""
+    R = 0.5526
+    scaled = _scaled(dict(R=R, P=1e-3, T=0.0, gamma=0.04375, omega=1.2 * math.sqrt(R), length=100.0), 0.3)
+    lift = liftoff_spin(scaled.params.with_(gamma=0.0), "b1", 1, N=16)
+    assert math.isfinite(lift) and scaled.params.omega > lift
+    trace = trace_b1(scaled.params, 16)
+    assert trace.liftoff_omega == pytest.approx(lift, rel=1e-9)
+    assert trace.points == 0 and trace.measure1_end is None and trace.secondary_pitchfork_B is None
+    # just below the lift-off spin b1 is still there and is traced
+    below = trace_b1(scaled.params.with_(omega=0.9 * lift), 16)
+    assert below.liftoff_omega is None and below.points >= 2
