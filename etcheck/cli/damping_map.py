@@ -91,6 +91,9 @@ def _summary(results: dict, paths: list) -> None:
     errs = [e for e in s["secondary_pitchfork_error"] if e is not None]
     print(f"  secondary pitchfork curve B*(omega): {len(errs)} points located at N = {s['N']} and {s['N_check']}, "
           f"largest difference {_e(max(errs, default=None))}, {s['curve_time_s']:.1f} s")
+    for w, why in zip(s["omega"], s["spin_not_answered"]):
+        if why:
+            print(f"  spin omega = {w:.4g}: map not answered: {why}")
     for w, B, why in zip(s["omega"], s["secondary_pitchfork_B"], s["secondary_pitchfork_reason"]):
         if B is None:
             print(f"  B*(omega = {w:.4g}) not answered: {why}")

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -21,7 +22,7 @@ from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
 from etcheck.rod import branches as br
-from etcheck.rod.branch_stability import HOPF_GAMMAS, b1_spin_branch, damping_map
+from etcheck.rod.branch_stability import HOPF_GAMMAS, DampingMap, b1_spin_branch, damping_map
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import check_resolution
 from etcheck.rod.stability import THRESHOLD, divergence_loads
@@ -58,7 +59,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     for wi in w:
         curve.append(_curve_point(params, float(wi), N, B_ref, spin_branch_failed))
     t_curve = time.perf_counter() - t_curve
-    m = damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref)
+    m, spin_reasons = _map(params, B, w, gammas, N, B_ref)
     wc = scales.frequency
     zeta = m.zeta
     # unstable as the stability module defines it (max Re lambda above its threshold), not merely > 0
@@ -99,6 +100,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         "max_real": finite_or_none(m.max_real), "decay_rate_per_s": finite_or_none(-m.max_real * wc),
         "damping_ratio": finite_or_none(zeta), "log_decrement": finite_or_none(m.log_decrement),
         "frequency_Hz": finite_or_none(m.frequency * wc / (2 * math.pi)), "error": finite_or_none(m.error),
+        "spin_not_answered": spin_reasons,
         "unstable_points": int(np.count_nonzero(unstable)),
         "unstable_threshold": THRESHOLD,
         "smallest_damping_ratio": [float(np.nanmin(zeta[i])) if np.isfinite(zeta[i]).any() else None
@@ -112,6 +114,41 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
 
 #: what a failed continuation or solve of one point raises: that point is "not answered", with the reason
 _UNANSWERED = (ValueError, SolverError, np.linalg.LinAlgError, ArithmeticError)
+
+
+def _map(params: RodParameters, B: np.ndarray, w: np.ndarray, gammas, N: int,
+         B_ref: float) -> tuple[DampingMap, list[str | None]]:
+    """The damping map over the whole grid; if a continuation fails, spin by spin, each spin that cannot be
+    answered left blank (NaN: "not answered") with its reason. Reasons per spin (None: answered)."""
+    try:
+        return damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref), [None] * len(w)
+    except _UNANSWERED:
+        pass
+    columns, reasons = [], []
+    for wi in w:
+        try:
+            columns.append(damping_map(params, B, np.array([wi]), gammas=gammas, N=N, B_ref=B_ref))
+            reasons.append(None)
+        except _UNANSWERED as exc:
+            columns.append(None)
+            reasons.append(f"b1 was not followed over the map's loads at this spin ({type(exc).__name__}: {exc})")
+    done = [c for c in columns if c is not None]
+    if not done:  # nothing answered: every point blank, every spin with its reason
+        blank = np.full((len(tuple(gammas)), 1, B.size), np.nan)
+        ref = DampingMap(B, np.asarray(w[:1], dtype=float), tuple(float(g) for g in gammas), N, check_resolution(N),
+                         *([blank] * 6), np.zeros((1, B.size), dtype=bool), np.full((1, B.size), np.nan),
+                         np.full(1, np.nan), np.full(1, np.nan), {"equilibria_s": 0.0, "spectra_s": 0.0, "points": 0})
+        done = [ref]
+    ref = done[0]
+
+    def join(name: str, axis: int) -> np.ndarray:
+        blank = np.full_like(getattr(ref, name), np.nan if getattr(ref, name).dtype.kind == "f" else False)
+        return np.concatenate([getattr(c, name) if c is not None else blank for c in columns], axis=axis)
+
+    per_gamma = {k: join(k, 1) for k in ("max_real", "decay", "zeta", "log_decrement", "frequency", "error")}
+    per_spin = {k: join(k, 0) for k in ("inside", "measure1", "curve_B", "primary_B")}
+    timing = {k: sum(c.timing[k] for c in columns if c is not None) for k in ref.timing}
+    return replace(ref, omega=np.asarray(w, dtype=float), timing=timing, **per_gamma, **per_spin), reasons
 
 
 def _curve_point(params: RodParameters, omega: float, N: int, B_ref: float, failed: str | None) -> dict[str, Any]:

@@ -16,6 +16,7 @@ import contextlib
 import io
 import math
 
+import numpy as np
 from hypothesis import example, given
 from hypothesis import strategies as st
 from scene_missions import (
@@ -124,3 +125,32 @@ def test_damping_map_regression_strong_tension(tmp_path):
     assert "boundary layers" in err and f"{layer:.2g}" in err and f"{LAYER_MIN:g}" in err, err
     assert "end_tension" in err, err
     assert not (tmp_path / "out").exists()
+
+
+def test_a_spin_that_cannot_be_answered_is_blank_with_its_reason(monkeypatch):
+    """A continuation of b1 that fails at one spin of the map (as b1 under strong tension failed to reach the
+    map's reference load) leaves that spin's column blank with the reason; the other spins are answered and
+    the report (JSON and HTML) is written."""
+    from etcheck.report import render
+    from etcheck.studies import damping_map as study
+
+    real = study.damping_map
+    w_bad = 0.3
+
+    def failing(params, B, w, **kw):
+        if np.any(np.asarray(w) == w_bad):
+            raise ValueError(f"B = 9.9 not reached on branch b1 (test failure at spin {w_bad})")
+        return real(params, B, w, **kw)
+
+    monkeypatch.setattr(study, "damping_map", failing)
+    results = study.damping_results(mission_from_dict(mission_dict(SET)), (SET["gamma"],), None, w_bad, 2, 2, N)
+    m = results["study"]
+    assert m["omega"] == [0.0, w_bad]
+    assert m["spin_not_answered"][0] is None
+    assert "not reached on branch b1" in m["spin_not_answered"][1]
+    assert all(z is None for z in m["damping_ratio"][0][1])  # the failed spin: blank
+    assert any(z is not None for z in m["damping_ratio"][0][0])  # the other spin: answered
+    out = render(results, ("json", "html"), kind="damping")
+    data = strict_json(out["json"].decode())
+    assert_all_finite(data)
+    assert "not reached on branch b1" in out["html"].decode()
