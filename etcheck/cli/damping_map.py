@@ -85,7 +85,10 @@ def _summary(results: dict, paths: list) -> None:
           f"(equilibria {s['timing']['equilibria_s']:.1f} s, spectra {s['timing']['spectra_s']:.1f} s)")
     largest = "not answered" if s["largest_error"] is None else f"{s['largest_error']:.1e}"
     print(f"  largest estimated error of max Re lambda: {largest}; unstable points (max Re lambda > "
-          f"{s['unstable_threshold']:g}) under the secondary pitchfork: {s['unstable_points']}")
+          f"{s['unstable_threshold']:g} by more than its error) under the secondary pitchfork: {s['unstable_points']}")
+    if s["unresolved_points"]:
+        print(f"  {s['unresolved_points']} points not resolved: max Re lambda above the threshold by less than its "
+              "error (raise --N)")
     if s.get("b1_born_unstable"):
         print(f"  note: {s['note']}")
     errs = [e for e in s["secondary_pitchfork_error"] if e is not None]

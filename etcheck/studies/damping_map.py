@@ -62,8 +62,13 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     m, spin_reasons = _map(params, B, w, gammas, N, B_ref)
     wc = scales.frequency
     zeta = m.zeta
-    # unstable as the stability module defines it (max Re lambda above its threshold), not merely > 0
-    unstable = np.nan_to_num(m.max_real, nan=-1.0) > THRESHOLD
+    # unstable as the stability module defines it (max Re lambda above its threshold, not merely > 0), and
+    # by more than the two-resolution error of max Re lambda; a point above the threshold by less than that
+    # error is not resolved (e.g. a tiny damping, whose decay rates lie below the solver's error)
+    growth = np.nan_to_num(m.max_real, nan=-1.0)
+    err = np.nan_to_num(m.error, nan=0.0)
+    unstable = growth > THRESHOLD + err
+    unresolved = (growth > THRESHOLD) & ~unstable
     # b1 at fixed load followed in spin: the paper's Hopf test (Sec. VII B, B = 1.2), at the smallest damping
     B_path = max(B_ref, min(1.2, 2.05 * pf0))  # the paper's B = 1.2 for SET
     try:
@@ -102,6 +107,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         "frequency_Hz": finite_or_none(m.frequency * wc / (2 * math.pi)), "error": finite_or_none(m.error),
         "spin_not_answered": spin_reasons,
         "unstable_points": int(np.count_nonzero(unstable)),
+        "unresolved_points": int(np.count_nonzero(unresolved)),
         "unstable_threshold": THRESHOLD,
         "smallest_damping_ratio": [float(np.nanmin(zeta[i])) if np.isfinite(zeta[i]).any() else None
                                    for i in range(len(m.gammas))],

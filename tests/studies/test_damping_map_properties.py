@@ -17,6 +17,7 @@ import io
 import math
 
 import numpy as np
+import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 from scene_missions import (
@@ -88,7 +89,12 @@ def test_damping_map_of_a_valid_scene(tmp_path_factory, s, spin_max):
     assert all(-1 <= z <= 1 for z in zeta), zeta
     # unstable as the stability module counts it: max Re lambda above its threshold, not merely positive
     assert m["unstable_threshold"] == THRESHOLD
-    assert m["unstable_points"] == sum(g > THRESHOLD for g in growth)
+    cells = [(g, e or 0.0, z) for pg, pe, pz in zip(m["max_real"], m["error"], m["damping_ratio"])
+             for rg, re_, rz in zip(pg, pe, pz) for g, e, z in zip(rg, re_, rz) if g is not None]
+    errors = [e for _, e, _ in cells]
+    # ... and by more than its stated error; points above the threshold by less are "not resolved"
+    assert m["unstable_points"] == sum(g > THRESHOLD + e for g, e in zip(growth, errors))
+    assert m["unresolved_points"] == sum(THRESHOLD < g <= THRESHOLD + e for g, e in zip(growth, errors))
     for B_star, why in zip(stars, m["secondary_pitchfork_reason"]):
         assert (B_star is None) == bool(why), (B_star, why)  # a missing B* says why
     assert isinstance(m["note"], str) and m["note"]
@@ -98,7 +104,9 @@ def test_damping_map_of_a_valid_scene(tmp_path_factory, s, spin_max):
         # the paper's setting (Sec. VII B): b1 is born stable from the double pitchfork and, with damping,
         # stays stable up to B*: no point of the map grows (under tension b2's pitchfork comes first and b1
         # is born unstable; at R = 1 b1 and b2 are one degenerate pair)
-        assert m["unstable_points"] == 0 and all(z > 0 for z in zeta), (m["max_real"], zeta)
+        # (a point whose growth rate is within its stated error of zero is not resolved, and is not counted)
+        resolved = [z for g, e, z in cells if abs(g) > e]
+        assert m["unstable_points"] == 0 and all(z is not None and z > 0 for z in resolved), (m["max_real"], m["error"])
     # B*(omega) at rest: the check's B*, within the two stated errors
     star = check_secondary_pitchfork(s)
     if stars[0] is None or star.get("secondary_pitchfork_B") is None:
@@ -154,3 +162,20 @@ def test_a_spin_that_cannot_be_answered_is_blank_with_its_reason(monkeypatch):
     data = strict_json(out["json"].decode())
     assert_all_finite(data)
     assert "not reached on branch b1" in out["html"].decode()
+
+
+#: found by the property above (thorough profile): a tiny damping on SET's R
+S_TINY_DAMPING = dict(R=0.5526, P=1e-9, T=0.0, gamma=1e-9, omega_factor=0.0, omega=0.0, length=1.0)
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "the map's error of max Re lambda does not bound its true error under a tiny damping: at gamma = 1e-9 "
+    "(SET's R, omega = 0.3, B = 1.46, N = 16) a decay rate of order 1e-10 comes out as +1.3e-5 with a stated "
+    "two-resolution error of 1.1e-5, so b1 is counted unstable below B* (the estimate is made in "
+    "etcheck.rod.branch_stability)"))
+def test_damping_map_regression_tiny_damping(tmp_path):
+    code, err = run_damping_map(write_mission(mission_dict(S_TINY_DAMPING), tmp_path), tmp_path / "out",
+                                "--points", "2x2", "--gammas", "1e-09", "--spin-max", "0.3", "--N", str(N))
+    assert code == 0, err
+    m = strict_json((tmp_path / "out" / "scene" / "damping-map" / "damping.json").read_text(encoding="utf-8"))["study"]
+    assert m["unstable_points"] == 0, (m["max_real"], m["error"])
