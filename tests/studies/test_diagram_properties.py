@@ -87,6 +87,7 @@ S_LIFTED = dict(R=0.5526, P=1e-3, T=0.0, gamma=0.04375, omega_factor=1.2, omega=
 @profile(default=1, thorough=60)
 @given(scenes(), st.sampled_from([2, 1]), st.booleans())
 @example(S_LIFTED, 1, False)
+@example(dict(R=1.0, P=1e-9, T=0.0, gamma=0.0, omega_factor=0.1, omega=0.1, length=1.0), 2, False)
 def test_diagram_of_a_valid_scene(s, branches, stability):
     mission = mission_from_dict(mission_dict(s, B=B_OPERATING))
     try:
@@ -115,10 +116,14 @@ def test_diagram_of_a_valid_scene(s, branches, stability):
         assert (B_c == 0.0 or kind == "unstable at start") == bool(d["lifted_off"]), (B_c, kind, d["lifted_off"])
     if attached and B_c:
         first, first_err = min(attached.values())
-        # no branch starts below the first critical load; with damping, and the lowest branch of each symmetry
-        # class drawn (b1 and b2, none lifted off), the first pitchfork is that load within the two stated
-        # errors (undamped, the tether may whirl before it buckles)
-        assert first >= B_c - err - first_err, (first, first_err, B_c, err)
+        # with damping no branch starts below the first critical load (Kelvin-Tait-Chetaev), and with the
+        # lowest branch of each symmetry class drawn (b1 and b2, none lifted off) the first pitchfork is that
+        # load within the two stated errors. Undamped, neither holds: the tether may whirl before it buckles,
+        # and a spinning isotropic tether's double zero eigenvalue can be gyroscopically stabilised, so that
+        # its first instability lies above the first pitchfork (found by this test: R = 1, omega = 0.1,
+        # pitchfork 0.78332, first instability 0.78746)
+        if s["gamma"] > 0:
+            assert first >= B_c - err - first_err, (first, first_err, B_c, err)
         if s["gamma"] > 0 and {"b1", "b2"} <= set(attached) and not d["lifted_off"]:
             assert abs(first - B_c) <= err + first_err, (first, first_err, B_c, err)
 
