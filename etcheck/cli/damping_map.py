@@ -35,7 +35,8 @@ def add_parser(sub) -> None:
         NAME, help="stability and damping of the coiled tether over load and spin",
         description="Damping margin of the coiled tether (b1) over load and spin for several dampings "
         "(cf. arXiv:0810.3668 Fig. 19).",
-        epilog="exit codes: 0 written, 2 bad input, 3 a solve failed",
+        epilog="exit codes: 0 written, 2 bad input or a scene outside rungs 2-3's validated range (the message names "
+        "the limit), 3 a solve failed",
     )
     p.add_argument("mission", help="mission file (TOML)")
     p.add_argument("--gammas", type=_floats, default=None,

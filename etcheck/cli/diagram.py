@@ -26,7 +26,7 @@ def add_parser(sub) -> None:
     p = sub.add_parser(
         NAME, help="bifurcation diagram of the buckled tether (post-buckling branches, stability, shapes)",
         description="Bifurcation diagram of the buckled tether (post-buckling branches, their stability and shapes).",
-        epilog="exit codes: 0 written, 2 bad input, 3 a solve failed. Example (the paper's Fig. 12, arXiv:0810.3668): "
+        epilog="exit codes: 0 written, 2 bad input or a scene outside rungs 2-3's validated range (the message names the limit), 3 a solve failed. Example (the paper's Fig. 12, arXiv:0810.3668): "
         "etcheck diagram missions/set.toml --spin 0.25 --branches 3",
     )
     p.add_argument("mission", help="mission file (TOML)")
