@@ -28,6 +28,7 @@ from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import THRESHOLD, CriticalKind, campbell, critical_load, scan_line, stability_map
 from etcheck.rod.static_map import stable_rows, static_curves
+from etcheck.rod.undamped_straight import undamped_critical
 from etcheck.scaling import RPM, Scaled
 
 
@@ -114,6 +115,26 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoin
     return load, spin, dc.stable, dc.spin_at_rest.value
 
 
+def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool):
+    """Critical load, critical spin point, stable spin windows, the spin they were sought up to and the
+    operating point's stability of an undamped tether (dimensionless): from the exact undamped determinant
+    (:func:`etcheck.rod.undamped_straight.undamped_critical`); where that cannot isolate a change of
+    stability (a tangency of two roots), from the spectral scans of :mod:`etcheck.rod.stability` on the
+    collocation route, and refused (SolverError) on the exact route."""
+    try:
+        u = undamped_critical(p, tol=options.tol)
+        return (_critical(u.critical_load, "critical load at the operating spin"), u.critical_spin, list(u.windows),
+                u.scanned_to, u.stable)
+    except (ArithmeticError, ValueError) as exc:
+        if exact:
+            raise SolverError(f"rung 1: the exact undamped determinant could not isolate a change of stability "
+                              f"({exc})") from exc
+    load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
+    spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
+    op = op or spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
+    return load, spin_point, windows, scanned_to, bool(op.stable)
+
+
 def _operating_spectrum(op, wc: float) -> OperatingSpectrum:
     lam = op.eigenvalues
     return {
@@ -176,7 +197,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     wc = sc.frequency
     damped = p.gamma > 0
     op = None
-    if not ((options.draft and damped) or exact):
+    if not (options.draft or exact):  # the spectrum at the operating point: the report's eigenvalues
         op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
         if not op.converged:
             fix = " (raise [check] resolution or leave it out)" if options.N else ""
@@ -189,16 +210,13 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     scanned_to = None
     if damped:
         load, spin, stable, rest = _damped_critical(p, options, route)
-    else:
-        load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
-        # one scan along the spin from rest gives the critical spin and all stable spin windows
-        spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
+    else:  # flutter possible
+        load, spin_point, windows, scanned_to, stable = _undamped_critical(p, options, N, op, exact)
         if p.omega > 0 or spin_point.converged or not CriticalKind(spin_point.kind).located:
             spin = _critical(spin_point, "critical spin at the operating load")
         else:  # informative only for a mission without spin: say so instead of stopping the check
             spin = {"value": None, "kind": CriticalKind.NOT_LOCATED, "bracket": [float(b) for b in spin_point.bracket],
                     "error": None, "message": spin_point.message, "N": N}
-        stable = bool(op.stable)
 
     out = {
         "model": ("rung 1, exact characteristic determinant" if exact else
@@ -235,6 +253,8 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     w_rows = np.linspace(0.0, w_hi, options.row_points)
     growth = cuts = campbell_data = None
     curve_B = curve_w = np.array([])
+    if exact and not damped:  # no frequencies and no map on this route: the critical values and windows above
+        return out
     if exact:  # no frequencies on this route; the damped rows end at the first determinant root
         cuts = _exact_rows(p, w_rows, B_hi, rest, options.tol)
     else:
