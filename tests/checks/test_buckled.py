@@ -32,6 +32,8 @@ def _diagram(scaled, omega, **kw):
     return bifurcation_diagram(scaled.params.with_(omega=omega), scaled.scales, DiagramOptions(**kw))
 
 
+@pytest.mark.slow  # 14 s: the check's diagram at rest; its pieces are tested in tests/rod (B* at 1.942, shapes at
+# measure1 = 0.04, b1 stable up to B*, b12 unstable) and the diagram command below
 def test_static_pair_b12_and_stability(set_scaled):
     d = _diagram(set_scaled, 0.0, branches=2, B_max=2.2)
     by = {b["label"]: b for b in d["branches"]}

@@ -364,6 +364,7 @@ def test_continuation_in_spin_and_tension(spun):
     json.dumps(bw.summary())
 
 
+@pytest.mark.slow  # 9 s: b12 at omega = 0.25; B* moving up with spin is tested in test_branch_stability
 def test_spin_resolves_the_connection():
     """omega = 0.25: spin pushes b1's secondary pitchfork up (Sec. 8) and b12 no
     longer reaches the straight rod: it runs from b1's secondary pitchfork to a
