@@ -350,7 +350,9 @@ def _cmdline(pid: int) -> str:
 def test_sigint_stops_cleanly_and_says_how_to_resume(tmp_path):
     proc = subprocess.Popen([sys.executable, "-m", "etcheck", "sweep", "missions/set.toml", "--length",
                              "40m:3km:30:log", "--spin", "0rpm:1.2rpm:30", "--format", "json", "--out", str(tmp_path)],
-                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                            cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            # Ctrl-C as at a terminal, even where pytest itself runs with SIGINT ignored (a background job)
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     cache = tmp_path / "set" / "sweep" / "cache"
     deadline = time.time() + 60
     while time.time() < deadline and (not cache.exists() or len(list(cache.glob("*.json"))) < 20):
