@@ -78,6 +78,7 @@ def test_b1_lifted_off_at_075(set_scaled):
     assert b2["pitchfork_B"] == pytest.approx(divergence_loads(set_scaled.params.with_(omega=0.75), n=1)[0], rel=1e-8)
 
 
+@pytest.mark.slow  # 4 s; the command on valid scenes: tests/cli/test_subcommand_properties.py
 def test_diagram_command_writes_reports(tmp_path):
     code = main(["diagram", "missions/set.toml", "--spin", "0.25", "--branches", "1", "--B-max", "0.9",
                  "--no-stability", "--out", str(tmp_path)])
@@ -173,6 +174,7 @@ def test_many_coils_are_not_attempted(tmp_path):
 # --- rung 3 for users: the damping map (cf. Fig. fig:hopf) ------------------------------------------
 
 
+@pytest.mark.slow  # 5 s; the command's properties: tests/studies/test_damping_map_properties.py
 def test_damping_map_command(tmp_path):
     code = main(["damping-map", "missions/set.toml", "--points", "3x2", "--B-max", "2.4", "--spin-max", "0.5",
                  "--gammas", "0.01,0.04375", "--out", str(tmp_path)])

@@ -27,6 +27,7 @@ def test_heavy_damping_spectrum_converges_outside_the_cluster(gamma):
     assert fixed.eigenvalues[0] == pytest.approx(s.eigenvalues[0], rel=1e-8)
 
 
+@pytest.mark.slow  # 7 s of spectral scans; the damped pencils against the scans: tests/studies/test_sweep.py
 def test_damping_does_not_move_the_divergence_load():
     # Kelvin-Tait-Chetaev: with damping, stability is lost where the static operator is singular
     ref = first_static_load(0.001, 0.5, F_CLAMPED, omega=0.2, B_max=1.0)
@@ -36,6 +37,7 @@ def test_damping_does_not_move_the_divergence_load():
         assert c.value == pytest.approx(ref, rel=1e-9)
 
 
+@pytest.mark.slow  # 5 s; tension against independent solvers: tests/rod/test_exact_straight.py, tests/checks
 def test_strong_tension_raises_the_critical_load():
     T = 0.5  # f T = 250: boundary layers of width ~ 0.06
     c = critical_load(RodParameters(P=0.001, R=0.3, Gamma=0.77, omega=0.1, T=T, gamma=0.04375), N=32)
