@@ -84,6 +84,7 @@ S_SET = dict(R=21 / 38, P=1e-3, T=0.0, gamma=0.04375, omega_factor=0.0, omega=0.
 S_LIFTED = dict(R=0.5526, P=1e-3, T=0.0, gamma=0.04375, omega_factor=1.2, omega=1.2 * math.sqrt(0.5526), length=100.0)
 
 
+@pytest.mark.slow  # 6 s: the diagram command runs a valid scene in tests/cli (HYPOTHESIS_PROFILE=thorough: many)
 @profile(default=1, thorough=60)
 @given(scenes(), st.sampled_from([2, 1]), st.booleans())
 @example(S_LIFTED, 1, False)

@@ -219,7 +219,8 @@ def _sign_change_at(g, x, rel=1e-6, below: int = 40) -> bool:
 
 
 @pytest.mark.parametrize("kw", [dict(P=1e-8, omega=0.5), dict(R=0.01, omega=0.05), dict(R=0.01),
-                                dict(B=1e4, omega=0.3), dict(omega=7.5), dict(T=100.0), dict(R=0.05, T=3.0, omega=2.0)])
+                                dict(B=1e4, omega=0.3), dict(omega=7.5), dict(T=100.0),
+                                pytest.param(dict(R=0.05, T=3.0, omega=2.0), marks=pytest.mark.slow)])  # 6 s: tension and spin together also in tests/rod/test_exact_straight.py
 def test_extremes_converge_and_agree_with_exact_shooting(kw):
     """Independent values: the exact (matrix-exponential, 50-digit under tension) static determinant."""
     from independent import static_determinant
@@ -362,6 +363,7 @@ def test_sigint_stops_cleanly_and_says_how_to_resume(tmp_path):
     assert proc.returncode == 130 and "resume" in err and "Traceback" not in err
 
 
+@pytest.mark.slow  # 6 s: a local dask cluster; the scheduler path's errors are tested below, the chunks are the local ones
 def test_dask_local_cluster_gives_the_same_data():
     distributed = pytest.importorskip("distributed")
     m = _spin_mission()
