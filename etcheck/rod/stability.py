@@ -70,6 +70,7 @@ __all__ = [
     "critical_spin",
     "stable_intervals",
     "scan_line",
+    "stable_windows",
     "stability_map",
     "campbell",
 ]
@@ -406,6 +407,21 @@ def _default_hi(params: RodParameters, axis: str) -> float:
     return float(2.0 * distinct[-1]) if distinct.size else 1.0
 
 
+def stable_windows(changes, lo: float, hi: float, start_unstable: bool) -> list[tuple[float, float]]:
+    """The stable intervals of [lo, hi] from the ordered changes of stability along a line (each with
+    ``value`` and ``to_unstable``), given whether the line starts unstable (dimensionless)."""
+    windows, start = [], None if start_unstable else lo
+    for c in changes:
+        if c.to_unstable and start is not None:
+            windows.append((float(start), float(c.value)))
+            start = None
+        elif not c.to_unstable and start is None:
+            start = c.value
+    if start is not None:
+        windows.append((float(start), float(hi)))
+    return windows
+
+
 def _scan(params: RodParameters, axis: str, tol: float, hi: float | None, N: int,
           n_scan: int, k: int, refine_error: bool = True) -> tuple[CriticalPoint, list, float]:
     """One scan of a parameter line: its first loss of stability, its stable
@@ -414,16 +430,7 @@ def _scan(params: RodParameters, axis: str, tol: float, hi: float | None, N: int
     if hi is None:
         hi = max(_default_hi(params, axis), lo + 1.0 if axis == "omega" else lo)
     start_unstable, changes, line = _changes(params, axis, lo, hi, tol, N, n_scan, k, refine_error)
-    windows = []
-    cur = None if start_unstable else lo
-    for c in changes:
-        if c.to_unstable and cur is not None:
-            windows.append((float(cur), float(c.value)))
-            cur = None
-        elif not c.to_unstable and cur is None:
-            cur = c.value
-    if cur is not None:
-        windows.append((float(cur), float(hi)))
+    windows = stable_windows(changes, lo, hi, start_unstable)
     if start_unstable:
         g = line.growth(lo)
         return CriticalPoint(axis, float(lo), CriticalKind.UNSTABLE_AT_START, (lo, lo), 0.0, True,

@@ -68,7 +68,7 @@ from scipy.optimize import brentq, minimize_scalar
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur
 from .parameters import RodParameters
-from .stability import CriticalKind, CriticalPoint
+from .stability import CriticalKind, CriticalPoint, stable_windows
 
 __all__ = ["MODEL", "characteristic_mu", "Crossing", "StabilityLine", "stability_line", "UndampedCritical",
            "undamped_critical"]
@@ -634,15 +634,7 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     flags = [_unstable(s, n) for s, n in zip(smp, N)]
     crossings = [_locate(line, smp[i], N[i], smp[i + 1], N[i + 1], rtol)
                  for i in range(len(smp) - 1) if flags[i] != flags[i + 1]]
-    windows, start = [], None if flags[0] else lo
-    for c in crossings:
-        if c.to_unstable and start is not None:
-            windows.append((float(start), float(c.value)))
-            start = None
-        elif not c.to_unstable and start is None:
-            start = c.value
-    if start is not None:
-        windows.append((float(start), float(hi)))
+    windows = stable_windows(crossings, lo, hi, bool(flags[0]))
     return StabilityLine(axis, float(lo), float(hi), bool(flags[0]), tuple(crossings), tuple(windows),
                          _pairs(smp[-1], N[-1]), line.evaluations)
 
