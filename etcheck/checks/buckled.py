@@ -32,6 +32,7 @@ from etcheck.checks.coil import (
     spin_limit,
     state_stability,
 )
+from etcheck.checks.sections import BifurcationDiagram, BranchRecord, BuckledOperatingPoint, PostbucklingSection, Shape
 from etcheck.errors import SolverError
 from etcheck.rod import equilibria as eq
 from etcheck.rod.branch_stability import secondary_pitchfork
@@ -134,14 +135,14 @@ def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, LiftoffS
     return out
 
 
-def _shape(state: eq.Equilibrium, L: float) -> dict[str, Any]:
+def _shape(state: eq.Equilibrium, L: float) -> Shape:
     s = np.linspace(0.0, 1.0, SHAPE_POINTS)
     x = state.x0(s)
     return {"s": s.tolist(), "x": x[:, 0].tolist(), "y": x[:, 1].tolist(), "z": x[:, 2].tolist(),
             "x_m": (x[:, 0] * L).tolist(), "y_m": (x[:, 1] * L).tolist(), "z_m": (x[:, 2] * L).tolist()}
 
 
-def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float) -> dict:
+def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float) -> BranchRecord:
     L = scales.length
     t0 = time.perf_counter()
     check = resolution_check(branch)
@@ -177,7 +178,7 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     return out
 
 
-def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DiagramOptions()) -> dict:
+def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DiagramOptions()) -> BifurcationDiagram:
     """Branches of whirling equilibria of the tether in the load B (rung 2), with stability (rung 3).
 
     ``params`` fixes omega, T, R, ... (B is the continuation parameter).
@@ -244,7 +245,7 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
     }, kept
 
 
-def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: Branch | None = None) -> dict:
+def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: Branch | None = None) -> BuckledOperatingPoint:
     """The post-buckled tether at the operating load on b1 (rung 2) and its stability (rung 3).
 
     For an operating B past b1's pitchfork at the operating spin and tension;
@@ -319,7 +320,7 @@ def _secondary_pitchfork(params: RodParameters, branch: Branch, N: int) -> dict:
     return {"B": pt.B, "error": pt.error / pt.B, "reason": ""}
 
 
-def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, required: float, N: int = 32) -> dict:
+def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, required: float, N: int = 32) -> PostbucklingSection:
     """Rung 2/3 answers for a scene near or past its first critical load B_c (dimensionless).
 
     The first branch b1 at the operating spin and tension (with stability at

@@ -19,10 +19,10 @@ from __future__ import annotations
 import math
 import time
 from collections import Counter
-from typing import Any
 
 import numpy as np
 
+from etcheck.checks.sections import CoilRegion, DampingSensitivity
 from etcheck.jsonable import finite_or_none
 from etcheck.rod import branches as br
 from etcheck.rod import equilibria as eq
@@ -100,7 +100,7 @@ def eigenvalue_paths(branch, gamma: float, k: int = 6) -> dict:
 DAMPING_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
 
 
-def damping_sensitivity(state: eq.Equilibrium, scales: Scales) -> list[dict]:
+def damping_sensitivity(state: eq.Equilibrium, scales: Scales) -> list[DampingSensitivity]:
     """Least-damped mode of a state for the scene's damping times DAMPING_FACTORS (one operator, rung 3)."""
     op = damped_operator(state.params, state, state.N)
     wc = scales.frequency
@@ -127,7 +127,7 @@ def secondary_pitchfork_at(params: RodParameters, omega: float, N: int, N_check:
 
 
 def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff_omega: float, n: int = 6,
-                N: int = 24, n_edge: int = 41) -> dict[str, Any]:
+                N: int = 24, n_edge: int = 41) -> CoilRegion:
     """The stable region of b1 in the (load, spin) plane at the scene's tension (damping-independent).
 
     Its lower edge is b1's pitchfork on the straight tether (the class-S1
