@@ -263,6 +263,11 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: 
             if start is not None and params.B > start.load:
                 raise SolverError(f"rung 2: {why}")
             return {"available": False, "reason": why}
+    lo, hi = float(np.min(branch.values)), float(np.max(branch.values))
+    if not lo <= params.B <= hi:  # e.g. past the straight tether's first loss of stability, short of b1's pitchfork
+        return {"available": False,
+                "reason": f"b1 spans B = {lo:.6g} .. {hi:.6g} at this spin and tension and does not reach the operating "
+                          f"load B = {params.B:.6g}: the straight tether first loses stability to another mode here"}
     st = state_at(branch, params.B)
     B = st.params.B
     check = resolution_check(branch)

@@ -151,6 +151,8 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
 
 def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
     kind = point["kind"]
+    if point["value"] is None and kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND):
+        return incomplete_margin(name, unit, operating, required, 1, point["message"])
     if kind == CriticalKind.UNSTABLE_AT_START:
         return ratio_margin(name, unit, 0.0, operating, required, 1, 0.0, why_unstable)
     if kind == CriticalKind.NONE_FOUND:

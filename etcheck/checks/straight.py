@@ -6,20 +6,22 @@ Everything is solved dimensionless in :mod:`etcheck.rod.stability` and
 point, the critical load at the operating spin, the critical spin at the
 operating load, the Campbell diagram and the stability map of the
 (I·B0, spin rate) plane) and converts the answers to SI with the mission's
-:class:`~etcheck.scaling.Scales`. Nothing is reported from a solve that did
-not converge: that raises :class:`~etcheck.errors.SolverError`.
+:class:`~etcheck.scaling.Scales`. A critical value whose error estimate
+misses the tolerance is reported with that estimate (its margin is judged on
+the pessimistic side and says so), and as "not located" when the estimate
+exceeds :data:`REPORTABLE` (the margin is then incomplete): the check never
+stops on a hard root.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from etcheck.checks.plan import EXACT, SPECTRAL
 from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum
-from etcheck.errors import SolverError
 from etcheck.jsonable import finite_or_none
 from etcheck.rod.analytic import critical_loads
 from etcheck.rod.convergence import accuracy_table, reference_resolution
@@ -27,6 +29,7 @@ from etcheck.rod.damped_critical import damped_critical
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import THRESHOLD, CriticalKind, campbell, critical_load, scan_line, stability_map
+from etcheck.rod.stability import CriticalPoint as StabilityPoint
 from etcheck.rod.static_map import stable_rows, static_curves
 from etcheck.rod.undamped_straight import undamped_critical
 from etcheck.scaling import RPM, Scaled
@@ -65,12 +68,26 @@ class WhirlOptions:
 DEFAULT_OPTIONS = WhirlOptions()
 
 
+#: Relative error estimate up to which a critical value that missed its tolerance is still reported
+#: (with that estimate, which its margin carries); beyond it the value is "not located".
+REPORTABLE = 1e-3
+
+
+def _unconverged(point: CriticalPoint, what: str, error: float | None) -> CriticalPoint:
+    """A located critical value whose error estimate missed the tolerance: kept with its estimate
+    when that is at most REPORTABLE relative, else "not located" (its margin is then incomplete)."""
+    value = point["value"]
+    if value is not None and error is not None and error <= REPORTABLE * abs(value):
+        return point | {"message": f"{point['message']}; the {what} missed its tolerance: it is reported with "
+                                   f"its error estimate {error:.1e} (the margin is judged on its pessimistic side)"}
+    est = f"error estimate {error:.1e}" if error is not None else "no error estimate"
+    return point | {"value": None, "kind": CriticalKind.NOT_LOCATED, "error": None,
+                    "message": f"the {what} was not located: {est} ({point['message']})"}
+
+
 def _critical(point, what: str) -> CriticalPoint:
-    """A CriticalPoint as data; refuses one whose location did not converge."""
-    located = CriticalKind(point.kind).located
-    if located and not point.converged:
-        raise SolverError(f"rung 1: the {what} was not located to tolerance: {point.message}")
-    return {
+    """A CriticalPoint as data (an unconverged one through :func:`_unconverged`)."""
+    out: CriticalPoint = {
         "value": point.value if math.isfinite(point.value) else None,
         "kind": point.kind,
         "bracket": [float(b) for b in point.bracket],
@@ -78,13 +95,22 @@ def _critical(point, what: str) -> CriticalPoint:
         "message": point.message,
         "N": point.N,
     }
+    if CriticalKind(point.kind).located and not point.converged:
+        return _unconverged(out, what, out["error"])
+    return out
 
 
 def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
-    """A first pencil root (damped rod, Kelvin-Tait-Chetaev) as a critical point; refuses an unconverged one."""
+    """A first pencil root (damped rod, Kelvin-Tait-Chetaev) as a critical point (an unconverged or
+    failed one through :func:`_unconverged`)."""
     if not root.converged:
-        raise SolverError(f"rung 1: the {what} was not located to tolerance ({root.model}): error estimate "
-                          f"{root.error:.1e}" + (f" at N = {root.N}" if root.N else ""))
+        value = root.value if math.isfinite(root.value) and root.value > 0 else None
+        error = root.error * value if value is not None and math.isfinite(root.error) else None
+        at = f" at N = {root.N}" if root.N else ""
+        point: CriticalPoint = {"value": value, "kind": CriticalKind.DIVERGENCE,
+                                "bracket": [float(value or 0.0)] * 2, "error": error,
+                                "message": f"first root of the static operator ({root.model}){at}", "N": root.N}
+        return _unconverged(point, what, error)
     if root.value == 0:
         kind = CriticalKind.UNSTABLE_AT_START
     elif math.isinf(root.value):
@@ -106,8 +132,6 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoin
         dc = exact_critical(p, tol=max(options.tol, options.eig_tol))
     else:
         dc = damped_critical(p, tol=options.tol)
-    if not dc.converged:
-        raise SolverError(f"rung 1: {dc.message}")
     B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)
     w_hi = 1.6 * max(p.omega, math.sqrt(p.R))
     load = _pencil_critical(dc.critical_load, "critical load at the operating spin", B_hi)
@@ -120,16 +144,17 @@ def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool):
     operating point's stability of an undamped tether (dimensionless): from the exact undamped determinant
     (:func:`etcheck.rod.undamped_straight.undamped_critical`); where that cannot isolate a change of
     stability (a tangency of two roots), from the spectral scans of :mod:`etcheck.rod.stability` on the
-    collocation route, and refused (SolverError) on the exact route."""
+    collocation route, and "not located" on the exact route (its margins are then incomplete)."""
     try:
         u = undamped_critical(p, tol=options.tol)
-        return (_critical(u.critical_load, "critical load at the operating spin"), u.critical_spin, list(u.windows),
-                u.scanned_to, u.stable)
+        return u.critical_load, u.critical_spin, list(u.windows), u.scanned_to, u.stable
     except (ArithmeticError, ValueError) as exc:
-        if exact:
-            raise SolverError(f"rung 1: the exact undamped determinant could not isolate a change of stability "
-                              f"({exc})") from exc
-    load = _critical(critical_load(p.with_(B=0.0), tol=options.tol, N=N), "critical load at the operating spin")
+        why = f"the exact undamped determinant could not isolate a change of stability ({exc})"
+    if exact:  # boundary layers too thin for collocation: no second route
+        lost = [StabilityPoint(axis, math.nan, CriticalKind.NOT_LOCATED, (0.0, 0.0), math.nan, False, why, 0)
+                for axis in ("B", "omega")]
+        return lost[0], lost[1], [], None, False
+    load = critical_load(p.with_(B=0.0), tol=options.tol, N=N)
     spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
     op = op or spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
     return load, spin_point, windows, scanned_to, bool(op.stable)
@@ -199,9 +224,10 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     op = None
     if not (options.draft or exact):  # the spectrum at the operating point: the report's eigenvalues
         op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
-        if not op.converged:
+        if not op.converged:  # shown as such; the critical values below do not depend on it
             fix = " (raise [check] resolution or leave it out)" if options.N else ""
-            raise SolverError(f"rung 1: the operating-point spectrum did not converge: {op.message}{fix}")
+            op = replace(op, message=f"NOT CONVERGED to the tolerance {options.eig_tol:.0e}: {op.message}{fix}; "
+                                     f"each eigenvalue carries its own error estimate")
 
     # the critical points are located at the resolution the operating spectrum
     # needed (boundary layers under strong tension need more than the default)
@@ -211,12 +237,9 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     if damped:
         load, spin, stable, rest = _damped_critical(p, options, route)
     else:  # flutter possible
-        load, spin_point, windows, scanned_to, stable = _undamped_critical(p, options, N, op, exact)
-        if p.omega > 0 or spin_point.converged or not CriticalKind(spin_point.kind).located:
-            spin = _critical(spin_point, "critical spin at the operating load")
-        else:  # informative only for a mission without spin: say so instead of stopping the check
-            spin = {"value": None, "kind": CriticalKind.NOT_LOCATED, "bracket": [float(b) for b in spin_point.bracket],
-                    "error": None, "message": spin_point.message, "N": N}
+        load_point, spin_point, windows, scanned_to, stable = _undamped_critical(p, options, N, op, exact)
+        load = _critical(load_point, "critical load at the operating spin")
+        spin = _critical(spin_point, "critical spin at the operating load")
 
     out = {
         "model": ("rung 1, exact characteristic determinant" if exact else

@@ -257,6 +257,14 @@ def select_pairs(lam: np.ndarray, k: int) -> np.ndarray:
     return keep
 
 
+def _with_unstable(lam: np.ndarray, want: np.ndarray) -> np.ndarray:
+    """``want`` and every other computed eigenvalue with Re lambda > 1e-9 (Im >= 0): a growing mode is always
+    reported. With heavy damping the overdamped modes pile up towards -1/gamma and can outnumber the pairs
+    between 0 and a mode that grows faster than 1/gamma, which the least-|lambda| pairs would then miss."""
+    extra = np.nonzero((lam.real > 1e-9) & (lam.imag >= 0))[0]
+    return np.concatenate([want, np.setdiff1d(extra, want)]).astype(int)
+
+
 def _normalise_modes(Y: np.ndarray, N: int, s_plot: np.ndarray) -> np.ndarray:
     col = collocation(N)
     P = resample_matrix(col.s, s_plot, lobatto_weights(N))
@@ -307,7 +315,7 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
     for n_c, n_f in pairs:
         lam_c, _ = solve(n_c, False)
         lam_f, V_f = solve(n_f, with_modes)
-        want = select_pairs(lam_f, k)
+        want = _with_unstable(lam_f, select_pairs(lam_f, k))
         # Error estimate of every wanted value: distance to its partner.
         m = match_spectra(lam_f, lam_c, accept=np.inf, floor=ERROR_FLOOR)
         err_all = np.full(lam_f.size, np.inf)

@@ -192,17 +192,21 @@ class StraightFamily:
         return lam[np.argsort(np.abs(lam - SIGMA), kind="stable")][:nev]
 
     def growth(self, B: float, omega: float, T: float, k: int = K_MODES) -> float:
-        """max Re lambda over the k least-|lambda| pairs."""
+        """max Re lambda over the 2k + 4 eigenvalues nearest the shift (at least the k least-|lambda| pairs: with
+        heavy damping the overdamped modes piling up towards -1/gamma can push a growing one past them)."""
         lam = self.eigenvalues(B, omega, T, 2 * k + 4)
-        return float(np.max(lam[select_pairs(lam, k)].real))
+        return float(np.max(lam.real))
 
-    def pencil_roots(self, axis: str, B: float, omega: float, T: float) -> np.ndarray:
+    def pencil_roots(self, axis: str, B: float, omega: float, T: float, imag_tol: float = 1e-8) -> np.ndarray:
         """Real parameter values on ``axis`` where A0 is singular (others fixed).
 
         Returns values of B (or T) or of omega^2 (axis "omega"). ``axis =
         "ray"`` gives the values t where A0(t B, sqrt(t) omega, T) is singular
         (load and spin squared scaled together from zero). One QZ of the
-        reduced pencil (phi, m eliminated once for the family).
+        reduced pencil (phi, m eliminated once for the family). A root
+        counts as real when its imaginary part is below ``imag_tol`` times
+        its modulus (a double root, R = 1, splits by about sqrt(eps) under
+        round-off, possibly into a complex pair: pass a looser tolerance).
         """
         r = self.reduced
         vals = {"B": B, "omega": omega, "T": T}
@@ -216,7 +220,7 @@ class StraightFamily:
         alpha, beta = sla.eig(A0, -n0, right=False, homogeneous_eigvals=True, check_finite=False)
         ok = np.abs(beta) > 1e-13 * np.abs(alpha)
         x = alpha[ok] / beta[ok]
-        real = np.abs(x.imag) <= 1e-8 * np.maximum(np.abs(x), 1e-300)
+        real = np.abs(x.imag) <= imag_tol * np.maximum(np.abs(x), 1e-300)
         return np.sort(x[real].real)
 
 

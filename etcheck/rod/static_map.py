@@ -32,7 +32,10 @@ so the number of eigenvalues with Re lambda > 0 changes there by +1
 small space: u^T dA0 v = c^T W E e and u^T A1 v = -c^T H D e with c, e the
 left and right null vectors of I + W D, E the block of the moving parameter and
 H = V^T K^-1 A1 K^-1 U. A cluster of m coincident roots (the double load roots
-at omega = 0) gives m speeds from the m x m version of the same ratio. Counting
+at omega = 0, and every static point of an isotropic rod, R = 1, where round-off
+splits them by about sqrt(eps): :data:`DOUBLE`) gives m speeds from the m x m
+version of the same ratio; with spin they can be a complex pair, and each
+eigenvalue crosses to the side of the sign of Re(speed). Counting
 from the unloaded rod at rest (stable for T >= 0) gives the number of unstable
 eigenvalues of every piece of every row without an eigenvalue solve; a piece
 whose count cannot be told (a zero speed, T < 0) is classified by one growth
@@ -56,6 +59,9 @@ __all__ = ["StaticPlane", "StaticCurves", "plane", "static_curves", "stable_rows
 
 #: Roots closer than this (relative) are one multiple root.
 CLUSTER = 1e-9
+#: R = 1: every static point is double (the u and v planes are alike) and round-off splits it by about
+#: sqrt(eps), really or into a complex pair: roots this close (relative) are one double root.
+DOUBLE = 1e-6
 #: A crossing speed below this (relative to its parts) cannot be told from zero.
 SPEED_FLOOR = 1e-10
 #: Loads about which A0 is expanded, tried in turn until it is regular there (0: the unloaded rod).
@@ -75,6 +81,7 @@ class StaticPlane:
 
     def __init__(self, fam: StraightFamily, T: float):
         self.fam, self.T = fam, float(T)
+        self.cluster = DOUBLE if fam.params.R == 1.0 else CLUSTER
         rB, rw = _rows(fam.AB), _rows(fam.Aw)
         self.nB = rB.size
         rows = np.concatenate([rB, rw])
@@ -116,7 +123,7 @@ class StaticPlane:
         mu = sla.eigvals(S, check_finite=False)
         mu = mu[np.abs(mu) > 1e-14 * max(np.max(np.abs(mu), initial=0.0), 1e-300)]
         x = -1.0 / mu
-        x = np.sort(x[np.abs(x.imag) <= 1e-8 * np.abs(x)].real)
+        x = np.sort(x[np.abs(x.imag) <= max(self.cluster, 1e-8) * np.abs(x)].real)
         return x + (self.B0 if axis == "B" else 0.0), (axis, other, G, C, S)
 
     def changes(self, roots: np.ndarray, data: tuple, omega: float) -> np.ndarray:
@@ -133,7 +140,7 @@ class StaticPlane:
         i = 0
         while i < roots.size:
             j = i + 1
-            while j < roots.size and roots[j] - roots[i] <= CLUSTER * max(abs(roots[i]), 1.0):
+            while j < roots.size and roots[j] - roots[i] <= self.cluster * max(abs(roots[i]), 1.0):
                 j += 1
             out[i] = self._change(offsets[i], j - i, data, H)
             i = j
@@ -162,8 +169,11 @@ class StaticPlane:
         den = Cl.T @ (H @ E)  # -u^T A1 v (E now holds D e)
         speed = np.atleast_1d(sla.eigvals(num, den, check_finite=False) if m > 1 else num[0, 0] / den[0, 0])
         scale = np.linalg.norm(num) / max(np.linalg.norm(den), 1e-300)
+        # eigenvalues leave lambda = 0 as lambda = -dx / speed: Re lambda has the sign of Re(speed) (dx > 0). At
+        # a multiple root (R = 1) the Coriolis coupling inside the null space can make the speeds a complex pair.
         if (not np.all(np.isfinite(speed)) or np.any(np.abs(speed) <= SPEED_FLOOR * scale)
-                or np.any(np.abs(speed.imag) > 1e-6 * np.abs(speed))):
+                or np.any(np.abs(speed.real) <= 1e-6 * np.abs(speed))
+                or (m == 1 and abs(speed[0].imag) > 1e-6 * abs(speed[0]))):
             return math.nan
         return float(np.sum(np.sign(speed.real)))
 
@@ -246,7 +256,7 @@ def _rest_crossings(params: RodParameters, pl: StaticPlane) -> tuple[np.ndarray,
     i = 0
     while i < roots.size:  # A1 is taken at each cluster's own spin (its gyroscopic part depends on it)
         j = i + 1
-        while j < roots.size and roots[j] - roots[i] <= CLUSTER * max(roots[i], 1.0):
+        while j < roots.size and roots[j] - roots[i] <= pl.cluster * max(roots[i], 1.0):
             j += 1
         steps[i:j] = pl.changes(roots[i:j], data, math.sqrt(roots[i]))
         i = j

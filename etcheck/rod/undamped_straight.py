@@ -198,17 +198,30 @@ def _smoothing(k: np.ndarray) -> np.ndarray:
     return np.exp(0.5 * np.sum(np.abs(x) - (x**4 + 1.0) ** 0.25, axis=-1))
 
 
+#: Evaluations by the ordered-Schur route (a Python loop, ~1 ms each) that one line may spend where the
+#: exponential basis does not apply (near-coincident exponents: R near 1 with large rotary inertia P);
+#: past it the line gives up (ArithmeticError) and the check takes the spectral scans instead.
+SCHUR_BUDGET = 3000
+
+
 def characteristic_mu(params: RodParameters, mu, B=None, omega=None, T=None, route: str = "auto",
-                      factor: float = 1.0, shift: int = 0) -> np.ndarray:
+                      factor: float = 1.0, shift: int = 0, schur_budget: float = math.inf) -> np.ndarray:
     """E(mu; B, omega, T): the real characteristic function of the undamped straight rod.
 
     ``mu`` = -lambda^2 (array); B, omega, T default to the parameters' values
     and broadcast with mu. ``route``: "auto" (exponential basis, Schur where
     it does not apply), "exponential" (NaN where it does not apply) or
     "schur"; ``factor``, ``shift``: other wavenumber scales and split (a
-    second formulation). Dimensionless, real; zero exactly at the
-    eigenvalues lambda = +-sqrt(-mu).
+    second formulation); ``schur_budget``: the most points that may take the
+    Schur route (ArithmeticError past it). Dimensionless, real; zero exactly
+    at the eigenvalues lambda = +-sqrt(-mu).
     """
+    return _characteristic(params, mu, B, omega, T, route, factor, shift, schur_budget)[0]
+
+
+def _characteristic(params: RodParameters, mu, B=None, omega=None, T=None, route: str = "auto",
+                    factor: float = 1.0, shift: int = 0, schur_budget: float = math.inf) -> tuple[np.ndarray, int]:
+    """:func:`characteristic_mu` and the number of points that took the Schur route."""
     B = params.B if B is None else B
     omega = params.omega if omega is None else omega
     T = params.T if T is None else T
@@ -222,10 +235,14 @@ def characteristic_mu(params: RodParameters, mu, B=None, omega=None, T=None, rou
     if route != "schur":
         out = _exponential(params.R, params.f, B + 0j, alpha, beta, c0, c1, ku, kv, shift)
     if route != "exponential":
-        for i in np.nonzero(~np.isfinite(out))[0]:
+        slow = np.nonzero(~np.isfinite(out))[0]
+        if slow.size > schur_budget:
+            raise ArithmeticError(f"the exponential basis does not apply at {slow.size} points (near-coincident "
+                                  f"exponents) and the Schur route's budget is spent")
+        for i in slow:
             A = _companion(params.R, params.f, B[i], alpha[i], beta[i], c0[i], c1[i], ku[i], kv[i])
             out[i] = _schur(A, _BC_REAL, shift).value * _smoothing(np.linalg.eigvals(A))
-    return out.real.reshape(shape)
+    return out.real.reshape(shape), int(slow.size) if route != "exponential" else 0
 
 
 # --- the real roots in mu at one point of a line -------------------------------------------
@@ -304,13 +321,17 @@ class _Line:
         self.mu = np.unique(np.concatenate([neg, [0.0], pos[1:], [self.mu_cut], above]))
         self.i_cut = int(np.nonzero(self.mu == self.mu_cut)[0][0])
         self.evaluations = 0
+        self.schur_left = SCHUR_BUDGET
 
     def E(self, p, mu) -> np.ndarray:
         """E at (axis = p, mu), broadcast."""
         p, mu = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(mu, dtype=float))
         self.evaluations += p.size
-        return characteristic_mu(self.params, mu, **{self.axis: p}, route=self.route, factor=self.factor,
-                                 shift=self.shift)
+        out, slow = _characteristic(self.params, mu, **{self.axis: p}, route=self.route, factor=self.factor,
+                                    shift=self.shift, schur_budget=self.schur_left)
+        if self.route == "auto":
+            self.schur_left -= slow
+        return out
 
     def samples(self, ps) -> list[_Sample]:
         """The real roots of E on the mu grid at each p of ps (one vectorised evaluation, then

@@ -64,7 +64,7 @@ def _answer(data: dict):
     try:
         return check(data).results
     except EtcheckError as exc:
-        assert exc.exit_code in (2, 3) and str(exc)
+        assert exc.exit_code == 2 and str(exc)  # a refusal with its message; never a failed solve (3)
         return None
 
 
