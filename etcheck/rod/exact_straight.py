@@ -707,13 +707,18 @@ _BLOCK = 16
 def _scan(g: _Counter, step: float, limit: float, rtol: float):
     """First zero of g on (0, limit]: a sign change, or a close pair found by
     minimising |g| at a local minimum of the samples. Returns (x, bracket) with x
-    set for a touching zero, or None. Steps of ``step`` up to 64 steps, then
-    geometric (1/16 of the current value)."""
+    set for a touching zero, or None. First a block halving towards zero (step / 2 .. step / 2^16: a
+    root much smaller than expected, e.g. the spin roots just below the static load, which come as a
+    close pair there), then steps of ``step`` up to 64 steps, then geometric (1/16 of the current value)."""
     xs_prev = np.array([0.0])
     gs_prev = g.many(xs_prev)
     x = 0.0
+    first = True
     while x < limit:
-        if x < 64 * step:
+        if first:
+            xs = step * 2.0 ** -np.arange(_BLOCK, 0, -1)
+            first = False
+        elif x < 64 * step:
             xs = x + step * np.arange(1, _BLOCK + 1)
         else:
             xs = x * (1.0 + 1.0 / 16) ** np.arange(1, _BLOCK + 1)

@@ -62,3 +62,30 @@ def test_liftoff_spin_errors_bound_the_true_error():
             _check(np.array([est.omega]), np.array([est.error]), np.array([abs(est.omega_coarse - ref)]), np.array([ref]))
             checked += 1
     assert checked >= 4
+
+
+#: damped critical values next to the end of their line, where they vanish like a square root: the load
+#: root just below the unloaded rod's critical spin, the spin root just below the static load
+NEAR_END = [
+    ("load near the critical spin, R = 1", RodParameters(P=1e-6, R=1.0, Gamma=0.76923, gamma=0.1, omega=0.99999), "B"),
+    ("load near the critical spin, SET", RodParameters(P=1e-3, R=21 / 38, Gamma=0.76923, gamma=0.1,
+                                                       omega=0.74338), "B"),
+    ("spin near the static load, SET", RodParameters(P=1e-3, R=21 / 38, Gamma=0.76923, gamma=0.1, B=0.58539), "omega"),
+]
+
+
+@pytest.mark.parametrize("name, params, axis", NEAR_END, ids=[n for n, _, _ in NEAR_END])
+def test_damped_critical_estimate_bounds_round_off_near_the_end_of_a_line(name, params, axis):
+    """Two resolutions each at round-off can agree far better than either is right where a root falls like
+    a square root: the stated error must still bound the distance to the exact determinant."""
+    from etcheck.rod.damped_critical import damped_critical
+    from etcheck.rod.exact_straight import first_exact_root
+
+    d = damped_critical(params, tol=1e-10)
+    r = d.critical_load if axis == "B" else d.critical_spin
+    end = d.spin_at_rest.value if axis == "B" else first_exact_root(params.with_(B=0.0, omega=0.0), "B").value
+    assert 0 < r.value < 0.3 * (end if axis == "omega" else 1.0)  # close to the end: the root is small
+    exact = first_exact_root(params, axis, 1e-12)
+    floor = 1e-2 * (first_exact_root(params.with_(omega=0.0), "B").value if axis == "B" else end)
+    true = abs(r.value - exact.value) / max(exact.value, floor)
+    assert true <= r.error + exact.error, f"{name}: stated {r.error:.1e}, true {true:.1e}"
