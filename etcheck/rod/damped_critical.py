@@ -26,7 +26,7 @@ parametric sweeps cheap; :mod:`etcheck.rod.stability` is the general
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -132,9 +132,12 @@ class DampedCritical:
 
     ``critical_load``: first B at the operating omega and T (0 when the rod
     is already unstable at B = 0); ``critical_spin``: first omega at the
-    operating B and T (0 when statically buckled); ``stable``: the operating
-    point itself; ``spin_at_rest``: first omega at B = 0 (above it the
-    unloaded rod whirls, and no load is safe).
+    operating B and T (0 when statically buckled), both with their errors
+    relative to their values (judged against the tolerance relative to 1 %
+    of the load at rest or of the spin at rest, whichever is larger: see
+    :func:`first_root`); ``stable``: the operating point itself;
+    ``spin_at_rest``: first omega at B = 0 (above it the unloaded rod
+    whirls, and no load is safe).
     """
 
     critical_load: PencilRoot
@@ -202,6 +205,8 @@ def critical_from_roots(params: RodParameters, tol: float, spin: bool, root) -> 
         crit = PencilRoot("omega", 0.0, 0.0, static.N, True, static.model)
     else:
         crit = _near_end(root(p, "omega", tol, floor=1e-2 * rest.value), static.value, p.B, 1e-2 * rest.value, tol)
+    load = _relative_to_value(load, 1e-2 * static.value)
+    crit = _relative_to_value(crit, 1e-2 * rest.value)
     # a root that missed tol (round-off of an ill-conditioned root) is still returned with its estimate:
     # the caller decides whether it is good enough to report
     converged = load.converged and crit.converged and rest.converged and static.converged
@@ -234,6 +239,14 @@ def _near_end(r: PencilRoot, end: float, at: float, floor: float, tol: float) ->
     if rounding <= r.error:
         return r
     return PencilRoot(r.axis, r.value, rounding, r.N, r.converged and rounding <= tol, r.model)
+
+
+def _relative_to_value(r: PencilRoot, floor: float) -> PencilRoot:
+    """The root with its error relative to its value (it was judged relative to max(value, floor)), as
+    the margins need it: a root far below the floor has an error far above the one it was judged by."""
+    if not (0 < r.value < math.inf) or r.value >= floor or not math.isfinite(r.error):
+        return r
+    return replace(r, error=r.error * floor / r.value)
 
 
 def _at(root: PencilRoot) -> str:
