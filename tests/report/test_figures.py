@@ -51,3 +51,18 @@ def test_content_beyond_the_canvas_is_kept():
     img = _decoded(_figure(legend_below=True))
     assert img.size[1] > 3.0 * PRINT_DPI  # the legend below the axes grew the picture past the 3-inch canvas
     assert np.asarray(img)[-round(0.6 * PRINT_DPI):].min() < 100  # and its text is drawn
+
+
+def test_coil_region_without_any_secondary_pitchfork_is_drawn():
+    """Found by the scene-space exploration: b1 with no secondary pitchfork at any drawn spin (R near 1,
+    strong load) made the coil-region figure index an empty curve (internal error, no report)."""
+    from etcheck.report.figures.check import coil_region_plot
+
+    rows = [{"spin_rpm": w, "pitchfork_IB0_N_per_m": 5.2e-5, "secondary_IB0_N_per_m": None} for w in (0.0, 1e-4, 2e-4)]
+    results = {"scene": {"load_N_per_m": 9.1e-5, "tension_N": 0.0232},
+               "postbuckling": {"region": {
+                   "rows": rows, "operating_rpm": 1.7e-4, "liftoff_rpm": None,
+                   "pitchfork_curve": {"spin_rpm": [0.0, 1e-4, 2e-4, 3e-4], "IB0_N_per_m": [5.2e-5] * 4},
+                   "secondary_curve": {"spin_rpm": [], "IB0_N_per_m": []}}}}
+    out = coil_region_plot(results)
+    assert out.startswith("<img") or "base64" in out

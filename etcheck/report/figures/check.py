@@ -283,20 +283,25 @@ def coil_region_plot(results: dict) -> str:
         low = np.array([r["pitchfork_IB0_N_per_m"] or 0.0 for r in rows], dtype=float)
         top = np.array([r["secondary_IB0_N_per_m"] if r["secondary_IB0_N_per_m"] is not None else np.nan
                         for r in rows], dtype=float)
-    low_on_top = np.interp(top_w, low_w, low)
     ax.fill_between(low_w, 0.0, low, color="#d8efdd", lw=0, label="straight tether stable")
-    ax.fill_between(top_w, low_on_top, top, color="#d6e4f5", lw=0, label="coiled tether (b1) stable")
+    if top_w.size:
+        ax.fill_between(top_w, np.interp(top_w, low_w, low), top, color="#d6e4f5", lw=0,
+                        label="coiled tether (b1) stable")
     ax.plot(low_w, low, "-", color="#555", lw=1.4, label="b1 leaves the straight tether (first critical load)")
-    ax.plot(top_w, top, "-", color="k", lw=2, label="secondary pitchfork of b1 (the coil loses stability)")
+    if top_w.size:
+        ax.plot(top_w, top, "-", color="k", lw=2, label="secondary pitchfork of b1 (the coil loses stability)")
+    else:
+        ax.plot([], [], " ", label="no secondary pitchfork of b1 located at any drawn spin (see the table)")
     located = [(r["spin_rpm"], r["secondary_IB0_N_per_m"]) for r in rows if r["secondary_IB0_N_per_m"] is not None]
     if located:
         ax.plot(*zip(*located), "s", color="k", ms=4, ls="none", label="secondary pitchfork located exactly")
-    if reg.get("liftoff_rpm") is not None and reg["liftoff_rpm"] <= top_w[-1]:
+    w_end = max(top_w[-1] if top_w.size else 0.0, low_w[-1] if low_w.size else 0.0, reg["operating_rpm"]) or 1.0
+    if reg.get("liftoff_rpm") is not None and reg["liftoff_rpm"] <= w_end:
         ax.axvline(reg["liftoff_rpm"], color="#888", ls=":", label="b1 lift-off (the straight tether whirls above)")
     ax.plot([reg["operating_rpm"]], [load], marker="*", ms=14, color="#27ae60", mec="k", ls="none", zorder=6,
             label="operating point", clip_on=False)
-    ax.set_xlim(0.0, max(top_w[-1], low_w[-1]))
-    ax.set_ylim(0, 1.08 * max([v for v in top if np.isfinite(v)] + [load]))
+    ax.set_xlim(0.0, w_end)
+    ax.set_ylim(0, 1.08 * max([v for v in (*top, *low) if np.isfinite(v)] + [load]))
     ax.set_xlabel("spin rate [rpm]")
     ax.set_ylabel("magnetic load I·B0 [N/m]")
     ax.set_title(f"Coil (b1): where the coiled tether is stable (T = {results['scene']['tension_N']:.3g} N; "
