@@ -357,6 +357,10 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
             out["secondary_pitchfork_reason"] = star["reason"]
         out["b1_first_unstable_B"] = first_unstable
         out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
+    else:  # e.g. lifted off at this spin: b1 does not leave the straight tether
+        out |= {"secondary_pitchfork_B": None, "secondary_pitchfork_error": None,
+                "secondary_pitchfork_IB0_N_per_m": None, "b1_first_unstable_B": None, "b1_stable_at_start": None,
+                "secondary_pitchfork_reason": "b1 was not found at the operating spin and tension"}
     out["operating"] = None
     if params.B > B_c:
         b1_branch = kept.get("b1")

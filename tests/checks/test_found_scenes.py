@@ -46,6 +46,13 @@ FOUND = [
          "damping_time": "0.010319350640437857 s"},
         {"current": ["62916643.73434001 A", "314583218.67170006 A"], "spin_rate": "24.226330581339013 rad/s"}),
         id="R1-P0.1-heavy-damping", marks=pytest.mark.slow),
+    pytest.param(_mission(  # undamped, spun 3x critical, past the first critical load: b1 has lifted off and the
+        "b1-lifted-off",  # report looked up b1's secondary pitchfork and start (internal error in the template)
+        {"length": "8.583680149237336 m", "bending_stiffness": ["0.020236030839680664 N m2", "0.011182430642007534 N m2"],
+         "mass_per_length": "0.0020382493446096574 kg/m", "rotary_inertia_ratio": 0.05, "damping_time": "0 s"},
+        {"current": ["109.93487895660208 A", "549.6743947830104 A"], "axial_field": "30.0 uT",
+         "spin_rate": "2.1337494190771418 rad/s"}),
+        id="undamped-b1-lifted-off", marks=pytest.mark.slow),
 ]
 
 
