@@ -149,7 +149,7 @@ def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool):
         u = undamped_critical(p, tol=options.tol)
         return u.critical_load, u.critical_spin, list(u.windows), u.scanned_to, u.stable
     except (ArithmeticError, ValueError) as exc:
-        why = f"the exact undamped determinant could not isolate a change of stability ({exc})"
+        why = f"the exact undamped determinant gave no answer: {exc}"
     if exact:  # boundary layers too thin for collocation: no second route
         lost = [StabilityPoint(axis, math.nan, CriticalKind.NOT_LOCATED, (0.0, 0.0), math.nan, False, why, 0)
                 for axis in ("B", "omega")]

@@ -202,6 +202,10 @@ def _smoothing(k: np.ndarray) -> np.ndarray:
 #: exponential basis does not apply (near-coincident exponents: R near 1 with large rotary inertia P);
 #: past it the line gives up (ArithmeticError) and the check takes the spectral scans instead.
 SCHUR_BUDGET = 3000
+#: Most mu samples per point of a line. The grid follows the modes below the cut (5 per mode); long, taut,
+#: thin tethers with large P spun far up have ~1e4-1e5 of them: the stable spin windows are then sought only
+#: up to the first static spin, and a line that still needs more gives up (ArithmeticError).
+MAX_GRID = 6000
 
 
 def characteristic_mu(params: RodParameters, mu, B=None, omega=None, T=None, route: str = "auto",
@@ -321,6 +325,7 @@ class _Line:
         self.mu = np.unique(np.concatenate([neg, [0.0], pos[1:], [self.mu_cut], above]))
         self.i_cut = int(np.nonzero(self.mu == self.mu_cut)[0][0])
         self.evaluations = 0
+        self.size = self.mu.size
         self.schur_left = SCHUR_BUDGET
 
     def E(self, p, mu) -> np.ndarray:
@@ -644,6 +649,9 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     near = np.concatenate([static * (1 - 1e-6), static * (1 + 1e-6)])
     ps = np.unique(np.concatenate([np.linspace(lo, hi, samples), [anchor], near[(near > lo) & (near < hi)]]))
     line = _Line(params, axis, lo, hi)
+    if line.size > MAX_GRID:
+        raise ArithmeticError(f"the {axis} line to {hi:.6g} needs {line.size} mu samples per point (more than "
+                              f"{MAX_GRID}: too many modes below its cut)")
     smp = line.samples(ps)
     ia = int(np.nonzero(ps == anchor)[0][0])
     N = [0] * len(smp)
@@ -698,10 +706,9 @@ def _static_roots(params: RodParameters, axis: str, upto: float, n: int = 400) -
     return np.array([brentq(lambda t: fn(np.array([t]))[0], x[j], x[j + 1], rtol=1e-9) for j in i])
 
 
-def _spin_hi(params: RodParameters) -> float:
-    """End of the spin line (as the spectral scan's default): max(2, 1.25 x the second static spin)."""
-    scale = _ex._root_scale(params, "omega", 1.0)
-    r = _static_roots(params, "omega", max(8.0 * scale, 4.0))
+def _spin_hi(r: np.ndarray) -> float:
+    """End of the spin line (as the spectral scan's default) from the static spins r of the rod:
+    max(2, 1.25 x the second)."""
     return float(max(2.0, 1.25 * r[1])) if r.size >= 2 else 2.0
 
 
@@ -740,11 +747,13 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     """
     p = params.with_(gamma=0.0)
     w = p.omega
+    first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
+    short = max(1.02 * first[0] if first.size else 2.0, 1e-3)  # stable at rest: unstable past the first static spin
+    spin_hi = short
     if windows or p.R == 1.0:  # R = 1: the static points are double, a root mu touches 0 and comes back
-        spin_hi = _spin_hi(p)
-    else:  # stable at rest means unstable past the first static spin: the line need not go further
-        first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
-        spin_hi = max(1.02 * first[0] if first.size else 2.0, 1e-3)
+        spin_hi = _spin_hi(first)
+        if windows and p.R != 1.0 and _Line(p, "omega", 0.0, spin_hi).mu.size > MAX_GRID:
+            spin_hi = short  # windows past the first static spin would cost too many samples: not sought
     rest_load = _ex.exact_root(p.with_(B=0.0, omega=0.0), "B").value  # at rest: stable iff B below it (T >= 0)
     if not windows and (p.B >= rest_load or _diverging(p.with_(omega=0.0))):  # a real pair at rest
         spin_line = StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0)

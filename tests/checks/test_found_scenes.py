@@ -53,6 +53,13 @@ FOUND = [
         {"current": ["109.93487895660208 A", "549.6743947830104 A"], "axial_field": "30.0 uT",
          "spin_rate": "2.1337494190771418 rad/s"}),
         id="undamped-b1-lifted-off", marks=pytest.mark.slow),
+    pytest.param(_mission(  # undamped tape-like tether, R = 1e-4, T-bar = 1e5, P = 0.05, 12 km: the spin line for
+        "taut-tape-undamped",  # the stable windows went to 1745 with 54530 mu samples per point (no answer in 5 min)
+        {"length": "12237.283239811424 m", "bending_stiffness": ["0.00475657406804412 N m2", "4.75657406804412e-07 N m2"],
+         "mass_per_length": "0.0010203045234584527 kg/m", "rotary_inertia_ratio": 0.05, "damping_time": "0 s"},
+        {"current": "1.65232750559473e-08 A", "axial_field": "30.0 uT", "spin_rate": "3.2258336236772167e-09 rad/s",
+         "end_tension": "0.001589951091368803 N"}),
+        id="taut-tape-undamped"),
 ]
 
 
