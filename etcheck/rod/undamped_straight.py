@@ -754,11 +754,9 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
         spin_hi = _spin_hi(first)
         if windows and p.R != 1.0 and _Line(p, "omega", 0.0, spin_hi).mu.size > MAX_GRID:
             spin_hi = short  # windows past the first static spin would cost too many samples: not sought
-    rest_load = _ex.exact_root(p.with_(B=0.0, omega=0.0), "B").value  # at rest: stable iff B below it (T >= 0)
-    if not windows and (p.B >= rest_load or _diverging(p.with_(omega=0.0))):  # a real pair at rest
-        spin_line = StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0)
-    else:
-        spin_line = stability_line(p, "omega", 0.0, spin_hi, samples=64 if windows else 25)
+    spin_line, why = _spin_line(p, spin_hi, windows)
+    if spin_line is None:  # no spin: the load decides (self-adjoint); the critical spin is not answered
+        return _without_spin(p, tol, why)
     evaluations = spin_line.evaluations
     if w <= spin_line.hi:
         stable = not spin_line.unstable_at(w)
@@ -773,11 +771,8 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
         return UndampedCritical(load, _point(spin_line, tol), spin_line.windows, spin_line.hi, stable, evaluations)
     static = _ex.exact_root(p.with_(B=0.0), "B")
     if w == 0:  # not gyroscopic: K q = mu M q, stable exactly below the first static load
-        line = StabilityLine("B", 0.0, static.value, False, () if math.isinf(static.value) else (
-            Crossing(static.value, static.error * static.value, CriticalKind.DIVERGENCE, 0.0, True,
-                     (static.value, static.value)),), (), 0, static.evaluations)
-        return UndampedCritical(_point(line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi,
-                                stable, evaluations + static.evaluations)
+        return UndampedCritical(_point(_static_line(static), tol), _point(spin_line, tol), spin_line.windows,
+                                spin_line.hi, stable, evaluations + static.evaluations)
     rest = stability_line(p.with_(B=0.0), "omega", 0.0, w)
     pairs, evaluations = rest.pairs_at_hi, evaluations + rest.evaluations
     scale = _ex._root_scale(p, "B", 1.0)
@@ -789,6 +784,37 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     evaluations += load_line.evaluations + static.evaluations
     return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
                             evaluations)
+
+
+def _spin_line(p: RodParameters, spin_hi: float, windows: bool) -> tuple[StabilityLine | None, str]:
+    """The spin line at the operating load from 0 to spin_hi (unstable from the start, not followed, when the
+    rod has a real pair at rest and no windows are asked); (None, why) without spin where it cannot be drawn."""
+    rest_load = _ex.exact_root(p.with_(B=0.0, omega=0.0), "B").value  # at rest: stable iff B below it (T >= 0)
+    if not windows and (p.B >= rest_load or _diverging(p.with_(omega=0.0))):  # a real pair at rest
+        return StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0), ""
+    try:
+        return stability_line(p, "omega", 0.0, spin_hi, samples=64 if windows else 25), ""
+    except ArithmeticError as exc:
+        if p.omega != 0:
+            raise
+        return None, str(exc)
+
+
+def _static_line(static) -> StabilityLine:
+    """The load line of a rod without spin: stable exactly below its first static load."""
+    crossings = () if math.isinf(static.value) else (
+        Crossing(static.value, static.error * static.value, CriticalKind.DIVERGENCE, 0.0, True,
+                 (static.value, static.value)),)
+    return StabilityLine("B", 0.0, static.value, False, crossings, (), 0, static.evaluations)
+
+
+def _without_spin(p: RodParameters, tol: float, why: str) -> UndampedCritical:
+    """Critical load of a rod without spin (its first static load) when the spin line cannot be drawn:
+    the critical spin is "not located", with the reason."""
+    static = _ex.exact_root(p.with_(B=0.0), "B")
+    spin = CriticalPoint("omega", math.nan, CriticalKind.NOT_LOCATED, (0.0, 0.0), math.nan, False,
+                         f"critical spin not answered ({MODEL}): {why}", 0)
+    return UndampedCritical(_point(_static_line(static), tol), spin, (), 0.0, not _diverging(p), static.evaluations)
 
 
 def _diverging(params: RodParameters, n: int = 64) -> bool:

@@ -60,7 +60,22 @@ FOUND = [
         {"current": "1.65232750559473e-08 A", "axial_field": "30.0 uT", "spin_rate": "3.2258336236772167e-09 rad/s",
          "end_tension": "0.001589951091368803 N"}),
         id="taut-tape-undamped"),
+    pytest.param(_mission(  # the same kind of tether without spin: the load margin is its first static load and
+        "taut-tape-at-rest",  # must be answered even where the spin line (critical spin, not asked) cannot be drawn
+        {"length": "236.64504046125026 m", "bending_stiffness": ["0.625030413141289 N m2", "6.250304131412891e-05 N m2"],
+         "mass_per_length": "1.9761296055035502 kg/m", "rotary_inertia_ratio": 0.1, "damping_time": "0 s"},
+        {"current": "0.0007255124164165508 A", "axial_field": "30.0 uT", "spin_rate": "0.0 rad/s",
+         "end_tension": "558.6835210046978 N"}),
+        id="taut-tape-at-rest"),
 ]
+
+
+def test_taut_tape_at_rest_gets_its_static_load():
+    """Without spin the undamped load margin is the first static load (exact determinant), answered."""
+    data = next(p.values[0] for p in FOUND if p.id == "taut-tape-at-rest")
+    results = check(mission_from_dict(data)).results
+    (load,) = results["margins"]
+    assert load["verdict"] == "pass" and load["value"] > 1e8 and load["error"] < 1e-8
 
 
 @pytest.mark.parametrize("data", FOUND)
