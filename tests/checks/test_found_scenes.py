@@ -59,7 +59,7 @@ FOUND = [
          "mass_per_length": "0.0010203045234584527 kg/m", "rotary_inertia_ratio": 0.05, "damping_time": "0 s"},
         {"current": "1.65232750559473e-08 A", "axial_field": "30.0 uT", "spin_rate": "3.2258336236772167e-09 rad/s",
          "end_tension": "0.001589951091368803 N"}),
-        id="taut-tape-undamped"),
+        id="taut-tape-undamped", marks=pytest.mark.slow),  # 4 s; the sample cap is tested in tests/rod
     pytest.param(_mission(  # the same kind of tether without spin: the load margin is its first static load and
         "taut-tape-at-rest",  # must be answered even where the spin line (critical spin, not asked) cannot be drawn
         {"length": "236.64504046125026 m", "bending_stiffness": ["0.625030413141289 N m2", "6.250304131412891e-05 N m2"],

@@ -111,3 +111,15 @@ def test_thin_boundary_layers_undamped():
     damped = exact_critical(p.with_(gamma=0.01)).critical_load.value
     assert u.critical_load.value == pytest.approx(damped, rel=1e-12)
     assert u.critical_load.value == pytest.approx(string_limit_load(p, order=2), rel=1e-5)
+
+
+def test_a_line_that_needs_too_many_samples_is_refused_not_run():
+    """Long, taut, thin tethers with large P have tens of thousands of modes below the cut: a line that would
+    need more than MAX_GRID samples per point raises ArithmeticError at once (the check then says it is
+    not answered) instead of running for minutes; without spin the critical load is still answered."""
+    p = RodParameters(P=0.05, R=1e-4, Gamma=0.76923, omega=0.01, B=0.38, T=1e5)
+    with pytest.raises(ArithmeticError, match="mu samples per point"):
+        undamped_critical(p, tol=1e-10, windows=False)
+    rest = undamped_critical(p.with_(omega=0.0), tol=1e-10, windows=False)
+    assert rest.critical_load.kind == "divergence" and rest.critical_load.converged
+    assert rest.critical_spin.kind == "not located" and "mu samples" in rest.critical_spin.message
