@@ -703,7 +703,32 @@ def _static_roots(params: RodParameters, axis: str, upto: float, n: int = 400) -
     x = np.linspace(0.0, upto, n + 1)[1:]
     g = fn(x)
     i = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
-    return np.array([brentq(lambda t: fn(np.array([t]))[0], x[j], x[j + 1], rtol=1e-9) for j in i])
+    return _bracketed_roots(fn, x[i], x[i + 1], g[i], g[i + 1], 1e-9)
+
+
+def _bracketed_roots(fn, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray, rtol: float) -> np.ndarray:
+    """Roots of the vectorised fn in the sign-change brackets [a, b] (all at once): regula falsi with the
+    Illinois halving, each step one evaluation of fn on every unfinished bracket."""
+    a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
+    side = np.zeros(a.size, dtype=int)  # which end was kept last (Illinois: halve its value when kept twice)
+    for _ in range(100):
+        open_ = np.abs(b - a) > rtol * np.maximum(np.abs(a), np.abs(b))
+        if not np.any(open_):
+            break
+        c = np.where(open_, b - fb * (b - a) / np.where(fb != fa, fb - fa, 1.0), a)
+        c = np.where(open_ & ((c <= np.minimum(a, b)) | (c >= np.maximum(a, b))), 0.5 * (a + b), c)
+        fc = np.zeros_like(c)
+        fc[open_] = fn(c[open_])
+        left = open_ & (np.sign(fc) == np.sign(fa))  # root in [c, b]: a moves
+        right = open_ & ~left
+        fb = np.where(left & (side == 1), 0.5 * fb, fb)
+        fa = np.where(right & (side == -1), 0.5 * fa, fa)
+        a, fa = np.where(left, c, a), np.where(left, fc, fa)
+        b, fb = np.where(right, c, b), np.where(right, fc, fb)
+        side = np.where(left, 1, np.where(right, -1, side))
+        exact = open_ & (fc == 0)
+        a, b = np.where(exact, c, a), np.where(exact, c, b)
+    return 0.5 * (a + b)
 
 
 def _spin_hi(r: np.ndarray) -> float:
