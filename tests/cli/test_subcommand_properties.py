@@ -245,6 +245,7 @@ def test_accuracy_command_on_a_valid_scene(tmp_path_factory, s, load):
     assert "automatic stability solve" in out and not NOT_FINITE.search(out), out
 
 
+@pytest.mark.slow  # 5 s: the trace itself says so in tests/studies/test_accuracy_properties.py (default run)
 def test_accuracy_rung2_says_when_b1_has_lifted_off(tmp_path):
     """Past b1's lift-off spin `etcheck accuracy --rung2` traced the first remaining S1 pitchfork (b3) and
     called it b1; it says b1 has lifted off, with the spin, and prints no NaN."""
