@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from etcheck.checks.margins import MISSED_TOLERANCE
 from etcheck.checks.plan import EXACT, SPECTRAL
 from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum
 from etcheck.jsonable import finite_or_none
@@ -78,7 +79,7 @@ def _unconverged(point: CriticalPoint, what: str, error: float | None) -> Critic
     when that is at most REPORTABLE relative, else "not located" (its margin is then incomplete)."""
     value = point["value"]
     if value is not None and error is not None and error <= REPORTABLE * abs(value):
-        return point | {"message": f"{point['message']}; the {what} missed its tolerance: it is reported with "
+        return point | {"message": f"{point['message']}; the {what} {MISSED_TOLERANCE}: it is reported with "
                                    f"its error estimate {error:.1e} (the margin is judged on its pessimistic side)"}
     est = f"error estimate {error:.1e}" if error is not None else "no error estimate"
     return point | {"value": None, "kind": CriticalKind.NOT_LOCATED, "error": None,
