@@ -25,7 +25,7 @@ params = st.builds(
 )
 
 
-@settings(max_examples=50, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=30, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(params)
 def test_every_damped_sweep_point_is_answered_or_says_why(p):
     r = solve_point(p, 1e-8)
