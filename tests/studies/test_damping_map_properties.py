@@ -17,7 +17,6 @@ import io
 import math
 
 import numpy as np
-import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 from scene_missions import (
