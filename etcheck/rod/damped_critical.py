@@ -72,8 +72,10 @@ _DOUBLE = 1e-6
 
 def _smallest_positive(params: RodParameters, axis: str, N: int, sign: float = 1.0) -> float:
     double = params.R == 1.0
+    # R within 1e-6 of 1: the pair is split by less than round-off splits it, possibly into a complex pair
+    near = abs(1.0 - params.R) < _DOUBLE
     r = _family(params, N).pencil_roots(axis, params.B, params.omega, params.T,
-                                        imag_tol=_DOUBLE if double else 1e-8)
+                                        imag_tol=_DOUBLE if near else 1e-8)
     r = np.abs(r[sign * r > 0])
     if not r.size:
         return math.inf

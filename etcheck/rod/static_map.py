@@ -60,7 +60,8 @@ __all__ = ["StaticPlane", "StaticCurves", "plane", "static_curves", "stable_rows
 #: Roots closer than this (relative) are one multiple root.
 CLUSTER = 1e-9
 #: R = 1: every static point is double (the u and v planes are alike) and round-off splits it by about
-#: sqrt(eps), really or into a complex pair: roots this close (relative) are one double root.
+#: sqrt(eps), really or into a complex pair: roots this close (relative) are one double root (also for R
+#: within this of 1, whose pairs are split by less than round-off splits them).
 DOUBLE = 1e-6
 #: A crossing speed below this (relative to its parts) cannot be told from zero.
 SPEED_FLOOR = 1e-10
@@ -81,7 +82,7 @@ class StaticPlane:
 
     def __init__(self, fam: StraightFamily, T: float):
         self.fam, self.T = fam, float(T)
-        self.cluster = DOUBLE if fam.params.R == 1.0 else CLUSTER
+        self.cluster = DOUBLE if abs(1.0 - fam.params.R) < DOUBLE else CLUSTER
         rB, rw = _rows(fam.AB), _rows(fam.Aw)
         self.nB = rB.size
         rows = np.concatenate([rB, rw])
