@@ -35,7 +35,7 @@ from ..numerics.eigen import single_blas_thread
 from .analytic import characteristic_roots, critical_loads
 from .parameters import RodParameters
 from .spectrum import check_resolution
-from .stability import _family
+from .stability import DOUBLE, _family
 
 __all__ = ["LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical", "critical_from_roots"]
 
@@ -44,7 +44,7 @@ LADDER = (16, 24, 32, 48, 64, 96, 128)
 #: Below this two-resolution disagreement an error that no longer falls by a factor 3 from one rung of
 #: the ladder to the next is round-off (e.g. a load root near the unloaded critical spin, where it falls
 #: like a square root): the ladder stops there and reports the root with that estimate, unconverged.
-_ROUNDING = 1e-6
+_STALL_BELOW = 1e-6
 
 
 @dataclass(frozen=True)
@@ -65,24 +65,14 @@ class PencilRoot:
     model: str
 
 
-#: R = 1: roots of the static pencil are double (the u and v planes are alike); round-off splits them by
-#: about sqrt(eps) relative, really or into a complex pair. Roots this close are one root, their mean.
-_DOUBLE = 1e-6
-
-
 def _smallest_positive(params: RodParameters, axis: str, N: int, sign: float = 1.0) -> float:
-    double = params.R == 1.0
-    # R within 1e-6 of 1: the pair is split by less than round-off splits it, possibly into a complex pair
-    near = abs(1.0 - params.R) < _DOUBLE
-    r = _family(params, N).pencil_roots(axis, params.B, params.omega, params.T,
-                                        imag_tol=_DOUBLE if near else 1e-8)
+    r = _family(params, N).pencil_roots(axis, params.B, params.omega, params.T)
     r = np.abs(r[sign * r > 0])
     if not r.size:
         return math.inf
-    if double:  # the mean of a split pair is accurate to round-off, either root only to sqrt(eps)
-        r0 = np.min(r)
-        r = np.array([np.mean(r[r <= r0 * (1.0 + _DOUBLE)])])
     root = float(np.min(r))
+    if params.R == 1.0:  # a double root: the mean of its split pair is accurate to round-off, either one to sqrt(eps)
+        root = float(np.mean(r[r <= root * (1.0 + DOUBLE)]))
     return math.sqrt(root) if axis == "omega" else root
 
 
@@ -123,7 +113,7 @@ def _first_root(params: RodParameters, axis: str, tol: float, sign: float, ladde
             return PencilRoot(axis, math.inf, 0.0, N, True, "rung 1 (static pencil)")
         value, last = b, err
         err = abs(a - b) / max(abs(b), floor, 1e-300) if math.isfinite(a) and math.isfinite(b) else math.inf
-        if err <= tol or (err < _ROUNDING and err > 0.3 * last):
+        if err <= tol or (err < _STALL_BELOW and err > 0.3 * last):
             break  # met, or stalled at round-off: finer grids would not improve it (an ill-conditioned root)
     return PencilRoot(axis, sign * value, err, N, err <= tol, "rung 1 (static pencil)")
 

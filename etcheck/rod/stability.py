@@ -90,6 +90,17 @@ class CriticalKind(StrEnum):
         return self in (CriticalKind.DIVERGENCE, CriticalKind.FLUTTER)
 
 
+#: R = 1: every static point is double (the u and v planes are alike) and round-off splits it by about
+#: sqrt(eps), really or into a complex pair: roots this close (relative) are one double root; the same for
+#: R within this of 1, whose pairs are split by less than round-off splits them.
+DOUBLE = 1e-6
+
+
+def nearly_isotropic(R: float) -> bool:
+    """Whether the static points of a rod with stiffness ratio R are double to round-off (|1 - R| < DOUBLE)."""
+    return abs(1.0 - R) < DOUBLE
+
+
 #: Re lambda above this counts as unstable (dimensionless growth rate).
 THRESHOLD = 1e-9
 #: Number of least-|lambda| pairs examined by the stability indicator.
@@ -197,16 +208,17 @@ class StraightFamily:
         lam = self.eigenvalues(B, omega, T, 2 * k + 4)
         return float(np.max(lam.real))
 
-    def pencil_roots(self, axis: str, B: float, omega: float, T: float, imag_tol: float = 1e-8) -> np.ndarray:
+    def pencil_roots(self, axis: str, B: float, omega: float, T: float) -> np.ndarray:
         """Real parameter values on ``axis`` where A0 is singular (others fixed).
 
         Returns values of B (or T) or of omega^2 (axis "omega"). ``axis =
         "ray"`` gives the values t where A0(t B, sqrt(t) omega, T) is singular
         (load and spin squared scaled together from zero). One QZ of the
         reduced pencil (phi, m eliminated once for the family). A root
-        counts as real when its imaginary part is below ``imag_tol`` times
-        its modulus (a double root, R = 1, splits by about sqrt(eps) under
-        round-off, possibly into a complex pair: pass a looser tolerance).
+        counts as real when its imaginary part is below 1e-8 times its
+        modulus, or below :data:`DOUBLE` times it for a nearly isotropic rod
+        (:func:`nearly_isotropic`: its double roots split under round-off,
+        possibly into a complex pair).
         """
         r = self.reduced
         vals = {"B": B, "omega": omega, "T": T}
@@ -220,6 +232,7 @@ class StraightFamily:
         alpha, beta = sla.eig(A0, -n0, right=False, homogeneous_eigvals=True, check_finite=False)
         ok = np.abs(beta) > 1e-13 * np.abs(alpha)
         x = alpha[ok] / beta[ok]
+        imag_tol = DOUBLE if nearly_isotropic(self.params.R) else 1e-8
         real = np.abs(x.imag) <= imag_tol * np.maximum(np.abs(x), 1e-300)
         return np.sort(x[real].real)
 

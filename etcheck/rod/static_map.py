@@ -53,16 +53,12 @@ import scipy.linalg as sla
 
 from ..numerics.eigen import single_blas_thread
 from .parameters import RodParameters
-from .stability import K_MODES, THRESHOLD, StraightFamily, _family
+from .stability import DOUBLE, K_MODES, THRESHOLD, StraightFamily, _family, nearly_isotropic
 
 __all__ = ["StaticPlane", "StaticCurves", "plane", "static_curves", "stable_rows"]
 
 #: Roots closer than this (relative) are one multiple root.
 CLUSTER = 1e-9
-#: R = 1: every static point is double (the u and v planes are alike) and round-off splits it by about
-#: sqrt(eps), really or into a complex pair: roots this close (relative) are one double root (also for R
-#: within this of 1, whose pairs are split by less than round-off splits them).
-DOUBLE = 1e-6
 #: A crossing speed below this (relative to its parts) cannot be told from zero.
 SPEED_FLOOR = 1e-10
 #: Loads about which A0 is expanded, tried in turn until it is regular there (0: the unloaded rod).
@@ -82,7 +78,7 @@ class StaticPlane:
 
     def __init__(self, fam: StraightFamily, T: float):
         self.fam, self.T = fam, float(T)
-        self.cluster = DOUBLE if abs(1.0 - fam.params.R) < DOUBLE else CLUSTER
+        self.cluster = DOUBLE if nearly_isotropic(fam.params.R) else CLUSTER
         rB, rw = _rows(fam.AB), _rows(fam.Aw)
         self.nB = rB.size
         rows = np.concatenate([rB, rw])

@@ -64,6 +64,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
+from scipy.optimize.elementwise import find_root
 
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur
@@ -325,7 +326,6 @@ class _Line:
         self.mu = np.unique(np.concatenate([neg, [0.0], pos[1:], [self.mu_cut], above]))
         self.i_cut = int(np.nonzero(self.mu == self.mu_cut)[0][0])
         self.evaluations = 0
-        self.size = self.mu.size
         self.schur_left = SCHUR_BUDGET
 
     def E(self, p, mu) -> np.ndarray:
@@ -649,8 +649,8 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     near = np.concatenate([static * (1 - 1e-6), static * (1 + 1e-6)])
     ps = np.unique(np.concatenate([np.linspace(lo, hi, samples), [anchor], near[(near > lo) & (near < hi)]]))
     line = _Line(params, axis, lo, hi)
-    if line.size > MAX_GRID:
-        raise ArithmeticError(f"the {axis} line to {hi:.6g} needs {line.size} mu samples per point (more than "
+    if line.mu.size > MAX_GRID:
+        raise ArithmeticError(f"the {axis} line to {hi:.6g} needs {line.mu.size} mu samples per point (more than "
                               f"{MAX_GRID}: too many modes below its cut)")
     smp = line.samples(ps)
     ia = int(np.nonzero(ps == anchor)[0][0])
@@ -703,32 +703,10 @@ def _static_roots(params: RodParameters, axis: str, upto: float, n: int = 400) -
     x = np.linspace(0.0, upto, n + 1)[1:]
     g = fn(x)
     i = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
-    return _bracketed_roots(fn, x[i], x[i + 1], g[i], g[i + 1], 1e-9)
-
-
-def _bracketed_roots(fn, a: np.ndarray, b: np.ndarray, fa: np.ndarray, fb: np.ndarray, rtol: float) -> np.ndarray:
-    """Roots of the vectorised fn in the sign-change brackets [a, b] (all at once): regula falsi with the
-    Illinois halving, each step one evaluation of fn on every unfinished bracket."""
-    a, b, fa, fb = (np.array(v, dtype=float) for v in (a, b, fa, fb))
-    side = np.zeros(a.size, dtype=int)  # which end was kept last (Illinois: halve its value when kept twice)
-    for _ in range(100):
-        open_ = np.abs(b - a) > rtol * np.maximum(np.abs(a), np.abs(b))
-        if not np.any(open_):
-            break
-        c = np.where(open_, b - fb * (b - a) / np.where(fb != fa, fb - fa, 1.0), a)
-        c = np.where(open_ & ((c <= np.minimum(a, b)) | (c >= np.maximum(a, b))), 0.5 * (a + b), c)
-        fc = np.zeros_like(c)
-        fc[open_] = fn(c[open_])
-        left = open_ & (np.sign(fc) == np.sign(fa))  # root in [c, b]: a moves
-        right = open_ & ~left
-        fb = np.where(left & (side == 1), 0.5 * fb, fb)
-        fa = np.where(right & (side == -1), 0.5 * fa, fa)
-        a, fa = np.where(left, c, a), np.where(left, fc, fa)
-        b, fb = np.where(right, c, b), np.where(right, fc, fb)
-        side = np.where(left, 1, np.where(right, -1, side))
-        exact = open_ & (fc == 0)
-        a, b = np.where(exact, c, a), np.where(exact, c, b)
-    return 0.5 * (a + b)
+    if not i.size:
+        return np.zeros(0)
+    # all brackets at once (Chandrupatla, one evaluation of fn per step on the unfinished ones)
+    return find_root(fn, (x[i], x[i + 1]), tolerances={"xrtol": 1e-9}).x
 
 
 def _spin_hi(r: np.ndarray) -> float:
@@ -814,8 +792,8 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
 def _spin_line(p: RodParameters, spin_hi: float, windows: bool) -> tuple[StabilityLine | None, str]:
     """The spin line at the operating load from 0 to spin_hi (unstable from the start, not followed, when the
     rod has a real pair at rest and no windows are asked); (None, why) without spin where it cannot be drawn."""
-    rest_load = _ex.exact_root(p.with_(B=0.0, omega=0.0), "B").value  # at rest: stable iff B below it (T >= 0)
-    if not windows and (p.B >= rest_load or _diverging(p.with_(omega=0.0))):  # a real pair at rest
+    at_rest = p.with_(B=0.0, omega=0.0)  # stable at rest iff B is below its first static load (T >= 0)
+    if not windows and (p.B >= _ex.exact_root(at_rest, "B").value or _diverging(p.with_(omega=0.0))):  # a real pair
         return StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0), ""
     try:
         return stability_line(p, "omega", 0.0, spin_hi, samples=64 if windows else 25), ""
