@@ -28,9 +28,10 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.optimize import linear_sum_assignment
 from scipy.sparse.linalg import ArpackError, ArpackNoConvergence, LinearOperator, eigs
-from threadpoolctl import threadpool_limits
+from threadpoolctl import ThreadpoolController
 
 __all__ = [
+    "one_blas_thread",
     "single_blas_thread",
     "companion",
     "StaticElimination",
@@ -43,6 +44,17 @@ __all__ = [
 ]
 
 
+@functools.cache
+def _blas() -> ThreadpoolController:
+    """The process's BLAS libraries, found once (scanning them costs milliseconds; switching them, microseconds)."""
+    return ThreadpoolController()
+
+
+def one_blas_thread():
+    """Context manager: BLAS limited to one thread inside it."""
+    return _blas().limit(limits=1, user_api="blas")
+
+
 def single_blas_thread(fn):
     """Decorator: run fn with BLAS limited to one thread.
 
@@ -53,7 +65,7 @@ def single_blas_thread(fn):
 
     @functools.wraps(fn)
     def wrapper(*args, **kwargs):
-        with threadpool_limits(limits=1, user_api="blas"):
+        with one_blas_thread():
             return fn(*args, **kwargs)
 
     return wrapper

@@ -15,9 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
-from threadpoolctl import threadpool_limits
 
-from ..numerics.eigen import match_spectra
+from ..numerics.eigen import match_spectra, one_blas_thread
 from .base_state import straight
 from .linear import linear_operator
 from .parameters import RodParameters
@@ -82,7 +81,7 @@ def accuracy_table(params: RodParameters, Ns=(8, 12, 16, 24, 32), k: int = 10,
     base = straight(params)
     nev = 2 * k + 8
     rows = []
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         ref = lowest_eigenvalues(params, base, N_ref, nev)
         want = ref[select_pairs(ref, k)]
         B_ref = first_load(params, N_ref)

@@ -70,16 +70,16 @@ Everything here is dimensionless and pure; numpy/scipy only.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import scipy.linalg as sla
 from scipy.linalg import lapack
 from scipy.optimize import brentq, minimize_scalar
-from threadpoolctl import ThreadpoolController
 
+from ..numerics.eigen import single_blas_thread
 from .damped_critical import DampedCritical, PencilRoot, critical_from_roots
 from .parameters import RodParameters
 
@@ -116,23 +116,6 @@ _BC_REAL = np.array([0, 1, 4, 5])
 _BC_COMPLEX = np.array([0, 1])
 #: beta_1 of the first double zero of chi (eq. (91)): the static load is beta_1^3 sqrt(R) / f.
 _BETA1 = 7.332130
-
-
-_CONTROLLER: list[ThreadpoolController] = []
-
-
-def _one_blas_thread(fn):
-    """Run fn with BLAS on one thread (8x8 problems: threads only add contention; a
-    controller made once keeps the switch at microseconds)."""
-
-    @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
-        if not _CONTROLLER:
-            _CONTROLLER.append(ThreadpoolController())
-        with _CONTROLLER[0].limit(limits=1, user_api="blas"):
-            return fn(*args, **kwargs)
-
-    return wrapper
 
 
 # --- coefficients and scales ---------------------------------------------------------
@@ -762,7 +745,7 @@ def _second_opinion(g2, x: float, rtol: float) -> float:
     return math.nan
 
 
-@_one_blas_thread
+@single_blas_thread
 def exact_root(params: RodParameters, axis: str, sign: float = 1.0, floor: float = 0.0,
                rtol: float = 4 * _EPS, limit: float = 1e3) -> ExactRoot:
     """Smallest root of the exact characteristic function on ``axis`` on the side ``sign``.
@@ -782,6 +765,14 @@ def exact_root(params: RodParameters, axis: str, sign: float = 1.0, floor: float
         raise ValueError(f"axis must be one of {AXES}, got {axis!r}")
     if sign not in (1.0, -1.0):
         raise ValueError("sign must be +1 or -1")
+    # neither the axis value nor gamma enters D: memoised on params without them (in a sweep the roots at zero
+    # spin or zero load are shared by every point of a length)
+    normal = params.with_(gamma=0.0) if axis == "ray" else params.with_(gamma=0.0, **{axis: 0.0})
+    return _exact_root(normal, axis, float(sign), float(floor), float(rtol), float(limit))
+
+
+@lru_cache(maxsize=512)
+def _exact_root(params: RodParameters, axis: str, sign: float, floor: float, rtol: float, limit: float) -> ExactRoot:
     scale = _root_scale(params, axis, sign)
     fn, mult = _function(params, axis, sign)
     g = _Counter(fn)
@@ -844,12 +835,10 @@ def first_exact_root(params: RodParameters, axis: str, tol: float = 1e-8, sign: 
     """:func:`exact_root` as a :class:`~etcheck.rod.damped_critical.PencilRoot`
     (same semantics as :func:`etcheck.rod.damped_critical.first_root`: value
     signed, inf when none, error relative to max(|value|, floor))."""
-    if axis != "ray":
-        params = params.with_(**{axis: 0.0})
     return exact_root(params, axis, sign, floor).pencil_root(tol)
 
 
-@_one_blas_thread
+@single_blas_thread
 def exact_critical(params: RodParameters, tol: float = 1e-8, spin: bool = True) -> DampedCritical:
     """Critical load, critical spin and stability of the damped straight rod, exactly.
 

@@ -37,7 +37,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from enum import StrEnum
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 import scipy.linalg as sla
@@ -180,7 +180,11 @@ class StraightFamily:
         self.static_cols = np.arange(6 * n, NFIELDS * n)
         el = eliminate_static(A00, A10, A2, self.static_cols)
         self.reduced = {name: el.reduce(getattr(self, name)) for name in _BLOCKS}
-        self.parts = [_Part(self, rows, cols) for rows, cols in _uncoupled(self)]
+
+    @cached_property
+    def parts(self) -> list[_Part]:
+        """The uncoupled parts, made when eigenvalues are first asked for (the static pencils do not need them)."""
+        return [_Part(self, rows, cols) for rows, cols in _uncoupled(self)]
 
     def operator(self, B: float, omega: float, T: float, reduced: bool = False):
         """(A0, A1, A2) at the given load, spin and tension (``reduced``: phi, m eliminated)."""

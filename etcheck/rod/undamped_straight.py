@@ -61,11 +61,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 from scipy.optimize.elementwise import find_root
 
+from ..numerics.eigen import single_blas_thread
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur
 from .parameters import RodParameters
@@ -586,9 +588,12 @@ def _fold_crossing(line: _Line, a: _Sample, b: _Sample, rtol: float) -> tuple[fl
     for _ in range(12):
         pa, pb = max(p - d, min(a.p, b.p)), min(p + d, max(a.p, b.p))
         ea, eb = e2(pa), e2(pb)
-        if np.sign(ea) != np.sign(eb):
-            x2 = brentq(e2, pa, pb, xtol=max(1e-2 * d, 4 * _EPS * abs(p)), rtol=rtol, maxiter=200)
-            break
+        if ea * eb <= 0:  # a sign change (False where the second formulation gives no value: widen)
+            try:
+                x2 = brentq(e2, pa, pb, xtol=max(1e-2 * d, 4 * _EPS * abs(p)), rtol=rtol, maxiter=200)
+                break
+            except ValueError:  # the tracked extremum jumped to another one between calls: widen
+                state[0] = mu
         d *= 10.0
     line.evaluations += alt.evaluations
     err = 2.0 * (abs(p - x2) + 2 * rtol * abs(p)) if math.isfinite(x2) else math.inf
@@ -597,6 +602,9 @@ def _fold_crossing(line: _Line, a: _Sample, b: _Sample, rtol: float) -> tuple[fl
 
 #: Bisections of a fold's bracket before Brent's method (the extremum must stay in its window).
 _SHRINK = 5
+#: Relative width below which a fold that Brent's method cannot follow is taken as located by bisection of the
+#: root counts (its error is the width).
+_PINNED = 1e-12
 
 
 def _locate(line: _Line, a: _Sample, Na: int, b: _Sample, Nb: int, rtol: float, depth: int = 0) -> Crossing:
@@ -612,8 +620,16 @@ def _locate(line: _Line, a: _Sample, Na: int, b: _Sample, Nb: int, rtol: float, 
         return Crossing(*static, CriticalKind.DIVERGENCE, 0.0, to_unstable, bracket)
     fold = abs(dc) == 1 and ((dneg == -2 * dc and dpos == 0) or (dpos == -2 * dc and dneg == 0))
     if fold and depth >= _SHRINK:
-        x, err, mu = _fold_crossing(line, a, b, rtol)
-        return Crossing(x, err, CriticalKind.FLUTTER, math.sqrt(abs(mu)), to_unstable, bracket)
+        try:
+            x, err, mu = _fold_crossing(line, a, b, rtol)
+            return Crossing(x, err, CriticalKind.FLUTTER, math.sqrt(abs(mu)), to_unstable, bracket)
+        except ValueError:  # the extremum followed by Brent's method jumped to another one: a narrower bracket
+            if abs(b.p - a.p) <= _PINNED * max(abs(a.p), abs(b.p)):  # located by the root counts alone
+                rich = a if len(a.roots) > len(b.roots) else b
+                j = _vanishing_pair(rich, b if rich is a else a)
+                mu = 0.5 * (rich.roots[j] + rich.roots[j + 1])
+                return Crossing(0.5 * (a.p + b.p), abs(b.p - a.p), CriticalKind.FLUTTER, math.sqrt(abs(mu)),
+                                to_unstable, bracket)
     if depth > 60:
         raise ArithmeticError(f"could not isolate the change of stability in [{a.p:.12g}, {b.p:.12g}]")
     m = line.samples([0.5 * (a.p + b.p)])[0]
@@ -642,6 +658,15 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     if not hi > lo:
         raise ValueError("the line needs hi > lo")
     anchor = lo if anchor is None else float(anchor)
+    return _stability_line(params.with_(gamma=0.0, **{axis: 0.0}), axis, float(lo), float(hi), anchor, int(pairs),
+                           int(samples), float(rtol))
+
+
+@lru_cache(maxsize=256)
+def _stability_line(params: RodParameters, axis: str, lo: float, hi: float, anchor: float, pairs: int, samples: int,
+                    rtol: float) -> StabilityLine:
+    """:func:`stability_line` on params with the axis value and gamma zeroed (neither enters): memoised, as in a
+    sweep the spin line at the operating load is the same for every spin of a length."""
     # every static point of the line with a sample just either side: an interval bounded by two static
     # points (between the critical speeds) is never narrower than the sampling
     static = _static_roots(params, axis, hi)
@@ -698,15 +723,20 @@ class UndampedCritical:
 
 def _static_roots(params: RodParameters, axis: str, upto: float, n: int = 400) -> np.ndarray:
     """The static points (roots of D_static) on axis in (0, upto] that change its sign on a grid of n,
-    each refined by Brent's method to 1e-9 (sample positions of the lines, not critical values)."""
-    fn, _ = _ex._function(params.with_(**{axis: 0.0}), axis, 1.0)
+    each refined by Brent's method to 1e-9 (sample positions of the lines, not critical values). Read-only."""
+    return _static_roots_of(params.with_(gamma=0.0, **{axis: 0.0}), axis, float(upto), int(n))
+
+
+@lru_cache(maxsize=256)
+def _static_roots_of(params: RodParameters, axis: str, upto: float, n: int) -> np.ndarray:
+    fn, _ = _ex._function(params, axis, 1.0)
     x = np.linspace(0.0, upto, n + 1)[1:]
     g = fn(x)
     i = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
-    if not i.size:
-        return np.zeros(0)
     # all brackets at once (Chandrupatla, one evaluation of fn per step on the unfinished ones)
-    return find_root(fn, (x[i], x[i + 1]), tolerances={"xrtol": 1e-9}).x
+    out = find_root(fn, (x[i], x[i + 1]), tolerances={"xrtol": 1e-9}).x if i.size else np.zeros(0)
+    out.setflags(write=False)
+    return out
 
 
 def _spin_hi(r: np.ndarray) -> float:
@@ -732,7 +762,7 @@ def _point(line: StabilityLine, tol: float) -> CriticalPoint:
     return CriticalPoint(axis, first.value, first.kind, (first.value, first.value), first.error, conv, msg, 0)
 
 
-@_ex._one_blas_thread
+@single_blas_thread
 def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = True) -> UndampedCritical:
     """Critical load, critical spin, stable spin windows and stability of the undamped straight rod.
 

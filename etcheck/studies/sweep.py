@@ -49,6 +49,7 @@ from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
+from etcheck.numerics.eigen import one_blas_thread
 from etcheck.rod.damped_critical import damped_critical, first_root
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.parameters import RodParameters
@@ -260,7 +261,7 @@ def _worker_init(parent: int) -> None:
 
     from threadpoolctl import threadpool_limits
 
-    threadpool_limits(limits=1)
+    threadpool_limits(limits=1)  # for the life of the worker
 
     def watch() -> None:
         while os.getppid() == parent:
@@ -272,10 +273,8 @@ def _worker_init(parent: int) -> None:
 
 def _solve_chunk(items: list[tuple[str, dict, float, bool]]) -> list[tuple[str, dict]]:
     """Worker entry: solve a list of (key, params dict, tol, buckled); adds wall time."""
-    from threadpoolctl import threadpool_limits
-
     out = []
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         for key, pdict, tol, buckled in items:
             t0 = time.perf_counter()
             r = solve_point(RodParameters(**pdict), tol, buckled=buckled)
@@ -284,9 +283,7 @@ def _solve_chunk(items: list[tuple[str, dict, float, bool]]) -> list[tuple[str, 
 
 
 def _solve_lengths(items: list[tuple[str, tuple]]) -> list[tuple[str, dict]]:
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         return [(key, critical_length(*args)) for key, args in items]
 
 

@@ -59,7 +59,7 @@ from etcheck.checks.sections import CheckResults, MarginSensitivityRecord, Proba
 from etcheck.input.echo import UncertaintyInputs
 from etcheck.input.mission import Mission
 from etcheck.input.uncertainty import Distribution, Uncertainty
-from etcheck.numerics.eigen import single_blas_thread
+from etcheck.numerics.eigen import one_blas_thread, single_blas_thread
 from etcheck.rod.analytic import characteristic_roots
 from etcheck.rod.damped_critical import LADDER, first_root
 from etcheck.rod.parameters import RodParameters
@@ -567,10 +567,8 @@ def _closed_form_batch(model: MarginModel, dists: list[Distribution], u: np.ndar
 
 
 def _chunk_worker(args) -> list[tuple[float, int]]:
-    from threadpoolctl import threadpool_limits
-
     model, kind, rows, cond = args
-    with threadpool_limits(limits=1):
+    with one_blas_thread():
         return [conditional_probability(model, kind, v, cond) for v in rows]
 
 
