@@ -74,7 +74,7 @@ from .parameters import RodParameters
 from .stability import CriticalKind, CriticalPoint, stable_windows
 
 __all__ = ["MODEL", "characteristic_mu", "Crossing", "StabilityLine", "stability_line", "UndampedCritical",
-           "undamped_critical"]
+           "undamped_critical", "has_real_pair"]
 
 #: Model string of every value from this module.
 MODEL = "rung 1 (exact undamped determinant)"
@@ -763,7 +763,8 @@ def _point(line: StabilityLine, tol: float) -> CriticalPoint:
 
 
 @single_blas_thread
-def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = True) -> UndampedCritical:
+def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = True,
+                      spin: bool = True) -> UndampedCritical:
     """Critical load, critical spin, stable spin windows and stability of the undamped straight rod.
 
     Dimensionless; gamma is ignored (undamped). Three lines of
@@ -777,9 +778,13 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     the operating spin. Same shapes as the spectral scans of
     :mod:`etcheck.rod.stability` (critical_load, scan_line); errors are
     absolute, from a second formulation of E; ``tol`` is relative.
+    ``spin=False`` (with B > 0) skips the spin line at the operating load: the critical spin is not asked
+    (NaN) and the operating point is judged on the load line (stable iff below its first instability).
     """
     p = params.with_(gamma=0.0)
     w = p.omega
+    if not spin and p.B > 0:
+        return _load_only(p, tol)
     first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
     short = max(1.02 * first[0] if first.size else 2.0, 1e-3)  # stable at rest: unstable past the first static spin
     spin_hi = short
@@ -793,12 +798,12 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     evaluations = spin_line.evaluations
     if w <= spin_line.hi:
         stable = not spin_line.unstable_at(w)
-    elif _diverging(p):  # a real pair of eigenvalues: unstable whatever the complex ones do
+    elif has_real_pair(p):  # a real pair of eigenvalues: unstable whatever the complex ones do
         stable = False
     else:
         far = stability_line(p, "omega", 0.0, 1.1 * w)
         stable, evaluations = not far.unstable_at(w), evaluations + far.evaluations
-    if w > 0 and _diverging(p.with_(B=0.0)):  # the unloaded rod already has a real pair at this spin
+    if w > 0 and has_real_pair(p.with_(B=0.0)):  # the unloaded rod already has a real pair at this spin
         load = CriticalPoint("B", 0.0, CriticalKind.UNSTABLE_AT_START, (0.0, 0.0), 0.0, True,
                              f"already unstable at B = 0: a real pair of eigenvalues ({MODEL})", 0)
         return UndampedCritical(load, _point(spin_line, tol), spin_line.windows, spin_line.hi, stable, evaluations)
@@ -806,24 +811,47 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     if w == 0:  # not gyroscopic: K q = mu M q, stable exactly below the first static load
         return UndampedCritical(_point(_static_line(static), tol), _point(spin_line, tol), spin_line.windows,
                                 spin_line.hi, stable, evaluations + static.evaluations)
-    rest = stability_line(p.with_(B=0.0), "omega", 0.0, w)
-    pairs, evaluations = rest.pairs_at_hi, evaluations + rest.evaluations
+    load_line, spent = _load_line(p, static)
+    return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
+                            evaluations + spent)
+
+
+def _load_line(p: RodParameters, static) -> tuple[StabilityLine, int]:
+    """The load line at the operating spin (w > 0) from 0 to just past its first static point (R = 1: past the
+    third, double static points do not end stability), anchored by the unloaded rod's spin line; and the
+    evaluations spent, ``static`` (the first static load at the operating spin) included."""
+    rest = stability_line(p.with_(B=0.0), "omega", 0.0, p.omega)
     scale = _ex._root_scale(p, "B", 1.0)
     load_hi = max(1.02 * static.value, 1e-3 * scale) if math.isfinite(static.value) else 16 * scale
     if p.R == 1.0:  # double static points do not end stability: as far as the spectral scan's default
         roots = _static_roots(p, "B", 16 * scale)
         load_hi = 1.1 * roots[2] if roots.size >= 3 else 2.0 * roots[-1] if roots.size else load_hi
-    load_line = stability_line(p, "B", 0.0, load_hi, pairs=pairs)
-    evaluations += load_line.evaluations + static.evaluations
-    return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
-                            evaluations)
+    line = stability_line(p, "B", 0.0, load_hi, pairs=rest.pairs_at_hi)
+    return line, rest.evaluations + line.evaluations + static.evaluations
+
+
+def _load_only(p: RodParameters, tol: float) -> UndampedCritical:
+    """The critical load alone (B > 0): the operating point is stable iff B lies below it."""
+    none = CriticalPoint("omega", math.nan, CriticalKind.NOT_LOCATED, (0.0, 0.0), math.nan, True,
+                         "critical spin not asked", 0)
+    static = _ex.exact_root(p.with_(B=0.0), "B")
+    if p.omega == 0:
+        load = _point(_static_line(static), tol)
+        return UndampedCritical(load, none, (), 0.0, p.B < load.value, static.evaluations)
+    if has_real_pair(p.with_(B=0.0)):
+        load = CriticalPoint("B", 0.0, CriticalKind.UNSTABLE_AT_START, (0.0, 0.0), 0.0, True,
+                             f"already unstable at B = 0: a real pair of eigenvalues ({MODEL})", 0)
+        return UndampedCritical(load, none, (), 0.0, False, 0)
+    line, spent = _load_line(p, static)
+    load = _point(line, tol)
+    return UndampedCritical(load, none, (), 0.0, not line.unstable_at(p.B) if p.B <= line.hi else False, spent)
 
 
 def _spin_line(p: RodParameters, spin_hi: float, windows: bool) -> tuple[StabilityLine | None, str]:
     """The spin line at the operating load from 0 to spin_hi (unstable from the start, not followed, when the
     rod has a real pair at rest and no windows are asked); (None, why) without spin where it cannot be drawn."""
     at_rest = p.with_(B=0.0, omega=0.0)  # stable at rest iff B is below its first static load (T >= 0)
-    if not windows and (p.B >= _ex.exact_root(at_rest, "B").value or _diverging(p.with_(omega=0.0))):  # a real pair
+    if not windows and (p.B >= _ex.exact_root(at_rest, "B").value or has_real_pair(p.with_(omega=0.0))):  # a real pair
         return StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0), ""
     try:
         return stability_line(p, "omega", 0.0, spin_hi, samples=64 if windows else 25), ""
@@ -847,10 +875,10 @@ def _without_spin(p: RodParameters, tol: float, why: str) -> UndampedCritical:
     static = _ex.exact_root(p.with_(B=0.0), "B")
     spin = CriticalPoint("omega", math.nan, CriticalKind.NOT_LOCATED, (0.0, 0.0), math.nan, False,
                          f"critical spin not answered ({MODEL}): {why}", 0)
-    return UndampedCritical(_point(_static_line(static), tol), spin, (), 0.0, not _diverging(p), static.evaluations)
+    return UndampedCritical(_point(_static_line(static), tol), spin, (), 0.0, not has_real_pair(p), static.evaluations)
 
 
-def _diverging(params: RodParameters, n: int = 64) -> bool:
+def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     """True when E has a real root mu < 0 at params (a real pair of eigenvalues: unstable), from sign
     changes on n points between the Rayleigh floor and 0; False when none shows (not a proof)."""
     mu_lo = _rayleigh_floor(params, params.B, params.omega, params.T)

@@ -55,7 +55,7 @@ from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.stability import CriticalKind
 from etcheck.rod.undamped_straight import MODEL as UNDAMPED_MODEL
-from etcheck.rod.undamped_straight import undamped_critical
+from etcheck.rod.undamped_straight import has_real_pair, undamped_critical
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 
@@ -137,7 +137,7 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
         return out | {"status": STATUS_OUTSIDE,
                       "reason": f"P = {params.P:.3g} > {P_MAX}: the tether is too short for rod theory (P << 1)"}
     try:
-        out |= _damped(params, tol, spin) if params.gamma > 0 else _undamped(params, tol)
+        out |= _damped(params, tol, spin) if params.gamma > 0 else _undamped(params, tol, spin)
     except (np.linalg.LinAlgError, ValueError, ArithmeticError) as exc:
         out |= {"status": STATUS_FAILED, "reason": f"solver error: {type(exc).__name__}: {exc}"}
     out = _finite(out, spin)
@@ -182,10 +182,11 @@ def _buckled(params: RodParameters) -> dict[str, Any]:
     return {"buckled_stable": b["stable"], "buckled_deflection": b["max_deflection"], "buckled_reason": b["reason"]}
 
 
-def _undamped(params: RodParameters, tol: float) -> dict[str, Any]:
+def _undamped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
     """Without damping flutter is possible: the exact undamped determinant (rung 1u), located
-    divergence and flutter points along the load and spin lines through the point."""
-    u = undamped_critical(params, tol, windows=False)
+    divergence and flutter points along the load and spin lines through the point (``spin=False``:
+    the load line alone where there is a load)."""
+    u = undamped_critical(params, tol, windows=False, spin=spin)
     out: dict[str, Any] = {"model": UNDAMPED_MODEL, "N": None, "stable": bool(u.stable)}
     for name, c in (("B_c", u.critical_load), ("omega_c", u.critical_spin)):
         if c.kind == CriticalKind.UNSTABLE_AT_START:
@@ -221,31 +222,69 @@ def critical_length(base: Scene, current: float, field: float, values: dict[str,
     the first root of the static pencil along the ray from zero load and
     spin to the point's (B, omega^2) (damped: exact, Kelvin-Tait-Chetaev),
     or on the load margin minus one from the exact undamped determinant (undamped).
+    Undamped, where the unloaded tether at ``hi`` already has a real pair of eigenvalues at its spin (and
+    not at ``lo``), the load margin drops to zero there in a jump: the onset of that pair is bisected first
+    (a cheap test per length) and is the answer if the tether is stable just short of it.
     """
 
+    def at(L: float) -> RodParameters:
+        return scale(point_scene(base, current, field, values | {"length": L})).params
+
     def h(L: float) -> float:
-        p = scale(point_scene(base, current, field, values | {"length": L})).params
-        if p.B == 0 and p.omega == 0:
-            return 1.0
-        if p.gamma > 0:  # exact: with damping, stable iff the ray root t* exceeds 1
-            t = (first_exact_root if straight_route(p) == EXACT else first_root)(p, "ray", tol)
-            if not t.converged:
-                raise _NoAnswer(f"at L = {L:.6g} m: ray root not converged at N = {t.N} (error {t.error:.1e})")
-            return math.log(t.value)
-        r = solve_point(p, tol, spin=False)
-        if r["status"] != STATUS_OK:
-            raise _NoAnswer(f"at L = {L:.6g} m: {r['reason']}")
-        if p.B > 0:
-            return (r["B_c"] / p.B if r["B_c"] is not None else math.inf) - 1.0
-        return (r["omega_c"] / p.omega if r["omega_c"] is not None else math.inf) - 1.0
+        return _length_margin(at(L), L, tol)
 
     t0 = time.perf_counter()
+    rtol = max(tol, 4 * np.finfo(float).eps)
+    spent = 0
     try:
-        L, res = brentq(h, lo, hi, xtol=1e-12, rtol=max(tol, 4 * np.finfo(float).eps), full_output=True)
+        onset = _real_pair_onset(at, lo, hi, rtol)
+        if onset is not None:
+            a, b, spent = onset
+            if h(a) > 0:
+                return {"status": STATUS_OK, "reason": "the unloaded tether gains a real pair of eigenvalues "
+                        "(divergence) at this spin", "length_m": b, "evaluations": spent + 1,
+                        "time_s": time.perf_counter() - t0}
+            hi, spent = a, spent + 1
+        L, res = brentq(h, lo, hi, xtol=1e-12, rtol=rtol, full_output=True)
     except _NoAnswer as exc:
         return {"status": STATUS_FAILED, "reason": str(exc), "length_m": None, "time_s": time.perf_counter() - t0}
     return {"status": STATUS_OK if res.converged else STATUS_FAILED, "reason": res.flag, "length_m": float(L),
-            "evaluations": int(res.function_calls), "time_s": time.perf_counter() - t0}
+            "evaluations": int(res.function_calls) + spent, "time_s": time.perf_counter() - t0}
+
+
+def _length_margin(p: RodParameters, L: float, tol: float) -> float:
+    """h(L) of :func:`critical_length` at the scene ``p`` of length L [m]: positive where stable."""
+    if p.B == 0 and p.omega == 0:
+        return 1.0
+    if p.gamma > 0:  # exact: with damping, stable iff the ray root t* exceeds 1
+        t = (first_exact_root if straight_route(p) == EXACT else first_root)(p, "ray", tol)
+        if not t.converged:
+            raise _NoAnswer(f"at L = {L:.6g} m: ray root not converged at N = {t.N} (error {t.error:.1e})")
+        return math.log(t.value)
+    r = solve_point(p, tol, spin=False)
+    if r["status"] != STATUS_OK:
+        raise _NoAnswer(f"at L = {L:.6g} m: {r['reason']}")
+    if p.B > 0:
+        return (r["B_c"] / p.B if r["B_c"] is not None else math.inf) - 1.0
+    return (r["omega_c"] / p.omega if r["omega_c"] is not None else math.inf) - 1.0
+
+
+def _real_pair_onset(at: Callable[[float], RodParameters], lo: float, hi: float,
+                     rtol: float) -> tuple[float, float, int] | None:
+    """Undamped and spinning: the lengths (a, b), b - a <= rtol b, between which the unloaded tether gains a
+    real pair of eigenvalues, bisected from [lo, hi], and the tests spent; None when it has none at ``hi`` or
+    one at ``lo`` already (damped: the ray root answers)."""
+    p_hi = at(hi)
+    if p_hi.gamma > 0 or p_hi.omega == 0 or not has_real_pair(p_hi.with_(B=0.0)):
+        return None
+    if has_real_pair(at(lo).with_(B=0.0)):
+        return None
+    a, b, spent = lo, hi, 2
+    while b - a > rtol * b:
+        m = 0.5 * (a + b)
+        a, b = (a, m) if has_real_pair(at(m).with_(B=0.0)) else (m, b)
+        spent += 1
+    return a, b, spent
 
 
 class _NoAnswer(Exception):

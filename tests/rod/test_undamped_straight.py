@@ -86,6 +86,15 @@ def test_critical_values_at_an_operating_point():
     assert u.critical_spin.kind == CriticalKind.DIVERGENCE
 
 
+@pytest.mark.parametrize("B,omega", [(0.3, 0.25), (0.1, 0.0), (0.05, 0.9), (0.0046, 1.2), (0.7, 0.25)])
+def test_the_load_line_alone_gives_the_same_load_and_verdict(B, omega):
+    """``spin=False`` (the sweep's critical lengths) skips the spin line: same critical load and stability."""
+    p = RodParameters(**SET, B=B, omega=omega)
+    full, alone = undamped_critical(p, windows=False), undamped_critical(p, windows=False, spin=False)
+    assert (alone.critical_load.kind, alone.critical_load.value) == (full.critical_load.kind, full.critical_load.value)
+    assert alone.stable == full.stable and math.isnan(alone.critical_spin.value)
+
+
 def test_without_spin_the_critical_load_is_the_first_chi_root():
     u = undamped_critical(RodParameters(**SET, B=0.1), windows=False)
     assert u.critical_load.value == pytest.approx(critical_loads(SET["R"], RodParameters(**SET).f, 1)[0], rel=1e-9)

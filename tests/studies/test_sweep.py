@@ -157,6 +157,24 @@ def test_critical_length_with_spin_is_the_boundary():
             assert solve_point(p, 1e-8)["stable"] is stable
 
 
+def test_undamped_critical_length_at_the_onset_of_a_real_pair():
+    """Undamped SET at 2 rpm: the unloaded tether gains a real pair of eigenvalues at about 93 m, where the load
+    margin drops from ~200 to 0 in a jump; located by bisection of that onset, checked on both sides."""
+    from dataclasses import replace
+
+    import astropy.units as u
+
+    from etcheck.studies.sweep import critical_length
+
+    m = replace(load_mission(ROOT / "missions" / "set.toml"), damping_time=0 * u.s)
+    sc, spin = scene(m), 2 * 2 * math.pi / 60
+    row = critical_length(sc, m.worst_current.value, m.worst_field.value, {"spin_rate": spin}, 50.0, 160.0, 1e-8)
+    assert row["status"] == "ok" and "real pair" in row["reason"]
+    for f, stable in ((1 - 1e-6, True), (1 + 1e-6, False)):
+        p = scale(scene_with(m, row["length_m"] * f, spin)).params
+        assert solve_point(p, 1e-8)["stable"] is stable
+
+
 def scene_with(m, length, spin):
     from etcheck.studies.sweep import point_scene
 
