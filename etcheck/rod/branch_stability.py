@@ -561,6 +561,21 @@ def _b1_direct(params: RodParameters, N: int, B_max: float):
     return br.continue_branch(params, start, stop=(0.0, B_max), N=N, stop_on=("break",))
 
 
+def _b1_near(branch, N: int, B_first: float, B_ref: float | None = None):
+    """b1 at resolution N from its state on ``branch`` (b1 at the other resolution) last below 0.9 B_first,
+    resampled and re-solved at N, continued in B to 5 % past B_first (Fix(S1)): the branch point there
+    without following b1 again from its pitchfork (``B_ref`` None) or from (B_ref, omega), which it does when
+    the branch has no such state."""
+    below = [s for s in branch.states if s.params.B < 0.9 * B_first]
+    if not below:
+        if B_ref is None:
+            return _b1_direct(branch.params, N, B_first * (1.0 + 0.05))
+        return _b1_in_B(branch.params, branch.params.omega, N, B_ref, B_first * (1.0 + 0.05))[0]
+    start = eq.solve_equilibrium(below[-1].params, below[-1], N)
+    return br.continue_branch(start.params, start, stop=(0.0, B_first * (1.0 + 0.05)), N=N, which="S1", ds=0.05,
+                              ds_max=0.25, stop_on=("break",))
+
+
 @single_blas_thread
 def secondary_pitchfork(params: RodParameters, omega: float, N: int = 32, N_check: int | None = None,
                         B_ref: float = 1.2, B_max: float = 20.0, branch=None) -> PitchforkPoint:
@@ -584,16 +599,15 @@ def secondary_pitchfork(params: RodParameters, omega: float, N: int = 32, N_chec
     if branch is not None and (branch.parameter != "B" or branch.which != "S1"
                                or branch.params.omega != omega or branch.N != int(N)):
         raise ValueError("branch must be b1 (Fix(S1)) continued in B at the given omega and resolution N")
-    got = {}
-    for n in sorted({int(N), Nc}, key=lambda k: k != (branch.N if branch is not None else -1)):
-        if branch is not None and n == branch.N:
-            brk = first_break(branch)
-        elif branch is not None:
-            B_first = got[branch.N][0]
-            brk = first_break(_b1_direct(branch.params, n, B_first * (1.0 + 0.05)))
+    got, first = {}, branch
+    for n in sorted({int(N), Nc}, key=lambda k: k != (branch.N if branch is not None else int(N))):
+        if first is not None and n == first.N:
+            brk = first_break(first, above=-math.inf if branch is not None else B_ref)
+        elif first is not None:  # the other resolution: from the first one's state just below its B*
+            brk = first_break(_b1_near(first, n, got[first.N][0], B_ref if branch is None else None))
         else:
-            up, _ = _b1_in_B(params, omega, n, B_ref, B_max)
-            brk = first_break(up, above=B_ref)
+            first, _ = _b1_in_B(params, omega, n, B_ref, B_max)
+            brk = first_break(first, above=B_ref)
         if brk is None:
             lo = 0.0 if branch is not None else B_ref
             hi = branch.values.max() if branch is not None and n == branch.N else B_max
@@ -612,8 +626,8 @@ def secondary_pitchfork_curve(params: RodParameters, omegas, N: int = 32, N_chec
     """B*(omega) of b1 at each omega of ``omegas`` (each point located exactly, two
     resolutions; :func:`secondary_pitchfork`). Dimensionless."""
     omegas = [float(w) for w in omegas]
-    for n in (int(N), check_resolution(N) if N_check is None else int(N_check)):
-        b1_spin_branch(params, B_ref, max(omegas), n)  # one omega continuation serves every omega
+    # one omega continuation serves every omega (the check resolution starts from these states: none there)
+    b1_spin_branch(params, B_ref, max(omegas), int(N))
     return PitchforkCurve(tuple(secondary_pitchfork(params, w, N, N_check, B_ref, B_max) for w in omegas))
 
 
