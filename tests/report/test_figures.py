@@ -66,3 +66,20 @@ def test_coil_region_without_any_secondary_pitchfork_is_drawn():
                    "secondary_curve": {"spin_rpm": [], "IB0_N_per_m": []}}}}
     out = coil_region_plot(results)
     assert out.startswith("<img") or "base64" in out
+
+
+def test_spin_margin_curve_of_the_damped_map_follows_the_exact_rows():
+    """The critical spin at each load is interpolated between the spin rows' exact stability boundaries,
+    not read off as the first unstable row (a staircase of one row's height); none where buckled at rest."""
+    from etcheck.report.figures.check import _shade_rows
+
+    rpm = np.linspace(0.0, 1.0, 11)  # rows 0.1 rpm apart; stable for load < 1 - rpm^2
+    rows = [{"spin_rpm": float(w), "IB0_N_per_m": [[0.0, 1.0 - w**2]] if w < 1.0 else []} for w in rpm]
+    plt = pyplot()
+    fig, ax = plt.subplots()
+    _, _, cols, w_col = _shade_rows(ax, rows, np.linspace(0.0, 1.2, 50))
+    plt.close(fig)
+    inside = (cols > 0.05) & (cols < 0.95)
+    exact = np.sqrt(1.0 - cols[inside])
+    assert np.max(np.abs(w_col[inside] - exact)) < 0.02  # a staircase is off by up to a row, 0.1
+    assert np.all(np.isinf(w_col[cols > 1.0]))  # buckled at rest: no spin margin to draw

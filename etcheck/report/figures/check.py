@@ -225,7 +225,16 @@ def _shade_rows(ax, rows, load):
         for a, b in r["IB0_N_per_m"]:
             stable[i] |= (a <= cols) & (cols <= b)
     unstable = ~stable
-    w_col = np.where(unstable.any(axis=0), rpm[unstable.argmax(axis=0)], np.inf)
+    # critical spin of each column: between the last stable row and the first unstable one, where the rows'
+    # exact boundaries (the end of their first stable interval) pass the column's load (linear in between)
+    first = unstable.argmax(axis=0)
+    w_col = np.where(unstable.any(axis=0) & (first > 0), rpm[first], np.inf)  # none drawn where buckled at rest
+    for j in np.nonzero(unstable.any(axis=0) & (first > 0))[0]:
+        i = first[j]
+        b0, b1 = b_row[i - 1], b_row[i]
+        if np.isfinite(b0) and b0 > b1:
+            t = min(max((b0 - cols[j]) / (b0 - b1), 0.0), 1.0)
+            w_col[j] = rpm[i - 1] + t * (rpm[i] - rpm[i - 1])
     return b_row, rpm, cols, w_col
 
 
