@@ -387,8 +387,10 @@ class _Line:
             for c, xi, Ei in zip(cand, x, E):
                 i, sg, size = c[0], c[3], c[4]
                 flips = np.nonzero(np.sign(Ei[:-1]) != np.sign(Ei[1:]))[0]
-                if flips.size >= 2:
-                    found.append((i, [0.5 * (xi[flips[0]] + xi[flips[0] + 1]), 0.5 * (xi[flips[-1]] + xi[flips[-1] + 1])]))
+                if flips.size >= 2:  # each root where the secant crosses zero (a midpoint could put a root
+                    # just above mu = 0 below it, and count it with the real pairs, when E is tiny at a node)
+                    j = flips[[0, -1]]
+                    found.append((i, (xi[j] + (xi[j + 1] - xi[j]) * Ei[j] / (Ei[j] - Ei[j + 1])).tolist()))
                     continue
                 m = int(np.argmin(np.abs(Ei[1:-1]))) + 1
                 e0, e1, e2 = sg * Ei[m - 1], sg * Ei[m], sg * Ei[m + 1]

@@ -95,6 +95,20 @@ def test_the_load_line_alone_gives_the_same_load_and_verdict(B, omega):
     assert alone.stable == full.stable and math.isnan(alone.critical_spin.value)
 
 
+def test_a_close_pair_next_to_mu_zero_is_counted_on_its_side():
+    """Strong tension and large P (found by random draws): the grid's nodes next to mu = 0 are 4 apart and a
+    close pair of roots (0.42 and ~2) is found by zooming in; reported at the midpoints of the zoom's sign
+    changes, the first root fell below 0 or above it as the load changed by one ulp, the count of real pairs
+    flipped and the change of stability could not be isolated (ArithmeticError). Here both critical values
+    are divergences: the damped static roots at the same point."""
+    p = RodParameters(P=7.27e-3, R=0.5, Gamma=0.76923, T=51.2, B=276.8, omega=0.031)
+    u = undamped_critical(p, windows=False)
+    damped = exact_critical(p.with_(gamma=0.01))
+    assert u.converged and u.stable
+    assert u.critical_load.value == pytest.approx(damped.critical_load.value, rel=1e-10)
+    assert u.critical_spin.value == pytest.approx(damped.critical_spin.value, rel=1e-10)
+
+
 def test_without_spin_the_critical_load_is_the_first_chi_root():
     u = undamped_critical(RodParameters(**SET, B=0.1), windows=False)
     assert u.critical_load.value == pytest.approx(critical_loads(SET["R"], RodParameters(**SET).f, 1)[0], rel=1e-9)
