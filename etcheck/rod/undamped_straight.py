@@ -209,6 +209,8 @@ SCHUR_BUDGET = 3000
 #: thin tethers with large P spun far up have ~1e4-1e5 of them: the stable spin windows are then sought only
 #: up to the first static spin, and a line that still needs more gives up (ArithmeticError).
 MAX_GRID = 6000
+#: Points at which E at the cut is sampled between two samples of a line to count the roots that pass it.
+CUT_SAMPLES = 33
 
 
 def characteristic_mu(params: RodParameters, mu, B=None, omega=None, T=None, route: str = "auto",
@@ -408,17 +410,25 @@ class _Line:
     # --- bookkeeping along the line ----------------------------------------------------------
 
     def cut_crossing(self, a: _Sample, b: _Sample) -> int:
-        """Change of the number of roots below mu_cut from a to b that comes through the cut
-        (+1: a root entered from above, -1: one left, 0: none)."""
-        if np.sign(a.top) == np.sign(b.top):
-            return 0
-        pc = brentq(lambda p: self.E(p, self.mu_cut).item(), a.p, b.p, xtol=1e-12 * max(abs(a.p), abs(b.p)))
-        hp = 1e-6 * max(abs(b.p - a.p), 1e-12)
+        """Change of the number of roots below mu_cut from a to b that comes through the cut (each root that
+        entered from above +1, each that left -1). E at the cut is sampled on CUT_SAMPLES points between a
+        and b: the high modes move together with the load or spin, and two of them can pass the cut between
+        two samples of the line, leaving the sign of E there unchanged."""
+        ps = np.linspace(a.p, b.p, CUT_SAMPLES)
+        top = self.E(ps, np.full(ps.size, self.mu_cut))
+        top[0], top[-1] = a.top, b.top
+        flips = np.nonzero(np.sign(top[:-1]) * np.sign(top[1:]) < 0)[0]
+        return sum(self._through_cut(ps[i], ps[i + 1]) for i in flips)
+
+    def _through_cut(self, pa: float, pb: float) -> int:
+        """+1 if the root of E at the cut between pa and pb enters from above as p goes from pa to pb, else -1."""
+        pc = brentq(lambda p: self.E(p, self.mu_cut).item(), pa, pb, xtol=1e-12 * max(abs(pa), abs(pb)))
+        hp = 1e-6 * max(abs(pb - pa), 1e-12)
         hm = 1e-6 * self.mu_cut
         e = self.E(np.array([pc - hp, pc + hp, pc, pc]), np.array([self.mu_cut, self.mu_cut, self.mu_cut - hm,
                                                                    self.mu_cut + hm]))
         dmu_dp = -((e[1] - e[0]) / (2 * hp)) / ((e[3] - e[2]) / (2 * hm))
-        return -1 if dmu_dp * np.sign(b.p - a.p) > 0 else 1
+        return -1 if dmu_dp * np.sign(pb - pa) > 0 else 1
 
     # --- a fold of the real roots: flutter ----------------------------------------------------
 

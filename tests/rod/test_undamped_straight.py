@@ -109,6 +109,19 @@ def test_a_close_pair_next_to_mu_zero_is_counted_on_its_side():
     assert u.critical_spin.value == pytest.approx(damped.critical_spin.value, rel=1e-10)
 
 
+def test_two_modes_passing_the_cut_between_two_samples_are_both_counted():
+    """Large P under tension (found by random draws): spinning up moves the high modes across the line's cut
+    by more than their spacing between two samples, so two roots leave together and E at the cut keeps its
+    sign; counted as one lost pair, the line saw flutter that is not there and could not isolate it. Both
+    critical values are divergences here: the damped static roots at the same point."""
+    p = RodParameters(P=9.48e-2, R=0.5, Gamma=0.76923, T=16.4, B=47.5, omega=0.0152)
+    u = undamped_critical(p, windows=False)
+    damped = exact_critical(p.with_(gamma=0.01))
+    assert u.converged and u.stable
+    assert u.critical_load.value == pytest.approx(damped.critical_load.value, rel=1e-10)
+    assert u.critical_spin.value == pytest.approx(damped.critical_spin.value, rel=1e-10)
+
+
 def test_without_spin_the_critical_load_is_the_first_chi_root():
     u = undamped_critical(RodParameters(**SET, B=0.1), windows=False)
     assert u.critical_load.value == pytest.approx(critical_loads(SET["R"], RodParameters(**SET).f, 1)[0], rel=1e-9)
