@@ -83,6 +83,8 @@ _EPS = np.finfo(float).eps
 _BC_REAL = np.array([0, 1, 4, 5])
 #: Relative gap between two exponents below which the exponential basis is not used.
 _CONFLUENT = 1e-4
+#: Smallest over largest |exponent| below which the exponential basis is not used.
+_TINY_K = 1e-8
 
 
 def _lam(mu: np.ndarray) -> np.ndarray:
@@ -166,6 +168,9 @@ def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0):
         scale = np.maximum(np.abs(k)[:, :, None], np.abs(k)[:, None, :])
         d[:, np.arange(8), np.arange(8)] = np.inf
         ok = np.all(d >= _CONFLUENT * scale, axis=(1, 2)) & np.all(np.isfinite(k), axis=1)
+        # an exponent 1e-8 times the largest (mu ~ -omega^2 under strong tension): its column is nearly
+        # constant and the Vandermonde determinant cancels (E off by 30 decades measured); Schur instead
+        ok &= np.min(np.abs(k), axis=1) >= _TINY_K * np.max(np.abs(k), axis=1)
         k2 = k * k
         Pu = lu * k2 * k2 - alpha[:, None] * k2 + c0[:, None]
         Pv = lv * k2 * k2 - beta[:, None] * k2 + c0[:, None]
@@ -262,13 +267,15 @@ def _rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min
 
     K >= (R/f) |u''|^2 + (1/f) |v''|^2 - t (|u'|^2 + |v'|^2) - omega^2 - |B| |u| |v'|
     for |u|^2 + |v|^2 = 1 (M >= 1 there), t = max(-T, 0), |v'|^2 <= |v| |v''|:
-    minimised over X = |v''| and Y = |u''| in closed form or on a grid."""
+    minimised over X = |v''| and Y = |u''| in closed form or on a grid. Under tension T > 0 the
+    term T (|u'|^2 + |v'|^2) >= T pi^2 (|u|^2 + |v|^2) (u, v vanish at both ends) is added."""
     R, f = params.R, params.f
     t = max(-T_min, 0.0)
     X = np.geomspace(1e-6, 1e6, 2001) * (1.0 + f * (abs(B_max) + t)) ** (2.0 / 3.0)
     m_v = float(np.min(X**2 / f - t * X - abs(B_max) * np.sqrt(X)))
     m_u = -t**2 * f / (4 * R)
-    return 1.1 * min(-omega_max**2 + m_u + m_v, 0.0) - 1e-6
+    bound = -omega_max**2 + m_u + m_v + max(T_min, 0.0) * math.pi**2
+    return 0.0 if bound > 0 else 1.1 * bound - 1e-6  # 0: no real root below 0, no real pair of eigenvalues
 
 
 def _mode_count(params: RodParameters, mu: np.ndarray, T: float) -> np.ndarray:

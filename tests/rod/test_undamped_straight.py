@@ -19,7 +19,7 @@ from etcheck.rod.exact_straight import exact_critical, string_limit_load
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import CriticalKind
-from etcheck.rod.undamped_straight import characteristic_mu, stability_line, undamped_critical
+from etcheck.rod.undamped_straight import characteristic_mu, has_real_pair, stability_line, undamped_critical
 
 SET = dict(P=1e-3, R=21 / 38, Gamma=0.76923)
 
@@ -115,6 +115,20 @@ def test_two_modes_passing_the_cut_between_two_samples_are_both_counted():
     sign; counted as one lost pair, the line saw flutter that is not there and could not isolate it. Both
     critical values are divergences here: the damped static roots at the same point."""
     p = RodParameters(P=9.48e-2, R=0.5, Gamma=0.76923, T=16.4, B=47.5, omega=0.0152)
+    u = undamped_critical(p, windows=False)
+    damped = exact_critical(p.with_(gamma=0.01))
+    assert u.converged and u.stable
+    assert u.critical_load.value == pytest.approx(damped.critical_load.value, rel=1e-10)
+    assert u.critical_spin.value == pytest.approx(damped.critical_spin.value, rel=1e-10)
+
+
+def test_a_taut_rod_spun_slowly_has_no_spurious_real_pairs():
+    """Strong tension, slow spin (found by random draws): near mu = 0 an exponent is 1e-9 times the largest and
+    the exponential basis gave E off by 30 decades, with sign changes taken for real pairs (the Rayleigh floor
+    ignored the tension, so mu down to -1.3e-3 was sampled). Now Schur there, and the floor includes
+    T pi^2 (no real root below 0 at all here). Both critical values are the damped static roots."""
+    p = RodParameters(P=2.09e-3, R=0.5, Gamma=0.76923, T=1.51e4, B=4.681e4, omega=0.0345)
+    assert not has_real_pair(p.with_(B=0.0))
     u = undamped_critical(p, windows=False)
     damped = exact_critical(p.with_(gamma=0.01))
     assert u.converged and u.stable
