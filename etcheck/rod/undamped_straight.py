@@ -83,8 +83,6 @@ _EPS = np.finfo(float).eps
 _BC_REAL = np.array([0, 1, 4, 5])
 #: Relative gap between two exponents below which the exponential basis is not used.
 _CONFLUENT = 1e-4
-#: Smallest over largest |exponent| below which the exponential basis is not used.
-_TINY_K = 1e-8
 
 
 def _lam(mu: np.ndarray) -> np.ndarray:
@@ -168,9 +166,6 @@ def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0):
         scale = np.maximum(np.abs(k)[:, :, None], np.abs(k)[:, None, :])
         d[:, np.arange(8), np.arange(8)] = np.inf
         ok = np.all(d >= _CONFLUENT * scale, axis=(1, 2)) & np.all(np.isfinite(k), axis=1)
-        # an exponent 1e-8 times the largest (mu ~ -omega^2 under strong tension): its column is nearly
-        # constant and the Vandermonde determinant cancels (E off by 30 decades measured); Schur instead
-        ok &= np.min(np.abs(k), axis=1) >= _TINY_K * np.max(np.abs(k), axis=1)
         k2 = k * k
         Pu = lu * k2 * k2 - alpha[:, None] * k2 + c0[:, None]
         Pv = lv * k2 * k2 - beta[:, None] * k2 + c0[:, None]
