@@ -95,26 +95,24 @@ def test_the_load_line_alone_gives_the_same_load_and_verdict(B, omega):
     assert alone.stable == full.stable and math.isnan(alone.critical_spin.value)
 
 
-def test_a_close_pair_next_to_mu_zero_is_counted_on_its_side():
-    """Strong tension and large P (found by random draws): the grid's nodes next to mu = 0 are 4 apart and a
-    close pair of roots (0.42 and ~2) is found by zooming in; reported at the midpoints of the zoom's sign
-    changes, the first root fell below 0 or above it as the load changed by one ulp, the count of real pairs
-    flipped and the change of stability could not be isolated (ArithmeticError). Here both critical values
-    are divergences: the damped static roots at the same point."""
-    p = RodParameters(P=7.27e-3, R=0.5, Gamma=0.76923, T=51.2, B=276.8, omega=0.031)
-    u = undamped_critical(p, windows=False)
-    damped = exact_critical(p.with_(gamma=0.01))
-    assert u.converged and u.stable
-    assert u.critical_load.value == pytest.approx(damped.critical_load.value, rel=1e-10)
-    assert u.critical_spin.value == pytest.approx(damped.critical_spin.value, rel=1e-10)
+#: Undamped taut scenes found by random draws that raised "could not isolate the change of stability" (R = 0.5,
+#: large P, strong tension); at each both critical values are divergences: the damped static roots.
+FOUND = [
+    # the grid's nodes next to mu = 0 are 4 apart and a close pair of roots (0.42 and ~2) is found by zooming
+    # in; placed at the midpoints of the zoom's sign changes, the first root fell below 0 or above it as the
+    # load changed by one ulp and the count of real pairs flipped
+    pytest.param(dict(P=7.27e-3, T=51.2, B=276.8, omega=0.031), id="close-pair-next-to-mu-zero"),
+    # spinning up moves the high modes across the line's cut by more than their spacing between two samples:
+    # two roots leave together, E at the cut keeps its sign, and the lost pair was taken for flutter
+    pytest.param(dict(P=9.48e-2, T=16.4, B=47.5, omega=0.0152), id="two-modes-through-the-cut"),
+    # the Rayleigh floor ignored the tension (see the test below); the whole scene takes 5 s
+    pytest.param(dict(P=2.09e-3, T=1.51e4, B=4.681e4, omega=0.0345), id="taut-slow-spin", marks=pytest.mark.slow),
+]
 
 
-def test_two_modes_passing_the_cut_between_two_samples_are_both_counted():
-    """Large P under tension (found by random draws): spinning up moves the high modes across the line's cut
-    by more than their spacing between two samples, so two roots leave together and E at the cut keeps its
-    sign; counted as one lost pair, the line saw flutter that is not there and could not isolate it. Both
-    critical values are divergences here: the damped static roots at the same point."""
-    p = RodParameters(P=9.48e-2, R=0.5, Gamma=0.76923, T=16.4, B=47.5, omega=0.0152)
+@pytest.mark.parametrize("scene", FOUND)
+def test_found_taut_scenes_are_answered_by_their_static_roots(scene):
+    p = RodParameters(R=0.5, Gamma=0.76923, **scene)
     u = undamped_critical(p, windows=False)
     damped = exact_critical(p.with_(gamma=0.01))
     assert u.converged and u.stable
@@ -130,17 +128,6 @@ def test_a_taut_rod_spun_slowly_has_no_spurious_real_pairs():
     p = RodParameters(P=2.09e-3, R=0.5, Gamma=0.76923, T=1.51e4)
     for omega in (0.0014375, 0.0043125, 0.0345):  # samples of the unloaded rod's spin line
         assert not has_real_pair(p.with_(omega=omega))
-
-
-@pytest.mark.slow
-def test_a_taut_rod_spun_slowly_is_answered_by_its_static_roots():
-    """The scene above, whole (5 s): both critical values are the damped static roots."""
-    p = RodParameters(P=2.09e-3, R=0.5, Gamma=0.76923, T=1.51e4, B=4.681e4, omega=0.0345)
-    u = undamped_critical(p, windows=False)
-    damped = exact_critical(p.with_(gamma=0.01))
-    assert u.converged and u.stable
-    assert u.critical_load.value == pytest.approx(damped.critical_load.value, rel=1e-10)
-    assert u.critical_spin.value == pytest.approx(damped.critical_spin.value, rel=1e-10)
 
 
 def test_without_spin_the_critical_load_is_the_first_chi_root():
