@@ -410,8 +410,8 @@ def _decoupled_batch(R: float, f: float, w2: np.ndarray, a: np.ndarray, b: np.nd
         M = np.full((n, 4, 4), np.nan, dtype=complex)
         for group in (w2 == 0, w2 != 0):
             if np.any(group):
-                value[group], M[group] = _isotropic_batch(c4, c2[group], w2[group], np.zeros(int(group.sum())),
-                                                          kap[group], shift)
+                value[group], M[group], _ = _isotropic_batch(c4, c2[group], w2[group],
+                                                             np.zeros(int(group.sum())), kap[group], shift)
         out *= value
         Ms.append(M)
     M = np.zeros((w2.size, 8, 8), dtype=complex)
@@ -443,9 +443,11 @@ def is_isotropic(params: RodParameters) -> bool:
     return params.R == 1.0 or (params.omega == 0.0 and params.T == 0.0)
 
 
-def _isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, kap: np.ndarray, shift: int = 0):
+def _isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, kap: np.ndarray, shift: int = 0,
+                     small: bool = True):
     """Exponential-basis route of the complex problem for arrays (all c0 = 0 or all c0 != 0).
-    Returns (D, M); D is NaN where the route does not apply."""
+    Returns (D, M, m): D is NaN where the route does not apply, m the exponents (n, 4); ``small``: not
+    where an exponent is near zero either."""
     n = c2.size
     static = bool(np.all(c0 == 0))
     c = np.stack([np.full(n, c4, dtype=complex), np.zeros(n), -c2 + 0j, 1j * c1, -c0 + 0j], axis=1)
@@ -456,7 +458,7 @@ def _isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, 
             m = np.concatenate([np.zeros((n, 1)), m], axis=1)
         else:
             m = _roots(c)
-            ok = _separated(m)
+            ok = _separated(m, small)
         ms = m / kap[:, None]
         V = np.stack([np.ones_like(m), ms], axis=1)
         logW = _log_vandermonde(ms)
@@ -464,7 +466,7 @@ def _isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, 
         m = np.where(ok[:, None], m, 1.0 + np.arange(4))
         V = np.where(ok[:, None, None], V, 1.0)
         value, M = _assemble(m, V, np.where(ok, logW, 0.0), shift)
-    return np.where(ok & np.isfinite(value), value, np.nan), M
+    return np.where(ok & np.isfinite(value), value, np.nan), M, m
 
 
 def _isotropic_arrays(params: RodParameters, B, omega, T, factor: float = 1.0):
@@ -479,13 +481,18 @@ def _isotropic_arrays(params: RodParameters, B, omega, T, factor: float = 1.0):
     return c4, c2, c0, c1, kap
 
 
-def _isotropic_schur(c4: float, c2: float, c0: float, c1: float, kap: float, shift: int = 0) -> _Evans:
+def _isotropic_companion(c4: float, c2: float, c0: float, c1: float, kap: float) -> np.ndarray:
+    """4 x 4 first-order matrix of the scaled state (w, w'/kap, ..) of c4 w^(4) - c2 w'' + i c1 w' - c0 w = 0."""
     A = np.zeros((4, 4), dtype=complex)
     A[0, 1] = A[1, 2] = A[2, 3] = kap
     A[3, 0] = c0 / (c4 * kap**3)
     A[3, 1] = -1j * c1 / (c4 * kap**2)
     A[3, 2] = c2 / (c4 * kap)
-    return _schur(A, _BC_COMPLEX, shift)
+    return A
+
+
+def _isotropic_schur(c4: float, c2: float, c0: float, c1: float, kap: float, shift: int = 0) -> _Evans:
+    return _schur(_isotropic_companion(c4, c2, c0, c1, kap), _BC_COMPLEX, shift)
 
 
 def _isotropic_batch_values(params: RodParameters, B, omega, T, factor: float = 1.0, shift: int = 0) -> np.ndarray:
@@ -503,7 +510,7 @@ def _isotropic_batch_values(params: RodParameters, B, omega, T, factor: float = 
 def _isotropic_evans(params: RodParameters, route: str, factor: float = 1.0, shift: int = 0) -> _Evans:
     c4, c2, c0, c1, kap = _isotropic_arrays(params, params.B, params.omega, params.T, factor)
     if route != "schur":
-        value, M = _isotropic_batch(c4, c2, c0, c1, kap, shift)
+        value, M, _ = _isotropic_batch(c4, c2, c0, c1, kap, shift)
         if np.isfinite(value[0]):
             return _Evans(complex(value[0]), M[0], "exponential")
         if route == "exponential":

@@ -60,7 +60,7 @@ Dimensionless and pure; numpy/scipy only.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -71,6 +71,7 @@ from ..numerics.eigen import single_blas_thread
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur
 from .parameters import RodParameters
+from .undamped_isotropic import _characteristic_plus
 from .stability import CriticalKind, CriticalPoint, stable_windows
 
 __all__ = ["MODEL", "characteristic_mu", "Crossing", "StabilityLine", "stability_line", "UndampedCritical",
@@ -299,17 +300,36 @@ def _coupling_wavenumber(params: RodParameters, B: float, omega: float, T: float
 @dataclass(frozen=True)
 class _Sample:
     """Real roots of E(.; p) at one point p of a line: their approximate positions (sorted),
-    the counts below and above mu = 0 and the sign of E at the cut."""
+    the counts below and above mu = 0 (all counted above for a line in Omega) and the signs of E at the
+    cuts."""
 
     p: float
     roots: tuple[float, ...]
     n_neg: int
     n_pos: int
-    top: float
+    top: tuple[float, ...]
+
+
+def _positive_grid(params: RodParameters, ends: list[RodParameters], density: float) -> tuple[float, np.ndarray]:
+    """(mu_cut, grid on (0, mu_cut] uniform in the Weyl mode count) of a line whose ends are ``ends``."""
+    w_max = max(abs(e.omega) for e in ends)
+    kc = max(3 * math.pi, 2.0 * max(_coupling_wavenumber(params, e.B, e.omega, params.T) for e in ends))
+    R, f, P, T = params.R, params.f, params.P, params.T
+    mu_cut = max(max((c4 * kc**4 + abs(T + pc * w_max**2) * kc**2 + w_max**2) / (1 + pc * kc**2)
+                     for c4, pc in ((R / f, P * R), (1.0 / f, P))), 16 * w_max**2)
+    fine = np.concatenate([[0.0], np.geomspace(1e-9 * mu_cut, mu_cut, 4000)])
+    count = _mode_count(params, fine, T)
+    n = max(int(math.ceil(density * count[-1])), 16)
+    return mu_cut, np.interp(np.linspace(0.0, count[-1], n + 1), count, fine)[1:]
 
 
 class _Line:
-    """E along one axis ("B" or "omega"; T, P, R, f from params) on a fixed mu grid."""
+    """E along one axis ("B" or "omega"; T, P, R, f from params) on a fixed mu grid.
+
+    ``signed``: the roots below 0 are real pairs of eigenvalues (unstable); ``cuts``: (index in the grid,
+    side) of each end of the counted interval (+1: roots are counted below it, -1: above it)."""
+
+    signed = True
 
     def __init__(self, params: RodParameters, axis: str, lo: float, hi: float, route: str = "auto",
                  factor: float = 1.0, shift: int = 0, density: float = 5.0):
@@ -318,28 +338,35 @@ class _Line:
         B_max = max(abs(e.B) for e in ends)
         w_max = max(abs(e.omega) for e in ends)
         self.mu_lo = _rayleigh_floor(params, B_max, w_max, params.T)
-        kc = max(3 * math.pi, 2.0 * max(_coupling_wavenumber(params, e.B, e.omega, params.T) for e in ends))
-        R, f, P, T = params.R, params.f, params.P, params.T
-        self.mu_cut = max(max((c4 * kc**4 + abs(T + pc * w_max**2) * kc**2 + w_max**2) / (1 + pc * kc**2)
-                              for c4, pc in ((R / f, P * R), (1.0 / f, P))), 16 * w_max**2)
+        self.mu_cut, pos = _positive_grid(params, ends, density)
         # negative side: uniform in sqrt(-mu); positive side: uniform in the Weyl mode count
         neg = -np.linspace(math.sqrt(-self.mu_lo), 0.0, 48, endpoint=False) ** 2
-        fine = np.concatenate([[0.0], np.geomspace(1e-9 * self.mu_cut, self.mu_cut, 4000)])
-        count = _mode_count(params, fine, T)
-        n = max(int(math.ceil(density * count[-1])), 16)
-        pos = np.interp(np.linspace(0.0, count[-1], n + 1), count, fine)
         above = self.mu_cut + (pos[-1] - pos[-2]) * np.arange(1, 4)  # past the cut: dips next to it are seen
-        self.mu = np.unique(np.concatenate([neg, [0.0], pos[1:], [self.mu_cut], above]))
-        self.i_cut = int(np.nonzero(self.mu == self.mu_cut)[0][0])
+        self.mu = np.unique(np.concatenate([neg, [0.0], pos, [self.mu_cut], above]))
+        self.cuts = ((int(np.nonzero(self.mu == self.mu_cut)[0][0]), 1),)
         self.evaluations = 0
         self.schur_left = SCHUR_BUDGET
+
+    def frequency(self, x: float) -> float:
+        """Omega at the root x of the line's variable."""
+        return math.sqrt(abs(x))
+
+    def alternative(self, lo: float, hi: float) -> _Line:
+        """The second formulation: the Schur route while the exponents span less than 4 decades
+        (its error is eps times the largest), else other scales and another split."""
+        if _separation(self.params, self.axis, hi) < 1e4:
+            return type(self)(self.params, self.axis, lo, hi, route="schur")
+        return type(self)(self.params, self.axis, lo, hi, factor=1.37, shift=1)
+
+    def _values(self, p: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, int]:
+        return _characteristic(self.params, x, **{self.axis: p}, route=self.route, factor=self.factor,
+                               shift=self.shift, schur_budget=self.schur_left)
 
     def E(self, p, mu) -> np.ndarray:
         """E at (axis = p, mu), broadcast."""
         p, mu = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(mu, dtype=float))
         self.evaluations += p.size
-        out, slow = _characteristic(self.params, mu, **{self.axis: p}, route=self.route, factor=self.factor,
-                                    shift=self.shift, schur_budget=self.schur_left)
+        out, slow = self._values(p, mu)
         if self.route == "auto":
             self.schur_left -= slow
         return out
@@ -368,9 +395,10 @@ class _Line:
         out = []
         for p, r, E in zip(ps, roots, rows):
             r = np.sort(np.asarray(r, dtype=float))
-            r = r[r < self.mu_cut]
-            out.append(_Sample(float(p), tuple(r.tolist()), int(np.sum(r < 0)), int(np.sum(r > 0)),
-                               float(E[self.i_cut])))
+            r = r[(r < self.mu_cut) & (r > self.mu_lo)]
+            neg = int(np.sum(r < 0)) if self.signed else 0
+            out.append(_Sample(float(p), tuple(r.tolist()), neg, r.size - neg,
+                               tuple(float(E[i]) for i, _ in self.cuts)))
         return out
 
     def _close_pairs(self, ps: np.ndarray, cand: list) -> list[tuple[int, list[float]]]:
@@ -412,25 +440,29 @@ class _Line:
     # --- bookkeeping along the line ----------------------------------------------------------
 
     def cut_crossing(self, a: _Sample, b: _Sample) -> int:
-        """Change of the number of roots below mu_cut from a to b that comes through the cut (each root that
-        entered from above +1, each that left -1). E at the cut is sampled on CUT_SAMPLES points between a
-        and b: the high modes move together with the load or spin, and two of them can pass the cut between
-        two samples of the line, leaving the sign of E there unchanged."""
+        """Change of the number of counted roots from a to b that comes through the cuts (each root that
+        entered +1, each that left -1). E at a cut is sampled on CUT_SAMPLES points between a and b: the
+        high modes move together with the load or spin, and two of them can pass a cut between two samples
+        of the line, leaving the sign of E there unchanged."""
         ps = np.linspace(a.p, b.p, CUT_SAMPLES)
-        top = self.E(ps, np.full(ps.size, self.mu_cut))
-        top[0], top[-1] = a.top, b.top
-        flips = np.nonzero(np.sign(top[:-1]) * np.sign(top[1:]) < 0)[0]
-        return sum(self._through_cut(ps[i], ps[i + 1]) for i in flips)
+        change = 0
+        for k, (i, side) in enumerate(self.cuts):
+            x = self.mu[i]
+            top = self.E(ps, np.full(ps.size, x))
+            top[0], top[-1] = a.top[k], b.top[k]
+            flips = np.nonzero(np.sign(top[:-1]) * np.sign(top[1:]) < 0)[0]
+            change += sum(self._through_cut(ps[j], ps[j + 1], x, side) for j in flips)
+        return change
 
-    def _through_cut(self, pa: float, pb: float) -> int:
-        """+1 if the root of E at the cut between pa and pb enters from above as p goes from pa to pb, else -1."""
-        pc = brentq(lambda p: self.E(p, self.mu_cut).item(), pa, pb, xtol=1e-12 * max(abs(pa), abs(pb)))
+    def _through_cut(self, pa: float, pb: float, x: float, side: int) -> int:
+        """+1 if the root of E at the cut x between pa and pb enters the counted side as p goes from pa to pb,
+        else -1 (side +1: counted below x, -1: above)."""
+        pc = brentq(lambda p: self.E(p, x).item(), pa, pb, xtol=1e-12 * max(abs(pa), abs(pb)))
         hp = 1e-6 * max(abs(pb - pa), 1e-12)
-        hm = 1e-6 * self.mu_cut
-        e = self.E(np.array([pc - hp, pc + hp, pc, pc]), np.array([self.mu_cut, self.mu_cut, self.mu_cut - hm,
-                                                                   self.mu_cut + hm]))
-        dmu_dp = -((e[1] - e[0]) / (2 * hp)) / ((e[3] - e[2]) / (2 * hm))
-        return -1 if dmu_dp * np.sign(pb - pa) > 0 else 1
+        hm = 1e-6 * abs(x)
+        e = self.E(np.array([pc - hp, pc + hp, pc, pc]), np.array([x, x, x - hm, x + hm]))
+        dx_dp = -((e[1] - e[0]) / (2 * hp)) / ((e[3] - e[2]) / (2 * hm))
+        return -1 if dx_dp * np.sign(pb - pa) * side > 0 else 1
 
     # --- a fold of the real roots: flutter ----------------------------------------------------
 
@@ -452,6 +484,44 @@ class _Line:
                 break
             m = new
         return m, sg * self.E(p, m).item()
+
+
+class _IsoLine(_Line):
+    """D+ of :mod:`etcheck.rod.undamped_isotropic` (R = 1) along one axis on a fixed grid in Omega over
+    [-Omega_cut, Omega_cut] (Omega_cut^2 the mu cut of :class:`_Line`): the rod is stable iff every root of
+    D+ is real, so every root counts alike (a real pair of eigenvalues is a complex pair Omega = +-i sigma
+    here) and roots enter or leave through both cuts."""
+
+    signed = False
+
+    def __init__(self, params: RodParameters, axis: str, lo: float, hi: float, route: str = "auto",
+                 factor: float = 1.0, shift: int = 0, density: float = 5.0):
+        self.params, self.axis, self.route, self.factor, self.shift = params, axis, route, factor, shift
+        mu_cut, pos = _positive_grid(params, [params.with_(**{axis: x}) for x in (lo, hi)], density)
+        om = np.sqrt(pos)
+        cut = om[-1]
+        above = cut + (om[-1] - om[-2]) * np.arange(1, 4)
+        self.mu = np.concatenate([-above[::-1], -om[::-1], [0.0], om, above])
+        self.mu_lo, self.mu_cut = -cut, cut
+        self.cuts = ((3, -1), (self.mu.size - 4, 1))
+        self.evaluations = 0
+        self.schur_left = SCHUR_BUDGET
+
+    def frequency(self, x: float) -> float:
+        return abs(x)
+
+    def alternative(self, lo: float, hi: float) -> _Line:
+        """The second formulation: the Schur route (4 x 4, exponents of a scalar problem), or other scales and
+        another split where they span more than 4 decades."""
+        p = self.params.with_(**{self.axis: hi})
+        span = (1.0 + abs(p.T + p.P * p.omega**2) * p.f) ** 0.5 + (abs(p.B) * p.f) ** (1 / 3) + self.mu_cut ** 0.5
+        if span < 1e4:
+            return _IsoLine(self.params, self.axis, lo, hi, route="schur")
+        return _IsoLine(self.params, self.axis, lo, hi, factor=1.37, shift=1)
+
+    def _values(self, p: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, int]:
+        return _characteristic_plus(self.params, x, **{self.axis: p}, route=self.route, factor=self.factor,
+                                    shift=self.shift, schur_budget=self.schur_left)
 
 
 # --- stability along a line --------------------------------------------------------------------
@@ -520,15 +590,6 @@ def _unstable(s: _Sample, N: int) -> bool:
     return s.n_neg > 0 or _pairs(s, N) > 0
 
 
-def _alternative_line(line: _Line, lo: float, hi: float) -> _Line:
-    """The second formulation: the Schur route while the exponents span less than 4 decades
-    (its error is eps times the largest), else other scales and another split."""
-    sep = _separation(line.params, line.axis, hi)
-    if sep < 1e4:
-        return _Line(line.params, line.axis, lo, hi, route="schur")
-    return _Line(line.params, line.axis, lo, hi, factor=1.37, shift=1)
-
-
 def _separation(params: RodParameters, axis: str, x: float) -> float:
     p = params.with_(**{axis: x})
     ku, kv = _wavenumbers(p.R, p.f, np.array([p.B]), *_coefficients(p.P, p.R, p.f, p.B, p.omega, p.T, 0.0), 1.0)
@@ -572,7 +633,8 @@ def _fold_point(line: _Line, a: _Sample, b: _Sample, rtol: float) -> tuple[float
     r = rich.roots
     lo = 0.5 * (r[j - 1] + r[j]) if j > 0 else line.mu_lo
     hi = 0.5 * (r[j + 1] + r[j + 2]) if j + 2 < len(r) else line.mu_cut
-    lo, hi = (max(lo, 0.0), hi) if r[j] > 0 else (lo, min(hi, 0.0))  # E is only C^1 at mu = 0
+    if line.signed:  # E is only C^1 at mu = 0
+        lo, hi = (max(lo, 0.0), hi) if r[j] > 0 else (lo, min(hi, 0.0))
     mu0 = 0.5 * (r[j] + r[j + 1])
     sg = -float(np.sign(line.E(rich.p, mu0).item()))  # sg E: negative between the pair, positive past the fold
     state = [mu0]
@@ -589,7 +651,7 @@ def _fold_point(line: _Line, a: _Sample, b: _Sample, rtol: float) -> tuple[float
 def _fold_crossing(line: _Line, a: _Sample, b: _Sample, rtol: float) -> tuple[float, float, float]:
     """(value, absolute error, mu) of a fold between a and b, with a second formulation."""
     p, mu, (sg, lo, hi) = _fold_point(line, a, b, rtol)
-    alt = _alternative_line(line, min(a.p, b.p), max(a.p, b.p))
+    alt = line.alternative(min(a.p, b.p), max(a.p, b.p))
     state = [mu]
 
     def e2(x: float) -> float:
@@ -636,13 +698,13 @@ def _locate(line: _Line, a: _Sample, Na: int, b: _Sample, Nb: int, rtol: float, 
     if fold and depth >= _SHRINK:
         try:
             x, err, mu = _fold_crossing(line, a, b, rtol)
-            return Crossing(x, err, CriticalKind.FLUTTER, math.sqrt(abs(mu)), to_unstable, bracket)
+            return Crossing(x, err, CriticalKind.FLUTTER, line.frequency(mu), to_unstable, bracket)
         except ValueError:  # the extremum followed by Brent's method jumped to another one: a narrower bracket
             if abs(b.p - a.p) <= _PINNED * max(abs(a.p), abs(b.p)):  # located by the root counts alone
                 rich = a if len(a.roots) > len(b.roots) else b
                 j = _vanishing_pair(rich, b if rich is a else a)
                 mu = 0.5 * (rich.roots[j] + rich.roots[j + 1])
-                return Crossing(0.5 * (a.p + b.p), abs(b.p - a.p), CriticalKind.FLUTTER, math.sqrt(abs(mu)),
+                return Crossing(0.5 * (a.p + b.p), abs(b.p - a.p), CriticalKind.FLUTTER, line.frequency(mu),
                                 to_unstable, bracket)
     if depth > 60:
         raise ArithmeticError(f"could not isolate the change of stability in [{a.p:.12g}, {b.p:.12g}]")
@@ -687,8 +749,8 @@ def _stability_line(params: RodParameters, axis: str, lo: float, hi: float, anch
     static = static[static > lo]
     near = np.concatenate([static * (1 - 1e-6), static * (1 + 1e-6)])
     ps = np.unique(np.concatenate([np.linspace(lo, hi, samples), [anchor], near[(near > lo) & (near < hi)]]))
-    line = _Line(params, axis, lo, hi)
-    if line.mu.size > MAX_GRID:
+    line = (_IsoLine if params.R == 1.0 else _Line)(params, axis, lo, hi)
+    if line.mu.size > MAX_GRID * (2 if params.R == 1.0 else 1):
         raise ArithmeticError(f"the {axis} line to {hi:.6g} needs {line.mu.size} mu samples per point (more than "
                               f"{MAX_GRID}: too many modes below its cut)")
     smp = line.samples(ps)
@@ -797,6 +859,8 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     """
     p = params.with_(gamma=0.0)
     w = p.omega
+    if p.R == 1.0:
+        return _isotropic(p, tol, windows, spin)
     if not spin and p.B > 0:
         return _load_only(p, tol)
     first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
@@ -828,6 +892,61 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     load_line, spent = _load_line(p, static)
     return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
                             evaluations + spent)
+
+
+def _at_rest(p: RodParameters):
+    """The first static load of the rod at rest (omega = 0, ExactRoot): for R = 1 the undamped rod is stable at
+    every spin below it (:mod:`etcheck.rod.undamped_isotropic`: a hyperbolic pencil)."""
+    return _ex.exact_root(p.with_(B=0.0, omega=0.0), "B")
+
+
+def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> UndampedCritical:
+    """:func:`undamped_critical` for R = 1 on the lines of D+ (roots that never touch), with the bound of
+    :mod:`etcheck.rod.undamped_isotropic`: below the static load at rest B_s the rod is stable at every spin,
+    so only loads past B_s (and spins at such loads) are followed."""
+    if p.T < 0:
+        raise ArithmeticError("R = 1 under compression (T < 0): the undamped isotropic lines need T >= 0")
+    rest = _at_rest(p)
+    below = p.B < rest.value
+    w = p.omega
+    if w == 0:
+        static = rest
+        load_line, spent = _static_line(static), static.evaluations
+    else:
+        scale = _ex._root_scale(p, "B", 1.0)
+        roots = _static_roots(p, "B", 16 * scale)
+        load_hi = 1.1 * roots[2] if roots.size >= 3 else 2.0 * roots[-1] if roots.size else 16 * scale
+        # stable (every root real) up to B_s: the line starts short of it, where no two roots are close
+        lo = 0.98 * rest.value
+        load_line = replace(stability_line(p, "B", lo, max(load_hi, 1.25 * rest.value)), lo=0.0)
+        spent = rest.evaluations + load_line.evaluations
+    load = _point(load_line, tol)
+    if below:
+        stable = True
+    elif w == 0:
+        stable = False  # past the static load at rest: a real pair of eigenvalues
+    elif p.B <= load_line.hi:
+        stable = not load_line.unstable_at(p.B)
+    else:
+        stable = None
+    if not spin and p.B > 0 and stable is not None:
+        none = CriticalPoint("omega", math.nan, CriticalKind.NOT_LOCATED, (0.0, 0.0), math.nan, True,
+                             "critical spin not asked", 0)
+        return UndampedCritical(load, none, (), 0.0, stable, spent)
+    first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
+    spin_hi = max(_spin_hi(first), 1.1 * w)
+    if below:  # stable at every spin: nothing to follow
+        point = CriticalPoint("omega", math.nan, CriticalKind.NONE_FOUND, (0.0, math.inf), math.nan, True,
+                              f"stable at every spin: an isotropic rod below its static load at rest "
+                              f"({rest.value:.9g}) is gyroscopically stable whatever the spin ({MODEL})", 0)
+        return UndampedCritical(load, point, ((0.0, spin_hi),), spin_hi, True, spent)
+    pairs = int(_static_roots(p.with_(omega=0.0), "B", p.B).size)  # real pairs at rest: one per static load below B
+    hi = spin_hi if windows else max(1.02 * w, 1e-3)
+    spin_line = stability_line(p, "omega", 0.0, hi, pairs=pairs, samples=64 if windows else 25)
+    if stable is None:
+        stable = not spin_line.unstable_at(w)
+    return UndampedCritical(load, _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
+                            spent + spin_line.evaluations)
 
 
 def _load_line(p: RodParameters, static) -> tuple[StabilityLine, int]:
@@ -894,7 +1013,10 @@ def _without_spin(p: RodParameters, tol: float, why: str) -> UndampedCritical:
 
 def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     """True when E has a real root mu < 0 at params (a real pair of eigenvalues: unstable), from sign
-    changes on n points between the Rayleigh floor and 0; False when none shows (not a proof)."""
+    changes on n points between the Rayleigh floor and 0; False when none shows (not a proof). For R = 1
+    (T >= 0) below the static load at rest: False (a proof, :mod:`etcheck.rod.undamped_isotropic`)."""
+    if params.R == 1.0 and params.T >= 0 and params.B < _at_rest(params).value:
+        return False
     mu_lo = _rayleigh_floor(params, params.B, params.omega, params.T)
     mu = -np.linspace(math.sqrt(-mu_lo), 0.0, n + 1) ** 2
     E = characteristic_mu(params, mu)
