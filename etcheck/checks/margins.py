@@ -154,10 +154,13 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
 
 def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
     kind = point["kind"]
-    if point["value"] is None and kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND):
+    if point["value"] is None and kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND,
+                                               CriticalKind.NEVER):
         return incomplete_margin(name, unit, operating, required, 1, point["message"])
     if kind == CriticalKind.UNSTABLE_AT_START:
         return ratio_margin(name, unit, 0.0, operating, required, 1, 0.0, why_unstable)
+    if kind == CriticalKind.NEVER:  # proved stable at every value: an unlimited margin
+        return Margin(name, unit, None, operating, None, required, PASS, 1, 0.0, point["message"])
     if kind == CriticalKind.NONE_FOUND:
         hi = point["bracket"][1] * scale_to_si
         return ratio_margin(

@@ -41,7 +41,11 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: PostbucklingS
             "With damping the straight tether loses stability only where its static operator is singular "
             "(Kelvin-Tait-Chetaev), so those roots are the whole stability boundary; the map's stable rows run from "
             "zero load to the first root at each spin. Frequencies (Campbell diagram, operating eigenvalues) are not "
-            "computed on this route.",
+            "computed on this route." if p.gamma > 0 else
+            "Without damping the determinant is a real function of mu = -lambda^2 whose real roots are the "
+            "vibration frequencies (for an isotropic tether, R = 1, one complex scalar problem per direction of "
+            "whirl): divergence and flutter points, and the edges of stable spin windows, are located as its "
+            "roots and folds, not sampled. No map, Campbell diagram or operating eigenvalues on this route.",
         ]
     elif chosen.rung == 1:
         items += [

@@ -82,6 +82,7 @@ class CriticalKind(StrEnum):
     FLUTTER = "flutter"  # a complex pair crosses: growing oscillation (undamped, Krein collision)
     UNSTABLE_AT_START = "unstable at start"  # already unstable where the line starts: nothing to locate
     NONE_FOUND = "none found"  # stable over the whole line scanned
+    NEVER = "never"  # stable at every value of the line: proved, not scanned (R = 1 undamped below its static load)
     NOT_LOCATED = "not located"  # informative only (e.g. a critical spin of a mission without spin)
 
     @property

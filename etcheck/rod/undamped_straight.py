@@ -936,9 +936,9 @@ def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> Undam
     first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
     spin_hi = max(_spin_hi(first), 1.1 * w)
     if below:  # stable at every spin: nothing to follow
-        point = CriticalPoint("omega", math.nan, CriticalKind.NONE_FOUND, (0.0, math.inf), math.nan, True,
-                              f"stable at every spin: an isotropic rod below its static load at rest "
-                              f"({rest.value:.9g}) is gyroscopically stable whatever the spin ({MODEL})", 0)
+        point = CriticalPoint("omega", math.nan, CriticalKind.NEVER, (0.0, spin_hi), math.nan, True,
+                              "stable at every spin: below its static buckling load at rest no spin can destabilise an "
+                              f"undamped isotropic tether (its gyroscopic pencil is hyperbolic; {MODEL})", 0)
         return UndampedCritical(load, point, ((0.0, spin_hi),), spin_hi, True, spent)
     pairs = int(_static_roots(p.with_(omega=0.0), "B", p.B).size)  # real pairs at rest: one per static load below B
     hi = spin_hi if windows else max(1.02 * w, 1e-3)

@@ -191,13 +191,14 @@ def _undamped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
     for name, c in (("B_c", u.critical_load), ("omega_c", u.critical_spin)):
         if c.kind == CriticalKind.UNSTABLE_AT_START:
             out |= {name: 0.0, f"{name}_error": 0.0}
-        elif c.kind == CriticalKind.NONE_FOUND:
+        elif c.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER):
             out |= {name: math.inf, f"{name}_error": 0.0}
         else:
             out |= {name: c.value, f"{name}_error": c.error / abs(c.value) if c.value else c.error}
     if not u.converged:
         bad = [c.message for c in (u.critical_load, u.critical_spin)
-               if not c.converged and c.kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND)]
+               if not c.converged and c.kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND,
+                                                     CriticalKind.NEVER)]
         if bad:
             out |= {"status": STATUS_FAILED, "reason": "rung 1u did not converge: " + "; ".join(bad)}
     return out

@@ -82,3 +82,35 @@ def test_taut_tape_at_rest_gets_its_static_load():
 def test_found_scene_is_answered(data):
     results = check(mission_from_dict(data)).results
     _assert_well_formed(results)
+
+
+def _round_wire_undamped(current: str) -> dict:
+    """PMG's 500 m copper wire (R = 1, taut: the exact route), undamped and spun at 0.5 rpm."""
+    import tomllib
+    from pathlib import Path
+
+    data = tomllib.loads((Path(__file__).parents[2] / "missions" / "pmg.toml").read_text())
+    data["tether"]["damping_time"] = "0 s"
+    data["operation"] |= {"spin_rate": "0.5 rpm", "current": current}
+    return data
+
+
+def test_round_wire_undamped_is_stable_at_every_spin():
+    """An undamped spinning round wire below its static load at rest: the spin margin is unlimited (proved, not a
+    scan's lower bound: the coupled determinant's touching roots once left it "not located"); the load margin is
+    the gyroscopically raised flutter load, just above the static load at rest."""
+    results = check(mission_from_dict(_round_wire_undamped("0.3 A"))).results
+    _assert_well_formed(results)
+    load, spin = results["margins"]
+    assert spin["verdict"] == "pass" and spin["value"] is None and "every spin" in spin["why"]
+    assert load["verdict"] == "pass" and load["error"] < 1e-8
+    assert results["linear"]["critical_load"]["kind"] == "flutter"
+
+
+def test_round_wire_undamped_past_its_load_is_answered():
+    """The same wire past its critical load: both margins answered (unstable at zero spin), never incomplete."""
+    results = check(mission_from_dict(_round_wire_undamped("12 A"))).results
+    _assert_well_formed(results)
+    load, spin = results["margins"][:2]
+    assert load["verdict"] == "fail" and 0.4 < load["value"] < 1 and load["error"] < 1e-8
+    assert spin["verdict"] == "fail" and spin["value"] == 0.0
