@@ -47,6 +47,7 @@ from scipy.sparse.csgraph import connected_components
 from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, single_blas_thread
 from .base_state import straight
 from .linear import NFIELDS, linear_operator
+from .mode_band import band_modes
 from .parameters import RodParameters
 from .spectrum import (
     ERROR_FLOOR,
@@ -209,8 +210,14 @@ class StraightFamily:
 
     def growth(self, B: float, omega: float, T: float, k: int = K_MODES) -> float:
         """max Re lambda over the 2k + 4 eigenvalues nearest the shift (at least the k least-|lambda| pairs: with
-        heavy damping the overdamped modes piling up towards -1/gamma can push a growing one past them)."""
-        lam = self.eigenvalues(B, omega, T, 2 * k + 4)
+        heavy damping the overdamped modes piling up towards -1/gamma can push a growing one past them).
+        Undamped, over every eigenvalue of the band that load and spin reshape (:mod:`etcheck.rod.mode_band`)
+        if that is more: with a dense low spectrum (large P, loads past several static points) a flutter pair
+        can lie beyond the k least-|lambda| pairs."""
+        nev = 2 * k + 4
+        if self.params.gamma == 0:  # the band, up to what the resolution resolves (past it: spurious modes)
+            nev = max(nev, min(2 * band_modes(self.params.with_(B=B, omega=omega, T=T)) + 4, 4 * (self.N + 1)))
+        lam = self.eigenvalues(B, omega, T, nev)
         return float(np.max(lam.real))
 
     def pencil_roots(self, axis: str, B: float, omega: float, T: float) -> np.ndarray:

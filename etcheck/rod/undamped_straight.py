@@ -70,9 +70,10 @@ from scipy.optimize.elementwise import find_root
 from ..numerics.eigen import single_blas_thread
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur
+from .mode_band import cut, mode_count
 from .parameters import RodParameters
-from .undamped_isotropic import _characteristic_plus
 from .stability import CriticalKind, CriticalPoint, stable_windows
+from .undamped_isotropic import _characteristic_plus
 
 __all__ = ["MODEL", "characteristic_mu", "Crossing", "StabilityLine", "stability_line", "UndampedCritical",
            "undamped_critical", "has_real_pair"]
@@ -274,29 +275,6 @@ def _rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min
     return 0.0 if bound > 0 else 1.1 * bound - 1e-6  # 0: no real root below 0, no real pair of eigenvalues
 
 
-def _mode_count(params: RodParameters, mu: np.ndarray, T: float) -> np.ndarray:
-    """Weyl estimate of the number of clamped u and v modes with eigenvalue below mu >= 0
-    (sets the sample density: the roots are about one apart in this variable)."""
-    R, f, P = params.R, params.f, params.P
-    out = np.zeros_like(mu)
-    for c4, pc in ((R / f, P * R), (1.0 / f, P)):
-        c2 = max(T, 0.0) - pc * mu  # c4 k^4 + (T - pc mu) k^2 - mu = 0
-        k2 = (-c2 + np.sqrt(c2**2 + 4 * c4 * mu)) / (2 * c4)
-        out += np.sqrt(np.maximum(k2, 0.0)) / math.pi
-    return out
-
-
-def _coupling_wavenumber(params: RodParameters, B: float, omega: float, T: float) -> float:
-    """Wavenumber up to which load and spin reshape the modes: where B k (or omega^2) equals the
-    geometric mean of the u and v stiffness symbols (R/f k^4 + |a| k^2)(k^4/f + |b| k^2)."""
-    R, f, P = params.R, params.f, params.P
-    a, b = abs(T + P * R * omega**2), abs(T + P * omega**2)
-    k = np.geomspace(1e-2, 1e8, 801)
-    stiff = np.sqrt((R / f * k**4 + a * k**2) * (k**4 / f + b * k**2))
-    over = (abs(B) * k >= stiff) | (4 * omega**2 >= stiff)
-    return float(k[np.nonzero(over)[0][-1]]) if np.any(over) else 0.0
-
-
 @dataclass(frozen=True)
 class _Sample:
     """Real roots of E(.; p) at one point p of a line: their approximate positions (sorted),
@@ -312,13 +290,9 @@ class _Sample:
 
 def _positive_grid(params: RodParameters, ends: list[RodParameters], density: float) -> tuple[float, np.ndarray]:
     """(mu_cut, grid on (0, mu_cut] uniform in the Weyl mode count) of a line whose ends are ``ends``."""
-    w_max = max(abs(e.omega) for e in ends)
-    kc = max(3 * math.pi, 2.0 * max(_coupling_wavenumber(params, e.B, e.omega, params.T) for e in ends))
-    R, f, P, T = params.R, params.f, params.P, params.T
-    mu_cut = max(max((c4 * kc**4 + abs(T + pc * w_max**2) * kc**2 + w_max**2) / (1 + pc * kc**2)
-                     for c4, pc in ((R / f, P * R), (1.0 / f, P))), 16 * w_max**2)
+    mu_cut = cut(params, ends)
     fine = np.concatenate([[0.0], np.geomspace(1e-9 * mu_cut, mu_cut, 4000)])
-    count = _mode_count(params, fine, T)
+    count = mode_count(params, fine, params.T)
     n = max(int(math.ceil(density * count[-1])), 16)
     return mu_cut, np.interp(np.linspace(0.0, count[-1], n + 1), count, fine)[1:]
 

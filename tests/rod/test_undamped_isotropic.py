@@ -135,3 +135,14 @@ def test_taut_isotropic_scenes_are_answered(P, T, B, omega):
         assert _growth(p.with_(B=Bc * (1 - 1e-4)), N=48) < 1e-8
         assert _growth(p.with_(B=Bc * (1 + 1e-4)), N=48) > 1e-3
     assert math.isfinite(u.critical_load.error)
+
+
+def test_collocation_indicator_looks_at_the_whole_coupled_band():
+    """The same scene on the collocation route: the flutter pair lambda = 4.235 +- 2.741 i lies beyond the 12
+    least-|lambda| pairs (a dense low spectrum: P = 0.05, B past three static loads); the undamped stability
+    indicator looks at every eigenvalue of the band that load and spin reshape, so it sees it (it saw a stable
+    window at omega in [5.42, 7.14])."""
+    from etcheck.rod.stability import _family
+
+    p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, T=0.0)
+    assert _family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
