@@ -413,12 +413,12 @@ class _Line:
 
     # --- bookkeeping along the line ----------------------------------------------------------
 
-    def cut_crossing(self, a: _Sample, b: _Sample) -> int:
+    def cut_crossing(self, a: _Sample, b: _Sample, samples: int = CUT_SAMPLES) -> int:
         """Change of the number of counted roots from a to b that comes through the cuts (each root that
-        entered +1, each that left -1). E at a cut is sampled on CUT_SAMPLES points between a and b: the
+        entered +1, each that left -1). E at a cut is sampled on ``samples`` points between a and b: the
         high modes move together with the load or spin, and two of them can pass a cut between two samples
         of the line, leaving the sign of E there unchanged."""
-        ps = np.linspace(a.p, b.p, CUT_SAMPLES)
+        ps = np.linspace(a.p, b.p, samples)
         change = 0
         for k, (i, side) in enumerate(self.cuts):
             x = self.mu[i]
@@ -853,8 +853,8 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     elif has_real_pair(p):  # a real pair of eigenvalues: unstable whatever the complex ones do
         stable = False
     else:
-        far = stability_line(p, "omega", 0.0, 1.1 * w)
-        stable, evaluations = not far.unstable_at(w), evaluations + far.evaluations
+        pairs, real, spent = _complex_pairs(p)
+        stable, evaluations = pairs == 0 and not real, evaluations + spent
     if w > 0 and has_real_pair(p.with_(B=0.0)):  # the unloaded rod already has a real pair at this spin
         load = CriticalPoint("B", 0.0, CriticalKind.UNSTABLE_AT_START, (0.0, 0.0), 0.0, True,
                              f"already unstable at B = 0: a real pair of eigenvalues ({MODEL})", 0)
@@ -923,18 +923,37 @@ def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> Undam
                             spent + spin_line.evaluations)
 
 
+def _complex_pairs(params: RodParameters) -> tuple[int, bool, int]:
+    """(complex pairs of roots mu at params, whether it has a real pair (a root mu < 0), evaluations spent):
+    the spin line from omega = 0 (self-adjoint: every root real) without locating anything on it, only the
+    real roots at both ends and the roots that pass its cut in between (E at the cut on as many points as a
+    line of 25 samples has)."""
+    return _complex_pairs_of(params.with_(gamma=0.0))
+
+
+@lru_cache(maxsize=256)
+def _complex_pairs_of(params: RodParameters) -> tuple[int, bool, int]:
+    line = _Line(params.with_(omega=0.0), "omega", 0.0, params.omega)
+    if line.mu.size > MAX_GRID:
+        raise ArithmeticError(f"the omega line to {params.omega:.6g} needs {line.mu.size} mu samples per point "
+                              f"(more than {MAX_GRID}: too many modes below its cut)")
+    a, b = line.samples([0.0, params.omega])
+    N = a.n_neg + a.n_pos + line.cut_crossing(a, b, samples=24 * (CUT_SAMPLES - 1) + 1)
+    return _pairs(b, N), b.n_neg > 0, line.evaluations
+
+
 def _load_line(p: RodParameters, static) -> tuple[StabilityLine, int]:
     """The load line at the operating spin (w > 0) from 0 to just past its first static point (R = 1: past the
-    third, double static points do not end stability), anchored by the unloaded rod's spin line; and the
+    third, double static points do not end stability), anchored by the complex pairs of the unloaded rod (:func:`_complex_pairs`); and the
     evaluations spent, ``static`` (the first static load at the operating spin) included."""
-    rest = stability_line(p.with_(B=0.0), "omega", 0.0, p.omega)
+    pairs, _, spent = _complex_pairs(p.with_(B=0.0))
     scale = _ex._root_scale(p, "B", 1.0)
     load_hi = max(1.02 * static.value, 1e-3 * scale) if math.isfinite(static.value) else 16 * scale
     if p.R == 1.0:  # double static points do not end stability: as far as the spectral scan's default
         roots = _static_roots(p, "B", 16 * scale)
         load_hi = 1.1 * roots[2] if roots.size >= 3 else 2.0 * roots[-1] if roots.size else load_hi
-    line = stability_line(p, "B", 0.0, load_hi, pairs=rest.pairs_at_hi)
-    return line, rest.evaluations + line.evaluations + static.evaluations
+    line = stability_line(p, "B", 0.0, load_hi, pairs=pairs)
+    return line, spent + line.evaluations + static.evaluations
 
 
 def _load_only(p: RodParameters, tol: float) -> UndampedCritical:
