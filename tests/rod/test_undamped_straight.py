@@ -167,3 +167,27 @@ def test_a_line_that_needs_too_many_samples_is_refused_not_run():
     rest = undamped_critical(p.with_(omega=0.0), tol=1e-10, windows=False)
     assert rest.critical_load.kind == "divergence" and rest.critical_load.converged
     assert rest.critical_spin.kind == "not located" and "mu samples" in rest.critical_spin.message
+
+
+@pytest.mark.parametrize("B,omega", [(0.3, 1.5), (0.3, 2.0), (0.6, 0.8)])
+def test_complex_pairs_at_a_point_as_along_the_located_line(B, omega):
+    """Two routes to the number of complex pairs at a point: the located spin line (every change of stability
+    on the way) and the line's two ends with the roots that pass its cut in between."""
+    from etcheck.rod.undamped_straight import _complex_pairs
+
+    p = RodParameters(**SET, B=B, omega=omega)
+    line = stability_line(p, "omega", 0.0, omega)
+    pairs, real, _ = _complex_pairs(p)
+    assert pairs == line.pairs_at_hi
+    assert (pairs > 0 or real) == line.unstable_at(omega)
+
+
+def test_taut_scene_whose_unloaded_spin_line_spent_the_schur_budget():
+    """Regression (random taut undamped scene, R = 0.5): anchoring the load line by locating every change on the
+    unloaded rod's spin line sent 33 points past the Schur route's budget; the critical load is the first
+    static load at this spin (a divergence), as the exact static determinant gives it."""
+    p = RodParameters(P=2.9738126427068263e-06, R=0.5, Gamma=0.76923, B=17331.56785504523,
+                      omega=0.014348113597318036, T=6959.611458591513)
+    u = undamped_critical(p, windows=False)
+    assert u.critical_load.kind == "divergence" and u.stable
+    assert u.critical_load.value == pytest.approx(exact_critical(p.with_(gamma=1e-3)).critical_load.value, rel=1e-10)
