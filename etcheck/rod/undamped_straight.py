@@ -245,6 +245,9 @@ def _characteristic(params: RodParameters, mu, B=None, omega=None, T=None, route
     out = np.full(mu.size, np.nan, dtype=complex)
     if route != "schur":
         out = _exponential(params.R, params.f, B + 0j, alpha, beta, c0, c1, ku, kv, shift)
+        rest = np.nonzero(~np.isfinite(out) & (B == 0) & (omega == 0))[0]
+        if rest.size:  # u and v uncoupled: the basis of the coupled problem degenerates (q = 0)
+            out[rest] = _uncoupled(params, mu[rest], T[rest], factor, shift)
     if route != "exponential":
         slow = np.nonzero(~np.isfinite(out))[0]
         if slow.size > schur_budget:
@@ -254,6 +257,23 @@ def _characteristic(params: RodParameters, mu, B=None, omega=None, T=None, route
             A = _companion(params.R, params.f, B[i], alpha[i], beta[i], c0[i], c1[i], ku[i], kv[i])
             out[i] = _schur(A, _BC_REAL, shift).value * _smoothing(np.linalg.eigvals(A))
     return out.real.reshape(shape), int(slow.size) if route != "exponential" else 0
+
+
+def _uncoupled(params: RodParameters, mu: np.ndarray, T: np.ndarray, factor: float, shift: int) -> np.ndarray:
+    """E at B = omega = 0 up to a positive factor: the product of the determinants of the two clamped
+    Rayleigh beams (c4 w^(4) - (T - pc mu) w'' - mu w = 0 for u and v), NaN where their basis does not apply."""
+    out = np.ones(mu.size, dtype=complex)
+    for c4, pc in ((params.R / params.f, params.P * params.R), (1.0 / params.f, params.P)):
+        c2 = T - pc * mu
+        kap = factor * (1.0 + (1.0 + (c2 / c4) ** 2) ** 0.25 + (1.0 + (mu / c4) ** 2) ** 0.125)
+        value = np.full(mu.size, np.nan, dtype=complex)
+        for group in (mu == 0, mu != 0):
+            if np.any(group):
+                v, _, m = _ex._isotropic_batch(c4, c2[group] + 0j, mu[group] + 0j, np.zeros(int(group.sum())),
+                                               kap[group], shift, small=False)
+                value[group] = v * _smoothing(m)
+        out *= value
+    return out
 
 
 # --- the real roots in mu at one point of a line -------------------------------------------
@@ -947,6 +967,8 @@ def _load_line(p: RodParameters, static) -> tuple[StabilityLine, int]:
     third, double static points do not end stability), anchored by the complex pairs of the unloaded rod (:func:`_complex_pairs`); and the
     evaluations spent, ``static`` (the first static load at the operating spin) included."""
     pairs, _, spent = _complex_pairs(p.with_(B=0.0))
+    if pairs:  # flutter without load: unstable from the start of the line, nothing to locate on it
+        return StabilityLine("B", 0.0, 0.0, True, (), (), pairs, spent), spent + static.evaluations
     scale = _ex._root_scale(p, "B", 1.0)
     load_hi = max(1.02 * static.value, 1e-3 * scale) if math.isfinite(static.value) else 16 * scale
     if p.R == 1.0:  # double static points do not end stability: as far as the spectral scan's default
