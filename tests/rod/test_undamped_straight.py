@@ -43,6 +43,16 @@ def test_both_formulations_agree(B, omega, T):
     assert np.allclose(a, b, rtol=1e-10, atol=0)
 
 
+@pytest.mark.parametrize("T", [0.0, 3.0, 500.0])
+def test_uncoupled_beams_at_rest_have_the_sign_of_the_coupled_determinant(T):
+    """At B = omega = 0 E is the product of two clamped Rayleigh-beam determinants: a positive multiple of the
+    coupled determinant (Schur route), so its roots and its sign at a line's cut are the coupled ones."""
+    p = RodParameters(**SET, T=T)
+    mu = np.concatenate([-np.geomspace(1e3, 1e-3, 12), np.geomspace(1e-3, 1e5, 40)])
+    ratio = characteristic_mu(p, mu, route="schur") / characteristic_mu(p, mu)
+    assert np.all(np.isfinite(ratio)) and np.all(ratio > 0)
+
+
 def test_roots_are_the_eigenvalues_of_the_collocation_spectrum():
     p = RodParameters(**SET, B=0.3, omega=0.25)
     lam = spectrum(p, k=10, tol=1e-10).eigenvalues
