@@ -448,6 +448,19 @@ class _Line:
             change += sum(self._through_cut(ps[j], ps[j + 1], x, side) for j in flips)
         return change
 
+    def cut_crossings(self, smp: list[_Sample]) -> np.ndarray:
+        """:meth:`cut_crossing` from each sample to the next, E at each cut in one evaluation for all."""
+        ps = np.array([np.linspace(a.p, b.p, CUT_SAMPLES) for a, b in zip(smp[:-1], smp[1:])])
+        out = np.zeros(len(smp) - 1, dtype=int)
+        for k, (i, side) in enumerate(self.cuts):
+            x = self.mu[i]
+            top = self.E(ps.ravel(), np.full(ps.size, x)).reshape(ps.shape)
+            top[:, 0] = [a.top[k] for a in smp[:-1]]
+            top[:, -1] = [b.top[k] for b in smp[1:]]
+            for r, j in zip(*np.nonzero(np.sign(top[:, :-1]) * np.sign(top[:, 1:]) < 0)):
+                out[r] += self._through_cut(ps[r, j], ps[r, j + 1], x, side)
+        return out
+
     def _through_cut(self, pa: float, pb: float, x: float, side: int) -> int:
         """+1 if the root of E at the cut x between pa and pb enters the counted side as p goes from pa to pb,
         else -1 (side +1: counted below x, -1: above)."""
@@ -751,10 +764,11 @@ def _stability_line(params: RodParameters, axis: str, lo: float, hi: float, anch
     ia = int(np.nonzero(ps == anchor)[0][0])
     N = [0] * len(smp)
     N[ia] = smp[ia].n_neg + smp[ia].n_pos + 2 * pairs
+    through = line.cut_crossings(smp)  # from each sample to the next
     for i in range(ia + 1, len(smp)):
-        N[i] = N[i - 1] + line.cut_crossing(smp[i - 1], smp[i])
+        N[i] = N[i - 1] + int(through[i - 1])
     for i in range(ia - 1, -1, -1):
-        N[i] = N[i + 1] + line.cut_crossing(smp[i + 1], smp[i])
+        N[i] = N[i + 1] - int(through[i])
     flags = [_unstable(s, n) for s, n in zip(smp, N)]
     crossings = [_locate(line, smp[i], N[i], smp[i + 1], N[i + 1], rtol)
                  for i in range(len(smp) - 1) if flags[i] != flags[i + 1]]
