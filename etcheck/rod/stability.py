@@ -107,6 +107,8 @@ def nearly_isotropic(R: float) -> bool:
 THRESHOLD = 1e-9
 #: Number of least-|lambda| pairs examined by the stability indicator.
 K_MODES = 12
+#: Most eigenvalues the undamped stability indicator examines for the band that load and spin reshape.
+BAND_MAX = 64
 #: Relative offset of the scan points placed either side of a static point.
 _DELTA = 1e-6
 _AXES = ("B", "omega", "T")
@@ -215,8 +217,10 @@ class StraightFamily:
         if that is more: with a dense low spectrum (large P, loads past several static points) a flutter pair
         can lie beyond the k least-|lambda| pairs."""
         nev = 2 * k + 4
-        if self.params.gamma == 0:  # the band, up to what the resolution resolves (past it: spurious modes)
-            nev = max(nev, min(2 * band_modes(self.params.with_(B=B, omega=omega, T=T)) + 4, 4 * (self.N + 1)))
+        if self.params.gamma == 0:  # the band, up to what the resolution resolves (past it: spurious modes) and
+            # at most BAND_MAX eigenvalues (a sampled map's cost; the margins come from the exact determinant)
+            band = 2 * band_modes(self.params.with_(B=B, omega=omega, T=T)) + 4
+            nev = max(nev, min(band, 4 * (self.N + 1), BAND_MAX))
         lam = self.eigenvalues(B, omega, T, nev)
         return float(np.max(lam.real))
 
