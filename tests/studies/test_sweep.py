@@ -79,7 +79,9 @@ def test_sweep_table_in_mission():
 
 # --- the damped pencil solver against the rung-1 spectral scan ------------------------------------
 
-SCENES = [dict(omega=0.25), dict(omega=0.5, T=0.01), dict(T=-0.002, omega=0.3), dict(R=1.0, omega=0.4),
+SCENES = [pytest.param(dict(omega=0.25), marks=pytest.mark.slow),  # SET itself: in many other tests
+          pytest.param(dict(omega=0.5, T=0.01), marks=pytest.mark.slow),  # tension: the last scene has it too
+          dict(T=-0.002, omega=0.3), dict(R=1.0, omega=0.4),
           dict(R=0.2, Gamma=1.3, omega=0.2, gamma=0.3), dict(P=1e-5, omega=0.6, T=0.05)]
 
 
