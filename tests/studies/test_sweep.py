@@ -403,7 +403,7 @@ def test_unreachable_scheduler_is_a_clear_error():
     m = _spin_mission()
     with pytest.raises(MissionError, match="scheduler"):
         sweep(m, (parse_option("spin", "0rpm:0.5rpm:2"),), SweepOptions(scheduler="tcp://127.0.0.1:9",
-                                                                                   connect_timeout=2.0))
+                                                                                   connect_timeout=0.5))
 
 
 def test_mission_sweep_table_drives_the_command(tmp_path):
