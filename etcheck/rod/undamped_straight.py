@@ -912,8 +912,9 @@ def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> Undam
     """:func:`undamped_critical` for R = 1 on the lines of D+ (roots that never touch), with the bound of
     :mod:`etcheck.rod.undamped_isotropic`: below the static load at rest B_s the rod is stable at every spin,
     so only loads past B_s (and spins at such loads) are followed."""
-    if p.T < 0:
-        raise ArithmeticError("R = 1 under compression (T < 0): the undamped isotropic lines need T >= 0")
+    if p.T <= -4 * math.pi**2 / p.f:  # the clamped Euler load: K_B is not positive at B = 0
+        raise ArithmeticError("R = 1 compressed past its clamped Euler load: the undamped isotropic lines need "
+                              "a rod stable at rest")
     rest = _at_rest(p)
     below = p.B < rest.value
     w = p.omega
@@ -1043,8 +1044,9 @@ def _without_spin(p: RodParameters, tol: float, why: str) -> UndampedCritical:
 def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     """True when E has a real root mu < 0 at params (a real pair of eigenvalues: unstable), from sign
     changes on n points between the Rayleigh floor and 0; False when none shows (not a proof). For R = 1
-    (T >= 0) below the static load at rest: False (a proof, :mod:`etcheck.rod.undamped_isotropic`)."""
-    if params.R == 1.0 and params.T >= 0 and params.B < _at_rest(params).value:
+    (short of the clamped Euler compression) below the static load at rest: False (a proof,
+    :mod:`etcheck.rod.undamped_isotropic`)."""
+    if params.R == 1.0 and params.T > -4 * math.pi**2 / params.f and params.B < _at_rest(params).value:
         return False
     mu_lo = _rayleigh_floor(params, params.B, params.omega, params.T)
     mu = -np.linspace(math.sqrt(-mu_lo), 0.0, n + 1) ** 2
