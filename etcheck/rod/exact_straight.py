@@ -289,6 +289,17 @@ def _log_vandermonde(k: np.ndarray) -> np.ndarray:
     return np.sum(np.log(k[:, j] - k[:, i]), axis=1)
 
 
+def _smoothing(k: np.ndarray) -> np.ndarray:
+    """exp(sigma - sigma_s): replaces sigma = sum max(Re k, 0) = sum |Re k| / 2 (the sum of all
+    Re k is 0) of D by sigma_s = sum (Re k^4 + 1)^(1/4) / 2. Re k of a single exponent is not
+    analytic: it leaves the imaginary axis like sqrt(distance) where two exponents meet there (and
+    at lambda = 0, mu changing sign), so |Re k| puts a cusp into D; (x^4 + 1)^(1/4) = 1 + O(x^4)
+    leaves D continuously differentiable. The factor lies in [exp(-m/2), 1] for m exponents: zeros and signs of D
+    are unchanged."""
+    x = k.real
+    return np.exp(0.5 * np.sum(np.abs(x) - (x**4 + 1.0) ** 0.25, axis=-1))
+
+
 def _splits(re: np.ndarray, shift: int = 0) -> np.ndarray:
     """:func:`_split` for each row of re (n, m)."""
     lo, hi = math.log(0.25), math.log(6.0)

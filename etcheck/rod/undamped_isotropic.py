@@ -40,17 +40,10 @@ import math
 
 import numpy as np
 
-from .exact_straight import _BC_COMPLEX, _isotropic_batch, _isotropic_companion, _schur
+from .exact_straight import _BC_COMPLEX, _isotropic_batch, _isotropic_companion, _schur, _smoothing
 from .parameters import RodParameters
 
 __all__ = ["characteristic_plus"]
-
-
-def _smoothing(m: np.ndarray) -> np.ndarray:
-    """exp(sigma - sigma_s) of the exponents m (..., 4) (their sum is 0: no m^3 term), as
-    :func:`etcheck.rod.undamped_straight._smoothing`: D+ continuously differentiable."""
-    x = m.real
-    return np.exp(0.5 * np.sum(np.abs(x) - (x**4 + 1.0) ** 0.25, axis=-1))
 
 
 def _characteristic_plus(params: RodParameters, Omega, B=None, omega=None, T=None, route: str = "auto",

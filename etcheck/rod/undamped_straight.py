@@ -69,7 +69,7 @@ from scipy.optimize.elementwise import find_root
 
 from ..numerics.eigen import single_blas_thread
 from . import exact_straight as _ex
-from .exact_straight import _assemble, _log_vandermonde, _schur
+from .exact_straight import _assemble, _log_vandermonde, _schur, _smoothing
 from .mode_band import cut, mode_count
 from .parameters import RodParameters
 from .stability import CriticalKind, CriticalPoint, stable_windows
@@ -190,17 +190,6 @@ def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0):
         value, _ = _assemble(k, V, logW, shift)
         value = value * _smoothing(k)
     return np.where(ok & np.isfinite(value), value, np.nan)
-
-
-def _smoothing(k: np.ndarray) -> np.ndarray:
-    """exp(sigma - sigma_s): replaces sigma = sum max(Re k, 0) = sum |Re k| / 2 (the sum of all
-    Re k is 0) of D by sigma_s = sum (Re k^4 + 1)^(1/4) / 2. Re k of a single exponent is not
-    analytic: it leaves the imaginary axis like sqrt(distance) where two exponents meet there (and
-    at lambda = 0, mu changing sign), so |Re k| puts a cusp into D; (x^4 + 1)^(1/4) = 1 + O(x^4)
-    leaves D continuously differentiable. The factor lies in [exp(-4), 1]: zeros and signs of D
-    are unchanged."""
-    x = k.real
-    return np.exp(0.5 * np.sum(np.abs(x) - (x**4 + 1.0) ** 0.25, axis=-1))
 
 
 #: Evaluations by the ordered-Schur route (a Python loop, ~1 ms each) that one line may spend where the
