@@ -414,10 +414,11 @@ class _Line:
                 if abs(Ei[m]) <= 1e3 * _EPS * size:
                     found.append((i, [xi[m], xi[m]]))  # touching to rounding: a double root
                 elif low < 0.5 * e1 or level < 2:  # the parabola is rough on the first levels
-                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, abs(low) / e1))
+                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, low / e1))
             cand = nxt
-        # after 8 levels (4^8 finer) the parabola through the lowest samples still has its minimum at
-        # zero: E falls like the square of the distance, a double root (R = 1 at omega = 0: E is a square)
+        # after 8 levels (4^8 finer) the parabola through the lowest samples still has its minimum at zero
+        # or below it: E falls like the square of the distance, a double root or a pair closer than the
+        # samples (R = 1 at omega = 0: E is a square; R near 1 under tension: the u and v string modes)
         return found + [(c[0], [0.5 * (c[1] + c[2])] * 2) for c in cand if c[5] <= 1e-3]
 
     # --- bookkeeping along the line ----------------------------------------------------------

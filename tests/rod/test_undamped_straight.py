@@ -201,3 +201,26 @@ def test_taut_scene_whose_unloaded_spin_line_spent_the_schur_budget():
     u = undamped_critical(p, windows=False)
     assert u.critical_load.kind == "divergence" and u.stable
     assert u.critical_load.value == pytest.approx(exact_critical(p.with_(gamma=1e-3)).critical_load.value, rel=1e-10)
+
+
+NEARLY_ISOTROPIC = RodParameters(P=0.00014843474801984845, R=0.999, Gamma=0.76923, B=233.00889815408212,
+                                  omega=1.3538859962783918, T=198.00648507177962)
+
+
+def test_nearly_isotropic_pair_closer_than_the_samples_is_counted():
+    """Regression (random taut undamped scene, R = 0.999): under tension the u and v string modes split by far less
+    than the zoom's finest samples; the parabola through them dips below zero but was taken as no root because
+    the ratio's sign was dropped ("inconsistent root count ... 2 roots in all, 4 real"). Now counted as a pair."""
+    u = undamped_critical(NEARLY_ISOTROPIC, windows=False)
+    assert u.critical_load.converged and u.critical_load.kind == "flutter" and u.stable
+
+
+@pytest.mark.slow
+def test_nearly_isotropic_flutter_load_against_the_collocation_spectrum():
+    """The scene above: its flutter load is bracketed by the whole collocation spectrum (N = 48 for the layers at
+    T-bar = 198)."""
+    from test_undamped_isotropic import _growth
+
+    Bc = undamped_critical(NEARLY_ISOTROPIC, windows=False).critical_load.value
+    assert _growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 - 1e-6)), N=48) < 1e-8
+    assert _growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 + 1e-6)), N=48) > 1e-4
