@@ -43,14 +43,20 @@ def coupling_wavenumber(params: RodParameters, B: float, omega: float, T: float)
     return float(k[np.nonzero(over)[0][-1]]) if np.any(over) else 0.0
 
 
+def _mu_at(params: RodParameters, k: float, omega: float) -> float:
+    """The larger of the u and v eigenvalues mu of a mode of wavenumber k at spin omega (its stiffness
+    symbol over its inertia 1 + pc k^2)."""
+    R, f, P, T = params.R, params.f, params.P, params.T
+    return max((c4 * k**4 + abs(T + pc * omega**2) * k**2 + omega**2) / (1 + pc * k**2)
+               for c4, pc in ((R / f, P * R), (1.0 / f, P)))
+
+
 def cut(params: RodParameters, ends: list[RodParameters]) -> float:
     """mu_cut of a line whose ends are ``ends`` (T, P, R, f from params): the eigenvalue mu of the modes at
     twice the coupling wavenumber (at least 3 pi), and at least (4 omega)^2."""
     w_max = max(abs(e.omega) for e in ends)
     kc = max(3 * math.pi, 2.0 * max(coupling_wavenumber(params, e.B, e.omega, params.T) for e in ends))
-    R, f, P, T = params.R, params.f, params.P, params.T
-    return max(max((c4 * kc**4 + abs(T + pc * w_max**2) * kc**2 + w_max**2) / (1 + pc * kc**2)
-                   for c4, pc in ((R / f, P * R), (1.0 / f, P))), 16 * w_max**2)
+    return max(_mu_at(params, kc, w_max), 16 * w_max**2)
 
 
 def band_modes(params: RodParameters) -> int:
@@ -58,7 +64,5 @@ def band_modes(params: RodParameters) -> int:
     below (2 omega)^2: the modes an undamped instability can involve (the lines of the exact determinant
     count to twice the wavenumber, a margin that collocation at moderate N does not resolve)."""
     k = 1.5 * coupling_wavenumber(params, params.B, params.omega, params.T)
-    R, f, P, T, w = params.R, params.f, params.P, params.T, params.omega
-    mu = max(max((c4 * k**4 + abs(T + pc * w**2) * k**2 + w**2) / (1 + pc * k**2)
-                 for c4, pc in ((R / f, P * R), (1.0 / f, P))), 4 * w**2)
-    return int(math.ceil(float(mode_count(params, np.array([mu]), T)[0])))
+    mu = max(_mu_at(params, k, params.omega), 4 * params.omega**2)
+    return int(math.ceil(float(mode_count(params, np.array([mu]), params.T)[0])))

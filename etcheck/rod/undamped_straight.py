@@ -724,7 +724,8 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     spaced points, follows the total number of roots below the cut, and
     locates each change of stability between samples exactly: a divergence
     point as a root of E(0) = D_static, a flutter point as the zero of the
-    extremum value of E (a fold, E = dE/dmu = 0). Dimensionless.
+    extremum value of E (a fold, E = dE/dmu = 0). For R = 1 the line follows D+ of
+    :mod:`etcheck.rod.undamped_isotropic` instead (``pairs``: complex pairs of its roots Omega). Dimensionless.
     """
     if axis not in ("B", "omega"):
         raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
