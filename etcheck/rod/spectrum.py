@@ -88,6 +88,11 @@ ACCEPT = 1e-3
 ROUNDOFF = 32.0
 
 
+def roundoff_floor(N: int) -> float:
+    """The least relative error an eigenvalue at resolution N is stated with: ROUNDOFF N^2 eps."""
+    return ROUNDOFF * N**2 * float(np.finfo(float).eps)
+
+
 def check_resolution(N: int) -> int:
     """The companion resolution M used to check resolution N."""
     return N + max(8, N // 2)
@@ -297,7 +302,7 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
     wanted eigenvalue agrees between N and its check resolution to ``tol``;
     with N given, N and check_resolution(N) are used and ``converged`` says
     whether ``tol`` was met. Each error estimate is the distance to the partner at the check resolution,
-    at least the round-off floor ROUNDOFF N^2 eps (N the finer resolution).
+    at least :func:`roundoff_floor` of the finer resolution.
     """
     if base is None:
         base = straight(params)
@@ -324,7 +329,7 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
         # Error estimate of every wanted value: distance to its partner.
         m = match_spectra(lam_f, lam_c, accept=np.inf, floor=ERROR_FLOOR)
         err_all = np.full(lam_f.size, np.inf)
-        err_all[m.index] = np.maximum(m.errors, ROUNDOFF * n_f**2 * np.finfo(float).eps)
+        err_all[m.index] = np.maximum(m.errors, roundoff_floor(n_f))
         errs = err_all[want]
         ok = errs <= ACCEPT
         # Unmatched eigenvalues count as spurious only beyond every matched one

@@ -56,6 +56,7 @@ from .spectrum import (
     damping_cluster,
     nearest_eigenvalues,
     prefers_dense,
+    roundoff_floor,
     select_pairs,
 )
 
@@ -604,7 +605,7 @@ def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24, N_chec
     N_check = check_resolution(N) if N_check is None else int(N_check)
     checked = np.unique(np.linspace(0, omega_grid.size - 1, min(n_check, omega_grid.size)).round().astype(int))
     fine = _family(params, N_check)
-    error = 0.0
+    error = roundoff_floor(max(int(N), N_check))
     for i in checked:
         ref = fine.eigenvalues(params.B, omega_grid[i], params.T, nev, past_cluster=True)
         m = match_spectra(rows[i], ref, accept=np.inf, floor=ERROR_FLOOR)
