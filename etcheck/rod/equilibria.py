@@ -262,6 +262,7 @@ def jacobian(params: RodParameters, state: Equilibrium, exact: bool = True) -> n
     return _exact_jacobian(params, state)
 
 
+_EYE3 = np.eye(3)
 _SKEW_BASIS = np.array([[[0, 0, 0], [0, 0, -1], [0, 1, 0]],
                         [[0, 0, 1], [0, 0, 0], [-1, 0, 0]],
                         [[0, -1, 0], [1, 0, 0], [0, 0, 0]]], dtype=float)
@@ -312,7 +313,8 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
     K = stiffness_diag(params)
     kb = _axial(Dt, Dp)
     w = params.omega * _E3
-    J = np.zeros((NFIELDS, N, NFIELDS, n1))
+    out = np.zeros((NFIELDS * n1, NFIELDS * n1))
+    J = out[: NFIELDS * N].reshape(NFIELDS, N, NFIELDS, n1)  # a view: the ODE rows
 
     def put(rg: int, cg: int, T: np.ndarray) -> None:
         """Add T of shape (N, N+1, 3, 3) [k, j, row comp, col comp] to block (rg, cg)."""
@@ -345,25 +347,25 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
     put_identity(1, 3, P, -1.0)
     # force rows: PD phi + B d(d3) x e3 - w x (w x P xi)
     put_identity(2, 2, PD)
-    put(2, 1, -params.B * np.matmul(_skew(_E3), dd3))
+    put(2, 1, weighted(P, params.B * (_skew(_E3) @ skew_d[2])[None]))  # -B e3 x d(d3), d(d3) = -P [d3]x
     ww = _skew(w) @ _skew(w)
     put(2, 0, weighted(P, -ww[None, None]))
     # moment rows: PD m + d(d3) x Ft + d3t x P phi - rotary terms
     put_identity(3, 3, PD)
-    put(3, 1, -np.matmul(_skew(Ft)[:, None], dd3))
+    # -[Ft]x d(d3) = P [Ft]x [d3]x = P (d3 Ft^T - (Ft . d3) I)
+    d3 = D[:, :, 2]
+    put(3, 1, weighted(P, d3[None, :, :, None] * Ft[:, None, None, :] - (Ft @ d3.T)[:, :, None, None] * _EYE3))
     put(3, 2, weighted(P, _skew(Dt[:, :, 2])[:, None]))
     if params.omega != 0.0:
         for ci, i in ((params.P * params.R, 0), (params.P, 1)):
             if ci == 0.0:
                 continue
             di = Dt[:, :, i]
-            ddi = weighted(P, -skew_d[i][None])
-            # d[(w.d)(d x w)] = (w.dd)(d x w) + (w.d)(dd x w)
-            t1 = np.cross(di, w)[:, None, :, None] * (w @ ddi)[:, :, None, :]
-            t2 = -(di @ w)[:, None, None, None] * np.matmul(_skew(w), ddi)
-            put(3, 1, -ci * (t1 + t2))
-    out = np.empty((NFIELDS * n1, NFIELDS * n1))
-    out[: NFIELDS * N] = J.reshape(NFIELDS * N, NFIELDS * n1)
+            # d[(w.d)(d x w)] = (w.dd)(d x w) + (w.d)(dd x w) with dd = -P [d_i]x a, w^T [d_i]x = (w x d_i)^T:
+            # P (-(d x w) (w x d_i)^T + (w . d) [w]x [d_i]x)
+            t = (-np.cross(di, w)[:, None, :, None] * np.cross(w, D[:, :, i])[None, :, None, :]
+                 + (di @ w)[:, None, None, None] * (_skew(w) @ skew_d[i])[None])
+            put(3, 1, -ci * weighted(P, t))
     out[NFIELDS * N:] = boundary_rows(state, N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
     return out
 

@@ -205,31 +205,20 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
 
 def boundary_rows(base: BaseState, N: int) -> np.ndarray:
     """The 12 linearised welded boundary conditions (eqs. (76)-(81))."""
-    rows = np.zeros((12, NFIELDS * (N + 1)))
-    Dends = base.D0(np.array([0.0, 1.0]))
-
-    def put(r, comp, node, value):
-        rows[r, comp * (N + 1) + node] += value
-
-    # s = 0: xi1 = xi2 = 0, phi3 = 0
-    put(0, 0, 0, 1.0)
-    put(1, 1, 0, 1.0)
-    put(2, 8, 0, 1.0)
-    r = 3
-    for end, node in ((0, 0), (1, N)):
-        if end == 1:
-            for i in range(3):  # s = 1: xi = 0
-                put(r, i, N, 1.0)
-                r += 1
-        d1, d3 = Dends[end][:, 0], Dends[end][:, 2]
-        # (a x d3).e1 = a.(d3 x e1), (a x d3).e2 = a.(d3 x e2), (a x d1).e2 = a.(d1 x e2)
-        for g in (np.cross(d3, _EYE[0]), np.cross(d3, _EYE[1]), np.cross(d1, _EYE[1])):
-            for i in range(3):
-                if g[i] != 0.0:
-                    put(r, 3 + i, node, g[i])
-            r += 1
-    assert r == 12
-    return rows
+    rows = np.zeros((12, NFIELDS, N + 1))
+    # s = 0: xi1 = xi2 = 0, phi3 = 0; s = 1: xi = 0
+    rows[0, 0, 0] = rows[1, 1, 0] = rows[2, 8, 0] = 1.0
+    rows[[6, 7, 8], [0, 1, 2], N] = 1.0
+    # at each end: (a x d3).e1 = a.(d3 x e1), (a x d3).e2 = a.(d3 x e2), (a x d1).e2 = a.(d1 x e2)
+    D = base.D0(np.array([0.0, 1.0]))  # (2, 3, 3), column i = d_i
+    d1, d3 = D[:, :, 0], D[:, :, 2]
+    zero = np.zeros(2)
+    g = np.stack([np.stack([zero, d3[:, 2], -d3[:, 1]], axis=1),  # d3 x e1
+                  np.stack([-d3[:, 2], zero, d3[:, 0]], axis=1),  # d3 x e2
+                  np.stack([-d1[:, 2], zero, d1[:, 0]], axis=1)], axis=1)  # d1 x e2; (end, row, component)
+    rows[3:6, 3:6, 0] = g[0]
+    rows[9:12, 3:6, N] = g[1]
+    return rows.reshape(12, NFIELDS * (N + 1))
 
 
 def linear_operator(params: RodParameters, base: BaseState, N: int):
