@@ -193,13 +193,17 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
 
 
 def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> np.ndarray:
-    """Rows e N + k, columns v (N+1) + j of  E(t_k) (P D) - G(t_k) P."""
+    """Rows e N + k, columns v (N+1) + j of  E(t_k) (P D) - G(t_k) P.
+
+    Only the (e, v) pairs where E or G is non-zero somewhere are written (most of the 144 are zero)."""
     N = col.N
     out = np.zeros((NFIELDS, N, NFIELDS, N + 1))
-    if E is not None:
-        out += E.transpose(1, 0, 2)[:, :, :, None] * col.PD[None, :, None, :]
-    if G is not None:
-        out -= G.transpose(1, 0, 2)[:, :, :, None] * col.P[None, :, None, :]
+    zero = np.zeros(N)
+    nz = [np.any(C != 0.0, axis=0) if C is not None else np.zeros((NFIELDS, NFIELDS), dtype=bool) for C in (E, G)]
+    for e, v in zip(*np.nonzero(nz[0] | nz[1])):
+        ce = E[:, e, v] if nz[0][e, v] else zero
+        cg = G[:, e, v] if nz[1][e, v] else zero
+        out[e, :, v, :] = ce[:, None] * col.PD - cg[:, None] * col.P
     return out.reshape(NFIELDS * N, NFIELDS * (N + 1))
 
 
