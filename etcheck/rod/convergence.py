@@ -18,7 +18,7 @@ import scipy.linalg as sla
 
 from ..numerics.eigen import match_spectra, one_blas_thread
 from .base_state import straight
-from .linear import linear_operator
+from .linear import linear_operator, static_operator
 from .parameters import RodParameters
 from .spectrum import ERROR_FLOOR, lowest_eigenvalues, select_pairs
 
@@ -56,8 +56,8 @@ def first_load(params: RodParameters, N: int) -> float:
     a 2N x 2N eigenvalue solve).
     """
     base = straight(params)
-    K = linear_operator(params.with_(B=0.0), base, N)[0]
-    AB = linear_operator(params.with_(B=1.0), base, N)[0] - K
+    K = static_operator(params.with_(B=0.0), base, N)
+    AB = static_operator(params.with_(B=1.0), base, N) - K
     rows = np.nonzero(np.any(AB != 0.0, axis=1))[0]
     sel = np.zeros((K.shape[0], rows.size))
     sel[rows, np.arange(rows.size)] = 1.0

@@ -68,7 +68,7 @@ import scipy.linalg as sla
 
 from ..errors import SolverError
 from ..numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
-from .linear import NFIELDS, boundary_rows, collocation, linear_operator, stiffness_diag
+from .linear import NFIELDS, boundary_rows, collocation, static_operator, stiffness_diag
 from .parameters import RodParameters
 
 __all__ = [
@@ -258,7 +258,7 @@ def jacobian(params: RodParameters, state: Equilibrium, exact: bool = True) -> n
     aliasing error of the collocation plus O(residual) (module docstring).
     """
     if not exact:
-        return linear_operator(params.with_(gamma=0.0), state, state.N)[0]
+        return static_operator(params.with_(gamma=0.0), state, state.N)
     return _exact_jacobian(params, state)
 
 

@@ -72,6 +72,7 @@ __all__ = [
     "stiffness_diag",
     "coefficient_blocks",
     "linear_operator",
+    "static_operator",
     "field_slice",
     "boundary_rows",
 ]
@@ -193,18 +194,20 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
 
 
 def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> np.ndarray:
-    """Rows e N + k, columns v (N+1) + j of  E(t_k) (P D) - G(t_k) P.
+    """The 12 (N+1) square matrix whose rows e N + k, columns v (N+1) + j hold  E(t_k) (P D) - G(t_k) P,
+    its last 12 rows (the boundary rows) zero.
 
     Only the (e, v) pairs where E or G is non-zero somewhere are written (most of the 144 are zero)."""
     N = col.N
-    out = np.zeros((NFIELDS, N, NFIELDS, N + 1))
+    out = np.zeros((NFIELDS * (N + 1), NFIELDS * (N + 1)))
+    ode = out[: NFIELDS * N].reshape(NFIELDS, N, NFIELDS, N + 1)  # a view
     zero = np.zeros(N)
     nz = [np.any(C != 0.0, axis=0) if C is not None else np.zeros((NFIELDS, NFIELDS), dtype=bool) for C in (E, G)]
     for e, v in zip(*np.nonzero(nz[0] | nz[1])):
         ce = E[:, e, v] if nz[0][e, v] else zero
         cg = G[:, e, v] if nz[1][e, v] else zero
-        out[e, :, v, :] = ce[:, None] * col.PD - cg[:, None] * col.P
-    return out.reshape(NFIELDS * N, NFIELDS * (N + 1))
+        ode[e, :, v, :] = ce[:, None] * col.PD - cg[:, None] * col.P
+    return out
 
 
 def boundary_rows(base: BaseState, N: int) -> np.ndarray:
@@ -237,9 +240,16 @@ def linear_operator(params: RodParameters, base: BaseState, N: int):
     """
     col = collocation(int(N))
     E0, E1, G0, G1, G2 = coefficient_blocks(params, base, col.t)
-    A0 = np.vstack([_assemble(E0, G0, col), boundary_rows(base, col.N)])
-    zero = np.zeros((12, NFIELDS * (col.N + 1)))
-    A1 = np.vstack([_assemble(E1, G1, col), zero])
-    A2 = np.vstack([_assemble(None, G2, col), zero])
-    return A0, A1, A2
+    A0 = _assemble(E0, G0, col)
+    A0[NFIELDS * col.N:] = boundary_rows(base, col.N)
+    return A0, _assemble(E1, G1, col), _assemble(None, G2, col)
 
+
+
+def static_operator(params: RodParameters, base: BaseState, N: int) -> np.ndarray:
+    """A0 of :func:`linear_operator` alone (lambda = 0: the stiffness with the boundary rows), one assembly."""
+    col = collocation(int(N))
+    E0, _, G0, _, _ = coefficient_blocks(params, base, col.t)
+    A0 = _assemble(E0, G0, col)
+    A0[NFIELDS * col.N:] = boundary_rows(base, col.N)
+    return A0

@@ -46,7 +46,7 @@ from scipy.sparse.csgraph import connected_components
 
 from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, single_blas_thread
 from .base_state import straight
-from .linear import NFIELDS, linear_operator
+from .linear import NFIELDS, linear_operator, static_operator
 from .mode_band import band_modes
 from .parameters import RodParameters
 from .spectrum import (
@@ -176,15 +176,16 @@ class StraightFamily:
         pT = p0.with_(T=1.0)
         pw = p0.with_(omega=1.0)
         self.A00, self.A10, self.A2 = A00, A10, A2
-        self.AB = linear_operator(pB, straight(pB), self.N)[0] - A00
-        self.AT = linear_operator(pT, straight(pT), self.N)[0] - A00
+        self.AB = static_operator(pB, straight(pB), self.N) - A00
+        self.AT = static_operator(pT, straight(pT), self.N) - A00
         A0w, A1w, _ = linear_operator(pw, straight(pw), self.N)
         self.Aw = A0w - A00
         self.A1w = A1w - A10
         n = self.N + 1
         self.static_cols = np.arange(6 * n, NFIELDS * n)
         el = eliminate_static(A00, A10, A2, self.static_cols)
-        self.reduced = {name: el.reduce(getattr(self, name)) for name in _BLOCKS}
+        self.reduced = {"A00": el.B0, "A10": el.B1, "A2": el.B2} | {
+            name: el.reduce(getattr(self, name)) for name in ("AB", "AT", "Aw", "A1w")}
 
     @cached_property
     def parts(self) -> list[_Part]:
