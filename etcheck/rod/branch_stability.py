@@ -40,6 +40,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 import scipy.linalg as sla
@@ -49,6 +50,7 @@ from scipy.sparse.linalg import ArpackNoConvergence, LinearOperator, eigs
 from ..errors import SolverError
 from ..numerics.chebyshev import clenshaw_curtis_weights
 from ..numerics.eigen import match_spectra, single_blas_thread
+from ..numerics.parallel import split_map
 from . import branches as br
 from . import equilibria as eq
 from .linear import NFIELDS, collocation, linear_operator, stiffness_diag
@@ -281,6 +283,25 @@ def _point_spectrum(state, gamma: float, nev: int, N: int, vectors: bool, op: Da
     return operator_eigenvalues(op, gamma, nev, vectors)
 
 
+def _state_spectra(job: tuple, gamma: float, nev: int, N: int, M: int) -> tuple:
+    """What :func:`branch_spectra` needs of one state, independent of the others: (lam, V) at N, lam at M,
+    the stiffness index and, when the job asks for the check, lam of the state re-solved at M (None when it
+    cannot be re-solved: a branch point)."""
+    st, check = job
+    p = st.params.with_(gamma=gamma)
+    st_g = st.with_params(p) if st.params != p else st
+    op = damped_operator(p, st_g, N)
+    lam, V = _point_spectrum(st_g, gamma, nev, N, True, op)
+    lam_M = _point_spectrum(st_g, gamma, nev, M, False)
+    lam_S = None
+    if check:
+        try:
+            lam_S = _point_spectrum(eq.solve_equilibrium(p, st_g, M), gamma, nev, M, False)
+        except Exception:  # noqa: BLE001 - a state that cannot be re-solved (branch point) stays unchecked
+            pass
+    return lam, V, lam_M, stiffness_index(op, nev), lam_S
+
+
 def _is_stable(lam: np.ndarray, gamma: float) -> bool:
     if lam.size == 0:
         return False
@@ -321,16 +342,14 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
     crossings = []
     prev_vec = prev_lam = None
     check_idx = set(range(0, n, state_stride)) | {n - 1} if state_stride else set()
-    for i, st in enumerate(states):
+    work = partial(_state_spectra, gamma=gamma, nev=nev, N=N0, M=M)
+    solved = split_map(work, [(st, i in check_idx) for i, st in enumerate(states)], min_items=8)
+    for i, (st, (lam, V, lam_M, index[i], lam_S)) in enumerate(zip(states, solved)):
         p = st.params.with_(gamma=gamma)
         st_g = st.with_params(p) if st.params != p else st
-        op = damped_operator(p, st_g, N0)
-        lam, V = _point_spectrum(st_g, gamma, nev, N0, True, op)
-        lam_M = _point_spectrum(st_g, gamma, nev, M, False)
         maxre[i] = _max_real(lam)
         maxre_err[i] = abs(_max_real(lam_M) - maxre[i]) if lam_M.size else math.inf
         stable[i] = _is_stable(lam, gamma)
-        index[i] = stiffness_index(op, nev)
         decided[i] = abs(maxre[i]) > 2.0 * maxre_err[i]
         if gamma == 0 and index[i] == 0:
             stable[i] = decided[i] = True
@@ -361,21 +380,16 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
         e = np.full(sel.size, np.inf)
         e[m.index] = m.errors
         errs[i, good] = e
-        if i in check_idx:
-            try:
-                fine = eq.solve_equilibrium(p, st_g, M)
-                lam_S = _point_spectrum(fine, gamma, nev, M, False)
-                ms = match_spectra(lam_M, lam_S, accept=np.inf, floor=ERROR_FLOOR)
-                # base-state error of each path: its M-partner vs the re-solved state's spectrum
-                eS = np.full(sel.size, np.nan)
-                mm = match_spectra(lam[sel], lam_M, accept=np.inf, floor=ERROR_FLOOR)
-                # ms pairs lam_M (index) with lam_S (partner); mm pairs the paths with lam_M
-                err_of = dict(zip(ms.index.tolist(), ms.errors.tolist()))
-                for a, b in zip(mm.index.tolist(), mm.partner.tolist()):
-                    eS[a] = err_of.get(b, np.inf)
-                serrs[i, good] = eS
-            except Exception:  # noqa: BLE001 - a state that cannot be re-solved (branch point) stays unchecked
-                pass
+        if lam_S is not None:
+            ms = match_spectra(lam_M, lam_S, accept=np.inf, floor=ERROR_FLOOR)
+            # base-state error of each path: its M-partner vs the re-solved state's spectrum
+            eS = np.full(sel.size, np.nan)
+            mm = match_spectra(lam[sel], lam_M, accept=np.inf, floor=ERROR_FLOOR)
+            # ms pairs lam_M (index) with lam_S (partner); mm pairs the paths with lam_M
+            err_of = dict(zip(ms.index.tolist(), ms.errors.tolist()))
+            for a, b in zip(mm.index.tolist(), mm.partner.tolist()):
+                eS[a] = err_of.get(b, np.inf)
+            serrs[i, good] = eS
         prev_lam = np.where(good, lam_paths[i], prev_lam if prev_lam is not None else np.nan)
         pv = np.zeros((6 * (N0 + 1), k), dtype=complex) if prev_vec is None else prev_vec.copy()
         pv[:, good] = cand_vec[:, pick[good]]

@@ -1,0 +1,71 @@
+"""A map over items on two cores: a forked helper takes every second item.
+
+The helper is a copy of this process (``os.fork``, Linux): nothing is imported
+again and the function is not pickled; only the results come back, pickled
+through a pipe. The map is serial where a fork cannot help or is not safe: one
+core, other threads running (a fork copies only the calling thread, and a lock
+another thread holds would stay locked in the copy), inside a helper or a
+sweep worker (:func:`serial_here`; the sweep already keeps every core busy), or
+fewer than ``min_items`` items. If the helper fails, its items are computed
+here (an error is then raised here, with its traceback). The results are the
+same bytes either way: the same code runs on one BLAS thread in both processes.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import threading
+from collections.abc import Callable, Sequence
+from typing import Any
+
+__all__ = ["split_map", "serial_here", "can_split"]
+
+_SERIAL = False
+
+
+def serial_here() -> None:
+    """Never fork from this process (a worker of a pool that already uses every core)."""
+    global _SERIAL
+    _SERIAL = True
+
+
+def can_split() -> bool:
+    """Whether :func:`split_map` would fork here now."""
+    return (not _SERIAL and hasattr(os, "fork") and len(os.sched_getaffinity(0)) >= 2
+            and threading.active_count() == 1)
+
+
+def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2) -> list:
+    """``[fn(x) for x in items]``, the items at odd positions computed by a forked helper when that helps."""
+    items = list(items)
+    if len(items) < max(2, min_items) or not can_split():
+        return [fn(x) for x in items]
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the helper: compute its share, send it, leave without any clean-up of the parent's state
+        code = 1
+        try:
+            os.close(read)
+            serial_here()
+            out = [fn(x) for x in items[1::2]]
+            with os.fdopen(write, "wb") as fh:
+                pickle.dump(out, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            code = 0
+        finally:
+            os._exit(code)
+    os.close(write)
+    try:
+        mine = [fn(x) for x in items[0::2]]
+    except BaseException:
+        os.close(read)
+        os.kill(pid, 9)
+        os.waitpid(pid, 0)
+        raise
+    with os.fdopen(read, "rb") as fh:
+        data = fh.read()
+    _, status = os.waitpid(pid, 0)
+    theirs = pickle.loads(data) if status == 0 and data else [fn(x) for x in items[1::2]]
+    out: list = [None] * len(items)
+    out[0::2], out[1::2] = mine, theirs
+    return out
