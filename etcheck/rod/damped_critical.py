@@ -189,16 +189,15 @@ def critical_from_roots(params: RodParameters, tol: float, spin: bool, root) -> 
     elif p.omega >= rest.value:
         load = PencilRoot("B", 0.0, 0.0, rest.N, True, rest.model)
     else:
-        load = _near_end(root(p, "B", tol, floor=1e-2 * static.value), rest.value**2, p.omega**2,
-                         1e-2 * static.value, tol)
+        load = _near_end(root(p, "B", tol, floor=_floor(static)), rest.value**2, p.omega**2, _floor(static), tol)
     if not spin:
         crit = PencilRoot("omega", math.nan, math.nan, 0, True, "not asked")
     elif p.B >= static.value:
         crit = PencilRoot("omega", 0.0, 0.0, static.N, True, static.model)
     else:
-        crit = _near_end(root(p, "omega", tol, floor=1e-2 * rest.value), static.value, p.B, 1e-2 * rest.value, tol)
-    load = _relative_to_value(load, 1e-2 * static.value)
-    crit = _relative_to_value(crit, 1e-2 * rest.value)
+        crit = _near_end(root(p, "omega", tol, floor=_floor(rest)), static.value, p.B, _floor(rest), tol)
+    load = _relative_to_value(load, _floor(static))
+    crit = _relative_to_value(crit, _floor(rest))
     # a root that missed tol (round-off of an ill-conditioned root) is still returned with its estimate:
     # the caller decides whether it is good enough to report
     converged = load.converged and crit.converged and rest.converged and static.converged
@@ -231,6 +230,12 @@ def _near_end(r: PencilRoot, end: float, at: float, floor: float, tol: float) ->
     if rounding <= r.error:
         return r
     return PencilRoot(r.axis, r.value, rounding, r.N, r.converged and rounding <= tol, r.model)
+
+
+def _floor(end: PencilRoot) -> float:
+    """1 % of the root at the end of a line (zero load or zero spin), the floor its errors are judged relative to;
+    0 (relative to the root itself) where that end has no root (e.g. no spin destabilises the unloaded taut rod)."""
+    return 1e-2 * end.value if math.isfinite(end.value) else 0.0
 
 
 def _relative_to_value(r: PencilRoot, floor: float) -> PencilRoot:

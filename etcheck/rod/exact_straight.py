@@ -814,7 +814,7 @@ def _alternative(params: RodParameters, axis: str, sign: float, value: float, ro
     """A second formulation for the error estimate: the other route where it applies
     and is accurate (Schur only while the exponents span < 4 decades: its error is
     eps times the largest),
-    else the same route with other scales (x 1.37) and another split tau."""
+    else other scales (x 1.37) and another split tau (the exponential basis, Schur where it does not apply)."""
     other = "exponential" if route == "schur" else "schur"
     if other == "schur" and _separation(params, axis, value) > 1e4:
         other = None
@@ -825,7 +825,8 @@ def _alternative(params: RodParameters, axis: str, sign: float, value: float, ro
             return fn
         except ValueError:
             pass
-    fn, _ = _function(params, axis, sign, route=route, factor=1.37, shift=1)
+    # "auto": where the exponential basis stops applying next to the root (coincident exponents), Schur
+    fn, _ = _function(params, axis, sign, route="auto", factor=1.37, shift=1)
     return fn
 
 

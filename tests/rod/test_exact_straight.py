@@ -289,3 +289,21 @@ def test_critical_spin_under_extreme_tension_is_the_whirling_string(B, R=2.5e-6)
     string = math.sqrt((math.pi * math.sqrt(a) * (1 + 2 * eps)) ** 2 - B**2 / (4 * p.T))
     assert r.error < 1e-12
     assert w == pytest.approx(string, rel=1e-12 + 20 * eps**2)
+
+
+def test_second_formulation_where_the_exponential_basis_stops_applying():
+    """R = 0.9, P = 0.3, taut: next to the critical spin at this load the exponents coincide, and the second
+    formulation (the exponential basis at other scales) raised ValueError there (an internal error of the
+    check). It falls back to Schur where the basis does not apply; the unloaded rod has no critical spin, and
+    the error of the critical spin is judged relative to the spin itself (its floor, 1 % of an infinite spin,
+    made it NaN)."""
+    from etcheck.rod.exact_straight import exact_critical
+
+    p = RodParameters(P=0.3, R=0.9, Gamma=1.0844737162142614e-4, f=F_CLAMPED, B=4.557013742222468, omega=0.0,
+                      T=30.0, gamma=0.04)
+    root = exact_root(p, "omega")
+    assert 2e4 < root.value < 2.1e4
+    c = exact_critical(p, 1e-8)
+    assert not math.isnan(c.critical_spin.error)
+    assert math.isinf(c.spin_at_rest.value)
+    assert c.critical_load.error < 1e-8
