@@ -34,6 +34,7 @@ from etcheck.checks.coil import (
 )
 from etcheck.checks.sections import BifurcationDiagram, BranchRecord, BuckledOperatingPoint, PostbucklingSection, Shape
 from etcheck.errors import SolverError
+from etcheck.numerics.parallel import split_map
 from etcheck.rod import equilibria as eq
 from etcheck.rod.branch_stability import secondary_pitchfork
 from etcheck.rod.branches import (
@@ -213,23 +214,29 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
         loads[lab] = (float(pl.loads[-1]), float(pl.errors[-1])) if pl.loads.size == count[which] else (
             starts[lab].load, math.inf)
     B_max = options.B_max or max(3.0, 1.3 * max((s.load for s in starts.values()), default=0.0))
-    out_branches, kept = [], {}
-    for lab, which, _, w in attached:
-        start = starts[lab]
-        branch = continue_branch(params, start, stop=(0.0, B_max), N=options.N, max_points=options.max_points)
-        kept[lab] = branch
+
+    def follow(job) -> tuple[Branch, list[BranchRecord]]:
+        """One primary branch with its data, and its connecting branch after it (independent of the others)."""
+        lab, which, _, w = job
+        branch = continue_branch(params, starts[lab], stop=(0.0, B_max), N=options.N, max_points=options.max_points)
         data = _branch_data(branch, lab, scales, options, params.gamma)
         B_pf, B_pf_error = loads[lab]
         data |= {"pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
                  "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": which,
                  "liftoff_omega": _finite(w.omega), "liftoff_omega_error": _finite(w.error)}
-        out_branches.append(data)
+        records = [data]
         odd = int(lab[1:])
         if options.connect and which == "S1" and any(q.kind == "break" for q in branch.special):
             con = connecting_branch(branch, stop=(0.0, B_max), max_points=options.max_points)
             cdata = _branch_data(con, f"b{odd}{odd + 1}", scales, options, params.gamma)
             cdata |= {"symmetry": None, "from": lab}
-            out_branches.append(cdata)
+            records.append(cdata)
+        return branch, records
+
+    # the branches on two cores (b1 with b12 here, b2 in a forked helper, b3 here, ...); the same records
+    followed = split_map(follow, attached)
+    kept = {job[0]: branch for job, (branch, _) in zip(attached, followed)}
+    out_branches = [r for _, records in followed for r in records]
     if not out_branches and not lifted:
         raise SolverError("rung 2: no branch was found")
     return {
