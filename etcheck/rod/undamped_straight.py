@@ -919,6 +919,10 @@ def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> Undam
         # stable (every root real) up to B_s: the line starts short of it, where no two roots are close
         lo = 0.98 * rest.value
         load_line = replace(stability_line(p, "B", lo, max(load_hi, 1.25 * rest.value)), lo=0.0)
+        early = [c for c in load_line.crossings if c.value + c.error < rest.value * (1 - 1e-12)]
+        if early:  # the hyperbolic bound says otherwise: the line's root counts are wrong (a dense spectrum)
+            raise ArithmeticError(f"a change of stability at B = {early[0].value:.12g}, below the static load at "
+                                  f"rest {rest.value:.12g}, where none can be: the root counts are not resolved")
         spent = rest.evaluations + load_line.evaluations
     load = _point(load_line, tol)
     if below:

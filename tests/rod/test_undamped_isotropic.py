@@ -9,6 +9,7 @@ collocation spectrum (rod.linear, every eigenvalue, no selection).
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -157,3 +158,25 @@ def test_collocation_indicator_looks_at_the_whole_coupled_band():
 
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, T=0.0)
     assert _family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
+
+
+def test_a_change_of_stability_below_the_static_load_at_rest_is_refused(monkeypatch):
+    """The hyperbolic bound is also a check of the load line: a change located below the static load at rest
+    (root counts not resolved, e.g. next to the rotary-inertia accumulation of a taut tether's modes at
+    Omega^2 = T / P) ends in ArithmeticError ("not located"), never in a wrong critical load."""
+    import etcheck.rod.undamped_straight as us
+
+    p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, B=0.0, omega=1.0, T=30.0, gamma=0.0)
+    rest = exact_root(p.with_(B=0.0, omega=0.0), "B").value
+    real = us.stability_line
+
+    def early(params, axis, lo, hi, **kw):
+        line = real(params, axis, lo, hi, **kw)
+        if axis != "B":
+            return line
+        fake = us.Crossing(0.99 * rest, 1e-9, "flutter", 1.0, True, (0.99 * rest, 0.99 * rest))
+        return replace(line, crossings=(fake, *line.crossings))
+
+    monkeypatch.setattr(us, "stability_line", early)
+    with pytest.raises(ArithmeticError, match="below the static load at rest"):
+        undamped_critical(p, 1e-8, windows=False)
