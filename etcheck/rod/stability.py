@@ -45,6 +45,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
 from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, single_blas_thread
+from ..numerics.parallel import split_map
 from .base_state import straight
 from .linear import NFIELDS, linear_operator, static_operator
 from .mode_band import band_modes
@@ -591,24 +592,29 @@ def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24, N_chec
     ``N_check`` (default :func:`check_resolution` (N)) at ``n_check`` spins
     spread evenly over the grid, ends included.
     """
-    fam = _family(params, N)
     omega_grid = np.asarray(omega_grid, dtype=float)
     nev = 2 * k + 2  # the 2k least-|lambda| and a conjugate cut at the edge (the shift is ~0: same order)
+    N_check = check_resolution(N) if N_check is None else int(N_check)
+    checked = np.unique(np.linspace(0, omega_grid.size - 1, min(n_check, omega_grid.size)).round().astype(int))
+    coarse, fine = _family(params, N), _family(params, N_check)
+    _ = coarse.parts, fine.parts  # made here, before the spins are shared with a forked helper
+
+    def solve(job) -> np.ndarray:
+        fam, w = job
+        return fam.eigenvalues(params.B, w, params.T, nev, past_cluster=True)
+
+    solved = split_map(solve, [(coarse, w) for w in omega_grid] + [(fine, omega_grid[i]) for i in checked],
+                       min_items=8)
     rows = []
-    for w in omega_grid:
-        lam = fam.eigenvalues(params.B, w, params.T, nev, past_cluster=True)
+    for lam in solved[: omega_grid.size]:
         sel = lam[select_pairs(lam, k)]
         rows.append(sel[np.lexsort((sel.real, sel.imag))])
     width = max((r.size for r in rows), default=0)
     out = np.full((omega_grid.size, width), np.nan + 1j * np.nan)
     for i, r in enumerate(rows):
         out[i, : r.size] = r
-    N_check = check_resolution(N) if N_check is None else int(N_check)
-    checked = np.unique(np.linspace(0, omega_grid.size - 1, min(n_check, omega_grid.size)).round().astype(int))
-    fine = _family(params, N_check)
     error = roundoff_floor(max(int(N), N_check))
-    for i in checked:
-        ref = fine.eigenvalues(params.B, omega_grid[i], params.T, nev, past_cluster=True)
+    for i, ref in zip(checked, solved[omega_grid.size:]):
         m = match_spectra(rows[i], ref, accept=np.inf, floor=ERROR_FLOOR)
         error = max(error, float(np.max(m.errors, initial=0.0)) if m.values.size == rows[i].size else math.inf)
     return Campbell(omega=omega_grid, eigenvalues=out, N=int(N), N_check=N_check, checked=checked, error=error)
