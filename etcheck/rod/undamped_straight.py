@@ -129,6 +129,67 @@ def _companion(R, f, B, alpha, beta, c0, c1, ku, kv) -> np.ndarray:
 
 
 def _exponents(c: np.ndarray) -> np.ndarray:
+    """Roots k of the degree-8 rows c (highest first).
+
+    Rows come in runs along a grid (the mu grid of a line, sample after sample), where the roots move little
+    from one row to the next: every :data:`_STRIDE`-th row is solved by :func:`_exponents_qr`, the rows
+    between start from the roots of the solved row before them and take Newton steps, and a row keeps them only when they are certified: eight roots, pairwise
+    apart by more than :data:`_CONFLUENT` of their size, each with a backward error below 1e-13 (eight
+    distinct roots of a degree-8 polynomial are all of them). Uncertified rows are solved by
+    :func:`_exponents_qr` too. 3x fewer seconds on the lines of SET; the same roots to round-off."""
+    n = c.shape[0]
+    if n < 4 * _STRIDE:
+        return _exponents_qr(c)
+    k = np.empty((n, 8), dtype=complex)
+    anchor = np.arange(0, n, _STRIDE)
+    k[anchor] = _exponents_qr(c[anchor])
+    bad = []
+    for offset in range(1, _STRIDE):  # each row from the row before it
+        idx = anchor[anchor + offset < n] + offset
+        with np.errstate(all="ignore"):
+            z, good = _newton(c[idx], k[idx - 1])
+        k[idx] = z
+        bad.append(idx[~good])
+    bad = np.concatenate(bad)
+    if bad.size:
+        k[bad] = _exponents_qr(c[bad])
+    return k
+
+
+#: Every how many rows :func:`_exponents` solves one by QR (the others start from its roots).
+_STRIDE = 4
+
+
+def _newton(c: np.ndarray, z: np.ndarray, steps: int = 6) -> tuple[np.ndarray, np.ndarray]:
+    """Newton's method on each of the eight roots of the rows c (n, 9) from z (n, 8); (roots, certified)."""
+    z = z.astype(complex)
+    dc = c[:, :-1] * np.arange(8, 0, -1)
+    for _ in range(steps):
+        p = np.zeros_like(z) + c[:, :1]
+        q = np.zeros_like(z) + dc[:, :1]
+        for j in range(1, 9):
+            p = p * z + c[:, j:j + 1]
+            if j < 8:
+                q = q * z + dc[:, j:j + 1]
+        step = p / q
+        z = z - np.where(np.isfinite(step), step, 0.0)
+        if np.all(np.abs(step) <= 1e-14 * np.abs(z)):
+            break
+    # certificate: backward error of each root, and eight distinct roots
+    az = np.abs(z)
+    scale = np.abs(c)
+    p = np.zeros_like(z) + c[:, :1]
+    size = np.zeros(z.shape) + scale[:, :1]
+    for j in range(1, 9):
+        p = p * z + c[:, j:j + 1]
+        size = size * az + scale[:, j:j + 1]
+    i, j = np.triu_indices(8, 1)
+    gap = np.min(np.abs(z[:, i] - z[:, j]) / np.maximum(az[:, i], az[:, j]), axis=1)
+    good = np.all(np.abs(p) <= 1e-13 * size, axis=1) & (gap > _CONFLUENT) & np.all(np.isfinite(z), axis=1)
+    return z, good
+
+
+def _exponents_qr(c: np.ndarray) -> np.ndarray:
     """Roots k of the degree-8 rows c (highest first). p(i z) is a real polynomial in z for
     lambda imaginary and p(k) is real for lambda real, so the roots come from a real companion
     matrix (4x cheaper than a complex one), then Newton steps on p (as :func:`_roots`)."""
