@@ -347,8 +347,9 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         return base | {"computed": False,
                        "reason": f"the operating load is {ratio:.3g} times the first critical load: the buckled tether "
                        f"has many coils, beyond rung 2's validated range (up to {MAX_LOAD_RATIO:g} times)"}
-    opts = DiagramOptions(branches=1, connect=False, stability=True, paths=False, N=N,
-                          B_max=max(1.5 * params.B, 5.0 * B_c))
+    # far enough for a stable coil without a secondary pitchfork to prove the required margin (within rung 2's range)
+    B_max = max(1.5 * params.B, 5.0 * B_c, min(1.02 * required * params.B, MAX_LOAD_RATIO * B_c))
+    opts = DiagramOptions(branches=1, connect=False, stability=True, paths=False, N=N, B_max=B_max)
     diagram, kept = _diagram(params, scales, opts)
     out = base | {"computed": True, "diagram": diagram}
     b1 = next((b for b in diagram["branches"] if b["label"] == "b1"), None)
@@ -364,9 +365,15 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
             out["secondary_pitchfork_reason"] = star["reason"]
         out["b1_first_unstable_B"] = first_unstable
         out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
+        # no secondary pitchfork and every state from the operating load on stable: b1 is stable up to its end
+        past = [st for v, st in zip(b1["values"], b1["stable"]) if v >= params.B]
+        bound = float(max(b1["values"])) if star["B"] is None and past and all(st is True for st in past) else None
+        out["b1_stable_to_B"] = bound
+        out["b1_stable_to_IB0_N_per_m"] = None if bound is None else bound * scales.load
     else:  # e.g. lifted off at this spin: b1 does not leave the straight tether
         out |= {"secondary_pitchfork_B": None, "secondary_pitchfork_error": None,
                 "secondary_pitchfork_IB0_N_per_m": None, "b1_first_unstable_B": None, "b1_stable_at_start": None,
+                "b1_stable_to_B": None, "b1_stable_to_IB0_N_per_m": None,
                 "secondary_pitchfork_reason": "b1 was not found at the operating spin and tension"}
     out["operating"] = None
     if params.B > B_c:

@@ -179,12 +179,23 @@ def buckled_margins(post: PostbucklingSection, sc: Scene, scaled: Scaled, requir
     op = post.get("operating")
     if op is None or not op.get("available"):
         return []
-    if B_star is None:
-        return [incomplete_margin("buckled tether (b1): load to its secondary pitchfork", "N/m", sc.load, required, 3,
-                                  "no secondary pitchfork found on b1 in the computed range")]
+    name = "buckled tether (b1): load to its secondary pitchfork"
     if not op["stable"]:
-        return [ratio_margin("buckled tether (b1): load to its secondary pitchfork", "N/m", 0.0, sc.load, required, 3,
-                             0.0, "the buckled state at the operating load is unstable (rung 3)")]
+        return [ratio_margin(name, "N/m", 0.0, sc.load, required, 3, 0.0,
+                             "the buckled state at the operating load is unstable (rung 3)")]
+    if B_star is None:
+        bound = post.get("b1_stable_to_IB0_N_per_m")
+        why = post.get("secondary_pitchfork_reason") or "no secondary pitchfork found on b1 in the computed range"
+        if bound is None:
+            return [incomplete_margin(name, "N/m", sc.load, required, 3, why)]
+        stable_to = (f"b1 stays stable from the operating load to the end of its computed range ({bound:.4g} N/m) "
+                     "with no secondary pitchfork")
+        if sc.load == 0 or bound / sc.load >= required:
+            return [ratio_margin(name, "N/m", bound, sc.load, required, 3, 0.0,
+                                 f"{stable_to}; the margin shown is a lower bound (rungs 2-3)")]
+        return [incomplete_margin(name, "N/m", sc.load, required, 3,
+                                  f"{stable_to}: the margin is at least {bound / sc.load:.3g}, short of the required "
+                                  f"{required:g}, and b1 was not followed further (rung 2's range)")]
     return [ratio_margin("buckled tether (b1): load to its secondary pitchfork", "N/m",
                          post["secondary_pitchfork_IB0_N_per_m"], sc.load, required, 3,
                          post["secondary_pitchfork_error"],

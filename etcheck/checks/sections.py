@@ -478,6 +478,8 @@ class PostbucklingSection(TypedDict):
     secondary_pitchfork_reason: NotRequired[str]
     b1_first_unstable_B: NotRequired[float | None]
     b1_stable_at_start: NotRequired[bool | None]
+    b1_stable_to_B: NotRequired[float | None]
+    b1_stable_to_IB0_N_per_m: NotRequired[float | None]
     operating: NotRequired[BuckledOperatingPoint | None]
     region: NotRequired[CoilRegion | None]
     time_s: NotRequired[float]

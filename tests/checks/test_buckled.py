@@ -218,3 +218,51 @@ def test_design_answer_for_a_coiled_tether(coiled):
 
     html = render(res, ("html",))["html"].decode()
     assert "Stable region of the coiled tether" in html and "How the damping moves the answer" in html
+
+
+def _post(**kw) -> dict:
+    """A postbuckling section with the operating state stable on b1 and no secondary pitchfork found."""
+    return {"computed": True, "B_c": 1.0, "load_ratio": 1.5, "secondary_pitchfork_B": None,
+            "secondary_pitchfork_error": None, "secondary_pitchfork_IB0_N_per_m": None,
+            "secondary_pitchfork_reason": "no secondary pitchfork on b1 in the computed range",
+            "b1_stable_to_B": None, "b1_stable_to_IB0_N_per_m": None,
+            "operating": {"available": True, "stable": True}} | kw
+
+
+@pytest.mark.parametrize("bound, verdict", [(None, "incomplete"), (3.0, "pass"), (1.5, "incomplete")])
+def test_buckled_margin_from_a_stable_b1_without_pitchfork(bound, verdict):
+    """No secondary pitchfork on b1 and every state past the operating load stable: the margin is a lower
+    bound (the end of b1's computed range): a pass where it reaches the required margin, else not answered
+    (with the bound in the reason); never a fail. An unstable operating state is a fail whatever B* is."""
+    from types import SimpleNamespace
+
+    from etcheck.checks.margins import buckled_margins
+
+    sc = SimpleNamespace(load=1.0)
+    (m,) = buckled_margins(_post(b1_stable_to_IB0_N_per_m=bound), sc, None, 2.0)
+    assert m.verdict == verdict
+    if bound == 3.0:
+        assert m.value == 3.0 and "lower bound" in m.why
+    if bound == 1.5:
+        assert m.value is None and "at least 1.5" in m.why
+    (m,) = buckled_margins(_post(operating={"available": True, "stable": False}), sc, None, 2.0)
+    assert m.verdict == "fail" and m.value == 0.0
+
+
+@pytest.mark.slow  # 15 s
+def test_stable_coil_without_pitchfork_passes_on_its_lower_bound():
+    """R = 0.1, 81 m, just past its critical load: b1 stays stable far past the search range (its secondary
+    pitchfork lies at ~32 times its start); with required margin 2 the lower bound proves the buckled margin
+    (it was "not answered")."""
+    data = {"mission": {"name": "stable-coil", "description": "found by the scene-space exploration"},
+            "tether": {"length": "80.88328726056459 m",
+                       "bending_stiffness": ["0.0018555265566972173 N m2", "0.00018555265566972174 N m2"],
+                       "poisson_ratio": 0.3, "mass_per_length": "0.00624847300886438 kg/m",
+                       "rotary_inertia_ratio": 0.001},
+            "operation": {"current": "0.014584528459017611 A", "axial_field": "30.0 uT",
+                          "spin_rate": "5.8933035972854645e-05 rad/s", "end_tension": "0 N"},
+            "check": {"required_margin": 2, "fidelity": "auto"}}
+    results = check(mission_from_dict(data)).results
+    buckled = next(m for m in results["margins"] if m["name"].startswith("buckled"))
+    assert buckled["verdict"] == "pass" and buckled["value"] >= 2 and "lower bound" in buckled["why"]
+    assert results["postbuckling"]["b1_stable_to_B"] is not None
