@@ -50,6 +50,14 @@ def _one_blas_thread():
 # --- an independent reference in mpmath ---------------------------------------------------
 
 
+def _polyroots(coeffs, **kw):
+    """mpmath.polyroots of coefficients given highest first (mpmath 1.4 deprecates that order; 1.3 has no other)."""
+    try:
+        return mp.polyroots(coeffs[::-1], asc=True, **kw)
+    except TypeError:
+        return mp.polyroots(coeffs, **kw)
+
+
 def expo_det(B, P, R, f, omega, T, dps=50):
     """Clamped determinant from exponentials e^{k (s - s_k)} (s_k = 1 for Re k > 0) with
     null vectors of the 2x2 symbol, in mpmath; complex, with a phase that is constant
@@ -59,7 +67,7 @@ def expo_det(B, P, R, f, omega, T, dps=50):
         a, b, w2 = T + P * R * omega**2, T + P * omega**2, omega**2
         c = [R / f**2, -(R * b + a) / f, a * b - w2 * (R + 1) / f, w2 * (a + b) + B**2, w2**2]
         static = w2 == 0
-        kap = mp.polyroots(c[:4] if static else c, maxsteps=400, extraprec=4 * dps)
+        kap = _polyroots(c[:4] if static else c, maxsteps=400, extraprec=4 * dps)
         ks = [s * mp.sqrt(q) for q in kap for s in (1, -1)]
         ks.sort(key=lambda z: (float(mp.re(z)), float(mp.im(z))))
         cols = []
