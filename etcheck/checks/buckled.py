@@ -126,14 +126,22 @@ def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, LiftoffS
     are still attached to the straight tether at the scene's spin (lifted-off ones are listed too)."""
     out, attached, j = [], 0, 0
     none = LiftoffSpin(math.nan, math.nan, 24, 36)
+    # the first n lift-off spins on two cores; further ones (past lifted-off branches) one by one
+    known = dict(zip(range(1, n + 1), split_map(lambda j: _liftoff_of(params, j), range(1, n + 1)))) \
+        if params.omega > 0 else {}
     while attached < n and j < n + 8:
         j += 1
         which = "S1" if j % 2 else "S2"
         kk = (j + 1) // 2
-        w = liftoff_spin_estimate(params, "b1" if which == "S1" else "b2", kk) if params.omega > 0 else none
+        w = (known[j] if j in known else _liftoff_of(params, j)) if params.omega > 0 else none
         out.append((f"b{j}", which, kk, w))
         attached += not (math.isfinite(w.omega) and params.omega >= w.omega)
     return out
+
+
+def _liftoff_of(params: RodParameters, j: int) -> LiftoffSpin:
+    """Lift-off spin of branch b<j> (odd j: class b1 (S1), even j: class b2 (S2)), with its error."""
+    return liftoff_spin_estimate(params, "b1" if j % 2 else "b2", (j + 1) // 2)
 
 
 def _shape(state: eq.Equilibrium, L: float) -> Shape:
@@ -215,28 +223,36 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
             starts[lab].load, math.inf)
     B_max = options.B_max or max(3.0, 1.3 * max((s.load for s in starts.values()), default=0.0))
 
-    def follow(job) -> tuple[Branch, list[BranchRecord]]:
-        """One primary branch with its data, and its connecting branch after it (independent of the others)."""
-        lab, which, _, w = job
-        branch = continue_branch(params, starts[lab], stop=(0.0, B_max), N=options.N, max_points=options.max_points)
-        data = _branch_data(branch, lab, scales, options, params.gamma)
-        B_pf, B_pf_error = loads[lab]
-        data |= {"pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
-                 "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": which,
-                 "liftoff_omega": _finite(w.omega), "liftoff_omega_error": _finite(w.error)}
-        records = [data]
-        odd = int(lab[1:])
-        if options.connect and which == "S1" and any(q.kind == "break" for q in branch.special):
-            con = connecting_branch(branch, stop=(0.0, B_max), max_points=options.max_points)
-            cdata = _branch_data(con, f"b{odd}{odd + 1}", scales, options, params.gamma)
-            cdata |= {"symmetry": None, "from": lab}
-            records.append(cdata)
-        return branch, records
+    labs = [lab for lab, _, _, _ in attached]
+    kept: dict[str, Branch] = dict(zip(labs, split_map(
+        lambda lab: continue_branch(params, starts[lab], stop=(0.0, B_max), N=options.N, max_points=options.max_points),
+        labs)))
+    info = {lab: (which, w) for lab, which, _, w in attached}
 
-    # the branches on two cores (b1 with b12 here, b2 in a forked helper, b3 here, ...); the same records
-    followed = split_map(follow, attached)
-    kept = {job[0]: branch for job, (branch, _) in zip(attached, followed)}
-    out_branches = [r for _, records in followed for r in records]
+    def record(job) -> BranchRecord:
+        """The data of a primary branch, or of the connecting branch that leaves it (independent of the others)."""
+        lab, connect = job
+        which, w = info[lab]
+        if connect:
+            odd = int(lab[1:])
+            con = connecting_branch(kept[lab], stop=(0.0, B_max), max_points=options.max_points)
+            return _branch_data(con, f"b{odd}{odd + 1}", scales, options, params.gamma) | {"symmetry": None,
+                                                                                           "from": lab}
+        B_pf, B_pf_error = loads[lab]
+        return _branch_data(kept[lab], lab, scales, options, params.gamma) | {
+            "pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
+            "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": which,
+            "liftoff_omega": _finite(w.omega), "liftoff_omega_error": _finite(w.error)}
+
+    jobs = []
+    for lab, which, _, _ in attached:
+        jobs.append((lab, False))
+        if options.connect and which == "S1" and any(q.kind == "break" for q in kept[lab].special):
+            jobs.append((lab, True))
+    # on two cores, balanced by the expected cost (states to analyse; a connecting branch is continued first and
+    # is about twice its parent); the same records as one by one
+    weights = [len(kept[lab].states) * (2.0 if connect else 1.0) for lab, connect in jobs]
+    out_branches = split_map(record, jobs, weights=weights)
     if not out_branches and not lifted:
         raise SolverError("rung 2: no branch was found")
     return {

@@ -36,10 +36,25 @@ def can_split() -> bool:
             and threading.active_count() == 1)
 
 
-def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2) -> list:
-    """``[fn(x) for x in items]``, the items at odd positions computed by a forked helper when that helps."""
+def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
+              weights: Sequence[float] | None = None) -> list:
+    """``[fn(x) for x in items]``, part of the items computed by a forked helper when that helps: those at odd
+    positions, or, with ``weights`` (the expected cost of each item), a share of about half the total weight
+    (heaviest first, each to the lighter side)."""
     items = list(items)
     if len(items) < max(2, min_items) or not can_split():
+        return [fn(x) for x in items]
+    if weights is None:
+        mine_idx, theirs_idx = list(range(0, len(items), 2)), list(range(1, len(items), 2))
+    else:
+        sides: tuple[list[int], list[int]] = ([], [])
+        load = [0.0, 0.0]
+        for i in sorted(range(len(items)), key=lambda i: -float(weights[i])):
+            side = 0 if load[0] <= load[1] else 1
+            sides[side].append(i)
+            load[side] += float(weights[i])
+        mine_idx, theirs_idx = sorted(sides[0]), sorted(sides[1])
+    if not theirs_idx:
         return [fn(x) for x in items]
     read, write = os.pipe()
     pid = os.fork()
@@ -48,7 +63,7 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2) -> 
         try:
             os.close(read)
             serial_here()
-            out = [fn(x) for x in items[1::2]]
+            out = [fn(items[i]) for i in theirs_idx]
             with os.fdopen(write, "wb") as fh:
                 pickle.dump(out, fh, protocol=pickle.HIGHEST_PROTOCOL)
             code = 0
@@ -56,7 +71,7 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2) -> 
             os._exit(code)
     os.close(write)
     try:
-        mine = [fn(x) for x in items[0::2]]
+        mine = [fn(items[i]) for i in mine_idx]
     except BaseException:
         os.close(read)
         os.kill(pid, 9)
@@ -65,7 +80,10 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2) -> 
     with os.fdopen(read, "rb") as fh:
         data = fh.read()
     _, status = os.waitpid(pid, 0)
-    theirs = pickle.loads(data) if status == 0 and data else [fn(x) for x in items[1::2]]
+    theirs = pickle.loads(data) if status == 0 and data else [fn(items[i]) for i in theirs_idx]
     out: list = [None] * len(items)
-    out[0::2], out[1::2] = mine, theirs
+    for i, v in zip(mine_idx, mine):
+        out[i] = v
+    for i, v in zip(theirs_idx, theirs):
+        out[i] = v
     return out

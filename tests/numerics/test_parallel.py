@@ -75,3 +75,12 @@ def test_serial_here_turns_forking_off(monkeypatch):
     parallel.serial_here()
     assert not can_split()
     assert {pid for _, pid in split_map(_square_and_pid, range(6))} == {os.getpid()}
+
+
+@forks
+def test_weights_balance_the_two_sides():
+    """The heaviest item alone on one side, the rest on the other; results in input order."""
+    out = split_map(_square_and_pid, range(5), weights=[10.0, 1.0, 2.0, 3.0, 1.0])
+    assert [v for v, _ in out] == [0, 1, 4, 9, 16]
+    pids = [pid for _, pid in out]
+    assert pids[0] == os.getpid() and len(set(pids[1:])) == 1 and pids[1] != os.getpid()
