@@ -640,9 +640,10 @@ def secondary_pitchfork_curve(params: RodParameters, omegas, N: int = 32, N_chec
     """B*(omega) of b1 at each omega of ``omegas`` (each point located exactly, two
     resolutions; :func:`secondary_pitchfork`). Dimensionless."""
     omegas = [float(w) for w in omegas]
-    # one omega continuation serves every omega (the check resolution starts from these states: none there)
+    # one omega continuation serves every omega (the check resolution starts from these states: none there);
+    # made here, before the spins are shared with a forked helper (two cores)
     b1_spin_branch(params, B_ref, max(omegas), int(N))
-    return PitchforkCurve(tuple(secondary_pitchfork(params, w, N, N_check, B_ref, B_max) for w in omegas))
+    return PitchforkCurve(tuple(split_map(lambda w: secondary_pitchfork(params, w, N, N_check, B_ref, B_max), omegas)))
 
 
 # --- Hopf ----------------------------------------------------------------------------------
