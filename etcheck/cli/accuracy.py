@@ -73,6 +73,16 @@ def _print_rung1(name, p, pairs, rows, auto) -> None:
     state = "converged" if auto.converged else "NOT converged"
     print(f"automatic stability solve (two resolutions, N = {auto.N_check} and {auto.N}): "
           f"{auto.time_s * 1e3:.1f} ms, {state}, max error estimate {auto.max_error:.1e}")
+    from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, straight_route
+
+    if straight_route(p) == EXACT:
+        layer = boundary_layer(p)
+        why = (f"its end boundary layers are {layer:.2g} of the length (below {LAYER_MIN:g})" if layer < LAYER_MIN
+               else f"its weak axis is nearly a string (R = {p.R:.2g} < {R_MIN_SPECTRAL:g})")
+        print(f"NOTE: this scene is outside the collocation's range: {why}. The collocation does not resolve "
+              "its bending modes (the B_c column shows how far off they are), and the convergence above concerns "
+              "only the eigenvalues it does resolve. `etcheck MISSION` computes this scene's critical values from "
+              "the exact characteristic determinant (rung 1x) instead.")
 
 
 def _print_rung2(ref, traces) -> None:

@@ -85,3 +85,22 @@ def test_rung2_trace_says_when_b1_has_lifted_off():
     # just below the lift-off spin b1 is still there and is traced
     below = trace_b1(scaled.params.with_(omega=0.9 * lift), 16)
     assert below.liftoff_omega is None and below.points >= 2
+
+
+def test_accuracy_says_when_the_scene_is_beyond_the_collocation(tmp_path, capsys):
+    """A taut tether's boundary layers are far thinner than the collocation resolves: the rung-1 table's B_c
+    column does not converge while the automatic solve reports its resolved (torsion) eigenvalues converged;
+    the command says so and names the exact route. SET (no tension) gets no such note."""
+    from pathlib import Path
+
+    from etcheck.cli.main import main
+
+    text = (Path(__file__).parents[2] / "missions" / "set.toml").read_text()
+    taut = tmp_path / "taut.toml"
+    taut.write_text(text.replace('end_tension = "0 N"', 'end_tension = "200 N"'))
+    assert 'end_tension = "200 N"' in taut.read_text()
+    assert main(["accuracy", str(taut), "--N", "8,16"]) == 0
+    out = capsys.readouterr().out
+    assert "outside the collocation's range" in out and "boundary layers" in out and "rung 1x" in out
+    assert main(["accuracy", str(Path(__file__).parents[2] / "missions" / "set.toml"), "--N", "8,16"]) == 0
+    assert "outside the collocation's range" not in capsys.readouterr().out
