@@ -61,6 +61,7 @@ here to the discretisation error.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -451,7 +452,9 @@ def solve_equilibrium(params: RodParameters, guess: Equilibrium, N: int | None =
             break
         J = jacobian(params, state)
         try:
-            delta = sla.solve(J, -r)
+            with warnings.catch_warnings():  # nearly singular next to a branch point: the residual judges the step
+                warnings.simplefilter("ignore", sla.LinAlgWarning)
+                delta = sla.solve(J, -r)
         except (sla.LinAlgError, ValueError):
             break
         state = retract(state, delta, params)
