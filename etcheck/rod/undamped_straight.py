@@ -61,14 +61,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from functools import lru_cache, partial
+from functools import lru_cache
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 from scipy.optimize.elementwise import find_root
 
 from ..numerics.eigen import single_blas_thread
-from ..numerics.parallel import split_map
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur, _smoothing
 from .mode_band import cut, mode_count
@@ -931,10 +930,7 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
         spin_hi = _spin_hi(first)
         if windows and p.R != 1.0 and _Line(p, "omega", 0.0, spin_hi).mu.size > MAX_GRID:
             spin_hi = short  # windows past the first static spin would cost too many samples: not sought
-    # the spin line here and, at a spin, the load line in a forked helper (two cores; computed ahead, used only
-    # where the rod is not already unstable at rest, with its error raised only then)
-    jobs = split_map(partial(_line_job, p, spin_hi, windows), ["spin", "load"] if w > 0 else ["spin"])
-    spin_line, why = _unwrap(jobs[0])
+    spin_line, why = _spin_line(p, spin_hi, windows)
     if spin_line is None:  # no spin: the load decides (self-adjoint); the critical spin is not answered
         return _without_spin(p, tol, why)
     evaluations = spin_line.evaluations
@@ -949,11 +945,11 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
         load = CriticalPoint("B", 0.0, CriticalKind.UNSTABLE_AT_START, (0.0, 0.0), 0.0, True,
                              f"already unstable at B = 0: a real pair of eigenvalues ({MODEL})", 0)
         return UndampedCritical(load, _point(spin_line, tol), spin_line.windows, spin_line.hi, stable, evaluations)
+    static = _ex.exact_root(p.with_(B=0.0), "B")
     if w == 0:  # not gyroscopic: K q = mu M q, stable exactly below the first static load
-        static = _ex.exact_root(p.with_(B=0.0), "B")
         return UndampedCritical(_point(_static_line(static), tol), _point(spin_line, tol), spin_line.windows,
                                 spin_line.hi, stable, evaluations + static.evaluations)
-    load_line, spent = _unwrap(jobs[1])
+    load_line, spent = _load_line(p, static)
     return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
                             evaluations + spent)
 
@@ -1035,23 +1031,6 @@ def _complex_pairs_of(params: RodParameters) -> tuple[int, bool, int]:
     a, b = line.samples([0.0, params.omega])
     N = a.n_neg + a.n_pos + line.cut_crossing(a, b, samples=24 * (CUT_SAMPLES - 1) + 1)
     return _pairs(b, N), b.n_neg > 0, line.evaluations
-
-
-def _line_job(p: RodParameters, spin_hi: float, windows: bool, which: str) -> tuple:
-    """("ok", :func:`_spin_line` or :func:`_load_line`) or ("error", the ArithmeticError it raised)."""
-    try:
-        if which == "spin":
-            return "ok", _spin_line(p, spin_hi, windows)
-        return "ok", _load_line(p, _ex.exact_root(p.with_(B=0.0), "B"))
-    except ArithmeticError as exc:
-        return "error", exc
-
-
-def _unwrap(job: tuple):
-    status, value = job
-    if status == "error":
-        raise value
-    return value
 
 
 def _load_line(p: RodParameters, static) -> tuple[StabilityLine, int]:
