@@ -83,3 +83,31 @@ def test_spin_margin_curve_of_the_damped_map_follows_the_exact_rows():
     exact = np.sqrt(1.0 - cols[inside])
     assert np.max(np.abs(w_col[inside] - exact)) < 0.02  # a staircase is off by up to a row, 0.1
     assert np.all(np.isinf(w_col[cols > 1.0]))  # buckled at rest: no spin margin to draw
+
+
+@pytest.mark.parametrize("lin, shaded", [
+    # damped (no windows scanned): unstable only above the critical spin (the whole axis was shaded)
+    ({"spin_windows": [], "spin_windows_scanned_to_rpm": None,
+      "critical_spin": {"kind": "divergence", "rpm": 0.31}}, [(0.31, 0.5)]),
+    # undamped, windows scanned: unstable between and past them
+    ({"spin_windows": [{"rpm": [0.0, 0.2]}, {"rpm": [0.3, 0.4]}], "spin_windows_scanned_to_rpm": 0.5,
+      "critical_spin": {"kind": "flutter", "rpm": 0.2}}, [(0.2, 0.3), (0.4, 0.5)]),
+    ({"spin_windows": [], "spin_windows_scanned_to_rpm": None,
+      "critical_spin": {"kind": "never", "rpm": None}}, []),
+    ({"spin_windows": [], "spin_windows_scanned_to_rpm": None,
+      "critical_spin": {"kind": "unstable at start", "rpm": 0.0}}, [(0.0, 0.5)]),
+    ({"spin_windows": [], "spin_windows_scanned_to_rpm": None,
+      "critical_spin": {"kind": "not located", "rpm": None}}, []),
+])
+def test_campbell_shades_the_unstable_spins_the_report_states(lin, shaded):
+    """The Campbell diagram's shading agrees with the report's 'stable spin ranges' sentence."""
+    from etcheck.report.figures.check import _shade_unstable_spin
+
+    spans = []
+
+    class Axes:
+        def axvspan(self, a, b, **kw):
+            spans.append((a, b))
+
+    _shade_unstable_spin(Axes(), lin, np.linspace(0.0, 0.5, 11))
+    assert spans == shaded

@@ -129,14 +129,30 @@ def campbell_plot(results: dict) -> str:
     return _image(fig)
 
 
+def _stable_spin_ranges(lin) -> list[tuple[float, float]] | None:
+    """The stable spin ranges [rpm] at the operating load, as the report states them: the scanned windows
+    (undamped), else 0 up to the critical spin (with damping no window opens above it); None where unknown."""
+    if lin.get("spin_windows_scanned_to_rpm") is not None:
+        return [tuple(w["rpm"]) for w in lin["spin_windows"]]
+    crit = lin["critical_spin"]
+    if crit["kind"] == "never":
+        return [(0.0, math.inf)]
+    if crit["kind"] == "unstable at start":
+        return []
+    return None if crit["rpm"] is None else [(0.0, crit["rpm"])]
+
+
 def _shade_unstable_spin(ax, lin, rpm, label=None):
-    """Shade the spin ranges where the straight tether is unstable at the operating load."""
+    """Shade the spin ranges where the straight tether is unstable at the operating load (nothing where they
+    are not known)."""
+    stable = _stable_spin_ranges(lin)
+    if stable is None:
+        return
     gaps, start = [], rpm[0]
-    for w in lin["spin_windows"]:
-        a, b = w["rpm"]
+    for a, b in stable:
         if a > start:
             gaps.append((start, a))
-        start = b
+        start = max(start, b)
     if start < rpm[-1]:
         gaps.append((start, rpm[-1]))
     for i, (a, b) in enumerate(gaps):
