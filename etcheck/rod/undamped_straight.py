@@ -160,17 +160,23 @@ def _exponents(c: np.ndarray) -> np.ndarray:
 _STRIDE = 4
 
 
+def _horner(c: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """p(z) and p'(z) for the degree-8 rows c (n, 9), highest first, at z (n, m)."""
+    dc = c[:, :-1] * np.arange(8, 0, -1)
+    p = np.zeros_like(z) + c[:, :1]
+    q = np.zeros_like(z) + dc[:, :1]
+    for j in range(1, 9):
+        p = p * z + c[:, j:j + 1]
+        if j < 8:
+            q = q * z + dc[:, j:j + 1]
+    return p, q
+
+
 def _newton(c: np.ndarray, z: np.ndarray, steps: int = 6) -> tuple[np.ndarray, np.ndarray]:
     """Newton's method on each of the eight roots of the rows c (n, 9) from z (n, 8); (roots, certified)."""
     z = z.astype(complex)
-    dc = c[:, :-1] * np.arange(8, 0, -1)
     for _ in range(steps):
-        p = np.zeros_like(z) + c[:, :1]
-        q = np.zeros_like(z) + dc[:, :1]
-        for j in range(1, 9):
-            p = p * z + c[:, j:j + 1]
-            if j < 8:
-                q = q * z + dc[:, j:j + 1]
+        p, q = _horner(c, z)
         step = p / q
         z = z - np.where(np.isfinite(step), step, 0.0)
         if np.all(np.abs(step) <= 1e-14 * np.abs(z)):
@@ -202,14 +208,8 @@ def _exponents_qr(c: np.ndarray) -> np.ndarray:
     C[:, np.arange(1, 8), np.arange(7)] = 1.0
     z = np.linalg.eigvals(C)
     k = np.where(rot[:, None], 1j * z, z)
-    dc = c[:, :-1] * np.arange(8, 0, -1)
     for _ in range(2):
-        p = np.zeros_like(k) + c[:, :1]
-        q = np.zeros_like(k) + dc[:, :1]
-        for j in range(1, 9):
-            p = p * k + c[:, j:j + 1]
-            if j < 8:
-                q = q * k + dc[:, j:j + 1]
+        p, q = _horner(c, k)
         step = np.where(q != 0, p / np.where(q != 0, q, 1.0), 0.0)
         k = k - np.where(np.isfinite(step), step, 0.0)
     return k
