@@ -24,6 +24,7 @@ import numpy as np
 
 from etcheck.checks.sections import CoilRegion, DampingSensitivity
 from etcheck.jsonable import finite_or_none
+from etcheck.numerics.parallel import split_map
 from etcheck.rod import branches as br
 from etcheck.rod import equilibria as eq
 from etcheck.rod.branch_stability import (
@@ -69,11 +70,13 @@ def branch_stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
         stretches = [(a, b) for a, b in zip(bounds[:-1], bounds[1:]) if b > a]
     else:
         stretches = [(i, i + 1) for i in range(n)]
-    for a, b in stretches:
-        probe = sorted({(a + b) // 2, b - 1} - ({0} if b - a > 1 else set()))
+    probes = [sorted({(a + b) // 2, b - 1} - ({0} if b - a > 1 else set())) for a, b in stretches]
+    wanted = sorted({i for probe in probes for i in probe})  # independent spectra: on two cores
+    solved = dict(zip(wanted, split_map(lambda i: state_stability(branch.states[i], gamma), wanted)))
+    for (a, b), probe in zip(stretches, probes):
         flags = []
         for i in probe:
-            flag, g, err = state_stability(branch.states[i], gamma)
+            flag, g, err = solved[i]
             growth[i] = g if math.isfinite(g) else None
             errors[i] = err
             flags.append(flag)
