@@ -9,6 +9,10 @@ sweep worker (:func:`serial_here`; the sweep already keeps every core busy), or
 fewer than ``min_items`` items. If the helper fails, its items are computed
 here (an error is then raised here, with its traceback). The results are the
 same bytes either way: the same code runs on one BLAS thread in both processes.
+
+Only work whose result is all that is needed belongs in the map: what the helper memoises (lru caches,
+counters) stays in the helper. Measured: the undamped load line computed in the helper lost the roots a
+sweep shares between the points of a length, and a 40 x 40 undamped sweep took 300 s instead of 69 s.
 """
 
 from __future__ import annotations
