@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import os
 import pickle
+import signal
 import threading
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -36,8 +37,8 @@ def serial_here() -> None:
 
 def can_split() -> bool:
     """Whether :func:`split_map` would fork here now."""
-    return (not _SERIAL and hasattr(os, "fork") and len(os.sched_getaffinity(0)) >= 2
-            and threading.active_count() == 1)
+    return (not _SERIAL and hasattr(os, "fork") and hasattr(os, "sched_getaffinity")  # Linux
+            and len(os.sched_getaffinity(0)) >= 2 and threading.active_count() == 1)
 
 
 def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
@@ -78,7 +79,7 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
         mine = [fn(items[i]) for i in mine_idx]
     except BaseException:
         os.close(read)
-        os.kill(pid, 9)
+        os.kill(pid, signal.SIGKILL)
         os.waitpid(pid, 0)
         raise
     with os.fdopen(read, "rb") as fh:
