@@ -12,6 +12,8 @@ Tools:
 * :func:`qep_shift_invert`   the k eigenvalues nearest a real shift sigma by
                              ARPACK on the shift-inverted companion, one LU
                              of Q(sigma) (real arithmetic);
+* :func:`pencil_eigenvalues` the roots x of det(A0 + x n0) (low-rank n0: small
+                             standard eigenproblem; else QZ);
 * :func:`match_spectra`      two-resolution agreement filter with error
                              estimates (optimal assignment, so degenerate
                              clusters are paired one-to-one).
@@ -21,7 +23,6 @@ No rod knowledge lives here.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 from dataclasses import dataclass
 
@@ -39,6 +40,7 @@ __all__ = [
     "eliminate_static",
     "qep_dense",
     "qep_shift_invert",
+    "pencil_eigenvalues",
     "Matched",
     "match_spectra",
     "relative_distance",
@@ -103,24 +105,16 @@ class StaticElimination:
     tau: np.ndarray
     A: tuple
 
-    def _qt(self, X: np.ndarray) -> np.ndarray:
-        """Q^T X for real X (n, m), by the Householder reflectors."""
-        X = np.asarray(X, dtype=float)
-        cq, _, info = _ormqr("L", "T", self.qr, self.tau, X, max(1, 64 * X.shape[1]))
-        if info != 0:
-            raise np.linalg.LinAlgError(f"ormqr: info = {info}")
-        return cq
-
     def reduce(self, A: np.ndarray) -> np.ndarray:
         """Q2^T A[:, keep]: the reduced form of another matrix that does not meet the dropped unknowns."""
-        return self._qt(A[:, self.keep])[self.drop.size:]
+        return _qt(self.qr, self.tau, A[:, self.keep])[self.drop.size:]
 
     def recover(self, lam: complex, y_keep: np.ndarray) -> np.ndarray:
         """Full eigenvector from the reduced one at eigenvalue lam."""
         A0, A1, A2 = self.A
         k, r = self.keep, self.drop.size
         rhs = (A0[:, k] + lam * A1[:, k] + lam**2 * A2[:, k]) @ y_keep
-        q1t = self._qt(np.column_stack([rhs.real, rhs.imag]))[:r]
+        q1t = _qt(self.qr, self.tau, np.column_stack([rhs.real, rhs.imag]))[:r]
         y_drop = -sla.solve_triangular(np.triu(self.qr[:r, :r]), q1t[:, 0] + 1j * q1t[:, 1])
         y = np.zeros(A0.shape[0], dtype=np.result_type(y_keep, complex))
         y[k] = y_keep
@@ -148,14 +142,44 @@ def eliminate_static(A0, A1, A2, drop) -> StaticElimination:
     r = drop.size
     if abs(qr[r - 1, r - 1]) <= 1e-13 * abs(qr[0, 0]):
         raise np.linalg.LinAlgError("static block is rank deficient")
-    el = StaticElimination(B0=None, B1=None, B2=None, keep=keep, drop=drop, qr=qr, tau=tau, A=(A0, A1, A2))
-    reduced = el._qt(np.hstack([A0[:, keep], A1[:, keep], A2[:, keep]]))[r:]
+    reduced = _qt(qr, tau, np.hstack([A0[:, keep], A1[:, keep], A2[:, keep]]))[r:]
     m = keep.size
-    return dataclasses.replace(el, B0=reduced[:, :m], B1=reduced[:, m:2 * m], B2=reduced[:, 2 * m:])
+    return StaticElimination(B0=reduced[:, :m], B1=reduced[:, m:2 * m], B2=reduced[:, 2 * m:], keep=keep, drop=drop,
+                             qr=qr, tau=tau, A=(A0, A1, A2))
 
 
-_ormqr = sla.get_lapack_funcs("ormqr", dtype=np.float64)
-_getrs = sla.get_lapack_funcs("getrs", dtype=np.float64)
+def _qt(qr: np.ndarray, tau: np.ndarray, X: np.ndarray) -> np.ndarray:
+    """Q^T X for real X (n, m), Q given by LAPACK's Householder reflectors (qr, tau)."""
+    X = np.asarray(X, dtype=float)
+    cq, _, info = _ormqr("L", "T", qr, tau, X, max(1, 64 * X.shape[1]))
+    if info != 0:
+        raise np.linalg.LinAlgError(f"ormqr: info = {info}")
+    return cq
+
+
+def pencil_eigenvalues(A0: np.ndarray, n0: np.ndarray) -> np.ndarray:
+    """The finite x with A0 + x n0 singular (real square A0, n0).
+
+    Where n0 reaches at most half of the columns and A0 is regular: x = -1 / kappa for the non-zero eigenvalues
+    kappa of (A0^-1 n0) on the columns n0 reaches (the others give kappa = 0, infinite x), 2-4x fewer seconds
+    than QZ of the whole pencil. Where A0 is nearly singular (reciprocal condition below 1e-10: a root next to
+    x = 0) or n0 reaches more columns, QZ."""
+    cols = np.flatnonzero(np.any(n0 != 0.0, axis=0))
+    if 0 < cols.size <= A0.shape[0] // 2:
+        lu, piv, info = _getrf(A0)
+        if info == 0:
+            rcond, _ = _gecon(lu, float(np.max(np.sum(np.abs(A0), axis=0))))
+            if rcond > 1e-10:
+                K = _getrs(lu, piv, n0[:, cols])[0][cols]
+                kappa = np.linalg.eigvals(K)
+                big = np.abs(kappa) > 1e-13 * np.max(np.abs(kappa), initial=0.0)
+                return -1.0 / kappa[big]
+    alpha, beta = sla.eig(A0, -n0, right=False, homogeneous_eigvals=True, check_finite=False)
+    ok = np.abs(beta) > 1e-13 * np.abs(alpha)
+    return alpha[ok] / beta[ok]
+
+
+_ormqr, _getrf, _getrs, _gecon = sla.get_lapack_funcs(("ormqr", "getrf", "getrs", "gecon"), dtype=np.float64)
 
 
 @single_blas_thread

@@ -40,11 +40,10 @@ from enum import StrEnum
 from functools import cached_property, lru_cache
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
-from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, single_blas_thread
+from ..numerics.eigen import eliminate_static, match_spectra, pencil_eigenvalues, qep_dense, single_blas_thread
 from ..numerics.parallel import split_map
 from .base_state import straight
 from .linear import NFIELDS, linear_operator, static_operator
@@ -248,35 +247,10 @@ class StraightFamily:
             n0 = r[{"B": "AB", "T": "AT", "omega": "Aw"}[axis]]
             vals[axis] = 0.0
         A0 = self.operator(vals["B"], vals["omega"], vals["T"], reduced=True)[0]
-        x = _pencil_eigenvalues(A0, n0)
+        x = pencil_eigenvalues(A0, n0)
         imag_tol = DOUBLE if nearly_isotropic(self.params.R) else 1e-8
         real = np.abs(x.imag) <= imag_tol * np.maximum(np.abs(x), 1e-300)
         return np.sort(x[real].real)
-
-
-def _pencil_eigenvalues(A0: np.ndarray, n0: np.ndarray) -> np.ndarray:
-    """The finite x with A0 + x n0 singular.
-
-    n0 (a load, tension or spin direction) reaches a third of the unknowns or fewer: with A0 = LU regular, x
-    = -1 / kappa for the non-zero eigenvalues kappa of (A0^-1 n0) on its non-zero columns (the other columns
-    give kappa = 0, infinite x), 4x fewer seconds than QZ of the whole pencil. Where A0 is nearly singular
-    (reciprocal condition below 1e-10: a root next to x = 0) or n0 reaches most unknowns, QZ."""
-    cols = np.flatnonzero(np.any(n0 != 0.0, axis=0))
-    if 0 < cols.size <= A0.shape[0] // 2:
-        lu, piv, info = _getrf(A0)
-        if info == 0:
-            rcond, _ = _gecon(lu, float(np.max(np.sum(np.abs(A0), axis=0))))
-            if rcond > 1e-10:
-                K = _getrs(lu, piv, n0[:, cols])[0][cols]
-                kappa = np.linalg.eigvals(K)
-                big = np.abs(kappa) > 1e-13 * np.max(np.abs(kappa), initial=0.0)
-                return -1.0 / kappa[big]
-    alpha, beta = sla.eig(A0, -n0, right=False, homogeneous_eigvals=True, check_finite=False)
-    ok = np.abs(beta) > 1e-13 * np.abs(alpha)
-    return alpha[ok] / beta[ok]
-
-
-_getrf, _getrs, _gecon = sla.get_lapack_funcs(("getrf", "getrs", "gecon"), dtype=np.float64)
 
 
 @lru_cache(maxsize=32)
