@@ -23,18 +23,16 @@ No rod knowledge lives here.
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
-from scipy.optimize import linear_sum_assignment
 from scipy.sparse.linalg import ArpackError, ArpackNoConvergence, LinearOperator, eigs
-from threadpoolctl import ThreadpoolController
+
+from .blas import single_blas_thread
+from .optimize import linear_sum_assignment
 
 __all__ = [
-    "one_blas_thread",
-    "single_blas_thread",
     "companion",
     "StaticElimination",
     "eliminate_static",
@@ -45,33 +43,6 @@ __all__ = [
     "match_spectra",
     "relative_distance",
 ]
-
-
-@functools.cache
-def _blas() -> ThreadpoolController:
-    """The process's BLAS libraries, found once (scanning them costs milliseconds; switching them, microseconds)."""
-    return ThreadpoolController()
-
-
-def one_blas_thread():
-    """Context manager: BLAS limited to one thread inside it."""
-    return _blas().limit(limits=1, user_api="blas")
-
-
-def single_blas_thread(fn):
-    """Decorator: run fn with BLAS limited to one thread.
-
-    The matrices here are small (hundreds); threaded BLAS only adds overhead
-    and oversubscribes the cores when other work runs (measured: 5-10x slower
-    scans on 2 busy cores).
-    """
-
-    @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
-        with one_blas_thread():
-            return fn(*args, **kwargs)
-
-    return wrapper
 
 
 def companion(A0: np.ndarray, A1: np.ndarray, A2: np.ndarray):

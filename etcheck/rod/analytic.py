@@ -21,7 +21,8 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import brentq
+
+from ..numerics.optimize import bisect_brackets, brentq
 
 SQRT3 = math.sqrt(3.0)
 #: Step of the complex-step derivative (exact to rounding, no cancellation).
@@ -115,24 +116,41 @@ class CharacteristicRoot:
     error: float
 
 
+def _curvature(beta: float) -> float:
+    """chi_scaled''(beta) by a central difference of :func:`chi_scaled_derivative` (relative error ~1e-8)."""
+    h = 1e-4 * beta
+    return float((chi_scaled_derivative(beta + h) - chi_scaled_derivative(beta - h)) / (2 * h))
+
+
+def _double_zero(guess: float) -> float:
+    """The zero of chi_scaled' within guess +- 1: Newton's method, Brent's on that bracket if a step leaves it."""
+    lo, hi = guess - 1.0, guess + 1.0
+    beta = guess
+    for _ in range(20):
+        step = float(chi_scaled_derivative(beta)) / _curvature(beta)
+        beta -= step
+        if not lo < beta < hi:
+            break
+        if abs(step) <= 4 * np.finfo(float).eps * beta:
+            return beta
+    return brentq(chi_scaled_derivative, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
+
+
 @lru_cache(maxsize=16)
 def characteristic_roots(n: int = 5) -> tuple[CharacteristicRoot, ...]:
     """The first n double zeros of chi(beta), located to ~1e-15 relative.
 
-    A double zero is a simple zero of chi_scaled', bracketed around its
-    asymptotic position pi/3 + 2 pi k and refined with Brent's method.
+    A double zero is a simple zero of chi_scaled', found by Newton's method
+    from its asymptotic position pi/3 + 2 pi k (three or four steps; the
+    zeros are 2 pi apart), or by Brent's method on pi/3 + 2 pi k +- 1 should a
+    Newton step leave that bracket.
     """
     if n < 1:
         raise ValueError(f"n must be >= 1, got {n}")
     roots = []
     for k in range(1, n + 1):
-        guess = math.pi / 3 + 2 * math.pi * k
-        lo, hi = guess - 1.0, guess + 1.0
-        beta = brentq(chi_scaled_derivative, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)
-        h = 1e-4 * beta
-        curvature = float(
-            (chi_scaled_derivative(beta + h) - chi_scaled_derivative(beta - h)) / (2 * h)
-        )
+        beta = _double_zero(math.pi / 3 + 2 * math.pi * k)
+        curvature = _curvature(beta)
         singular = np.linalg.svd(_clamped_matrix(beta), compute_uv=False)
         kernel = 2 * int(np.sum(singular < 1e-8 * singular[0]))
         roots.append(
@@ -208,20 +226,16 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
     """
     stiffness = {"weak": R, "stiff": 1.0}[axis]
     g = lambda mu: _clamped_beam_function(mu, P, stiffness)  # noqa: E731
-    found: list[float] = []
     # Euler-Bernoulli spacing: mu_n ~ sqrt(stiffness) ((n + 1/2) pi)^2, and rotary
     # inertia only lowers the frequencies; scan finely in the f = 1 frequency
-    # and refine each sign change with Brent's method.
+    # and bisect the first n sign changes to the last bit.
     mu_max = math.sqrt(stiffness) * ((n + 1.5) * math.pi) ** 2
     grid = np.linspace(1e-6, mu_max, 400 * (n + 2))
     values = g(grid)
-    for i in np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0]:
-        found.append(float(brentq(g, grid[i], grid[i + 1], xtol=1e-15, rtol=4 * np.finfo(float).eps)))
-        if len(found) == n:
-            break
-    if len(found) < n:
-        raise RuntimeError(f"found only {len(found)} of {n} bending frequencies")
-    return np.array(found) / math.sqrt(f)
+    i = np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0][:n]
+    if i.size < n:
+        raise RuntimeError(f"found only {i.size} of {n} bending frequencies")
+    return bisect_brackets(g, grid[i], grid[i + 1]) / math.sqrt(f)
 
 
 def torsion_frequencies(P: float, Gamma: float, f: float, n: int = 5) -> np.ndarray:

@@ -44,12 +44,13 @@ from functools import partial
 
 import numpy as np
 import scipy.linalg as sla
-from scipy.optimize import linear_sum_assignment
 from scipy.sparse.linalg import ArpackNoConvergence, LinearOperator, eigs
 
 from ..errors import SolverError
+from ..numerics.blas import single_blas_thread
 from ..numerics.chebyshev import clenshaw_curtis_weights
-from ..numerics.eigen import match_spectra, single_blas_thread
+from ..numerics.eigen import match_spectra
+from ..numerics.optimize import linear_sum_assignment
 from ..numerics.parallel import split_map
 from . import branches as br
 from . import equilibria as eq

@@ -54,6 +54,7 @@ import scipy.linalg as sla
 import scipy.sparse as sparse
 from scipy.sparse.csgraph import connected_components
 
+from ..numerics.blas import single_blas_thread
 from ..numerics.continuation import (
     ContinuationOptions,
     ContinuationResult,
@@ -66,7 +67,6 @@ from ..numerics.continuation import (
     switch_branch,
     weights,
 )
-from ..numerics.eigen import single_blas_thread
 from . import equilibria as eq
 from .linear import NFIELDS
 from .parameters import RodParameters

@@ -16,7 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from ..numerics.eigen import match_spectra, one_blas_thread
+from ..numerics.blas import one_blas_thread
+from ..numerics.eigen import match_spectra
 from .base_state import straight
 from .linear import linear_operator, static_operator
 from .parameters import RodParameters

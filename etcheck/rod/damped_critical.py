@@ -31,7 +31,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..numerics.eigen import single_blas_thread
+from ..numerics.blas import single_blas_thread
 from .analytic import characteristic_roots, critical_loads
 from .parameters import RodParameters
 from .spectrum import check_resolution

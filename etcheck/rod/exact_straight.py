@@ -77,9 +77,9 @@ from functools import lru_cache
 import numpy as np
 import scipy.linalg as sla
 from scipy.linalg import lapack
-from scipy.optimize import brentq, minimize_scalar
 
-from ..numerics.eigen import single_blas_thread
+from ..numerics.blas import single_blas_thread
+from ..numerics.optimize import brentq, minimize_scalar
 from .damped_critical import DampedCritical, PencilRoot, critical_from_roots
 from .parameters import RodParameters
 

@@ -50,8 +50,9 @@ from functools import lru_cache
 
 import numpy as np
 
+from ..numerics.blas import single_blas_thread
 from ..numerics.chebyshev import lobatto_weights, resample_matrix
-from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, qep_shift_invert, single_blas_thread
+from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, qep_shift_invert
 from .base_state import BaseState, straight
 from .linear import NFIELDS, collocation, linear_operator
 from .parameters import RodParameters

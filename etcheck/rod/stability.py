@@ -43,7 +43,8 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import connected_components
 
-from ..numerics.eigen import eliminate_static, match_spectra, pencil_eigenvalues, qep_dense, single_blas_thread
+from ..numerics.blas import single_blas_thread
+from ..numerics.eigen import eliminate_static, match_spectra, pencil_eigenvalues, qep_dense
 from ..numerics.parallel import split_map
 from .base_state import straight
 from .linear import NFIELDS, linear_operator, static_operator

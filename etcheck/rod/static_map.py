@@ -51,7 +51,7 @@ from functools import lru_cache
 import numpy as np
 import scipy.linalg as sla
 
-from ..numerics.eigen import single_blas_thread
+from ..numerics.blas import single_blas_thread
 from .parameters import RodParameters
 from .stability import DOUBLE, K_MODES, THRESHOLD, StraightFamily, _family, nearly_isotropic
 

@@ -64,10 +64,9 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
-from scipy.optimize.elementwise import find_root
 
-from ..numerics.eigen import single_blas_thread
+from ..numerics.blas import single_blas_thread
+from ..numerics.optimize import brentq, find_root, minimize_scalar
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur, _smoothing
 from .mode_band import cut, mode_count

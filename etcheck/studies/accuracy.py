@@ -15,7 +15,7 @@ import time
 from dataclasses import dataclass
 
 from etcheck.checks.straight import accuracy
-from etcheck.numerics.eigen import single_blas_thread
+from etcheck.numerics.blas import single_blas_thread
 from etcheck.rod import branches as br
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.spectrum import spectrum

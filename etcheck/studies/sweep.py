@@ -39,7 +39,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 from etcheck import __version__
 from etcheck.checks.buckled import buckled_point
@@ -49,7 +48,8 @@ from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
-from etcheck.numerics.eigen import one_blas_thread
+from etcheck.numerics.blas import one_blas_thread
+from etcheck.numerics.optimize import brentq
 from etcheck.rod.damped_critical import damped_critical, first_root
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.parameters import RodParameters

@@ -59,7 +59,7 @@ from etcheck.checks.sections import CheckResults, MarginSensitivityRecord, Proba
 from etcheck.input.echo import UncertaintyInputs
 from etcheck.input.mission import Mission
 from etcheck.input.uncertainty import Distribution, Uncertainty
-from etcheck.numerics.eigen import one_blas_thread, single_blas_thread
+from etcheck.numerics.blas import one_blas_thread, single_blas_thread
 from etcheck.rod.analytic import characteristic_roots
 from etcheck.rod.damped_critical import LADDER, first_root
 from etcheck.rod.parameters import RodParameters

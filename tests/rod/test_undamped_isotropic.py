@@ -16,7 +16,7 @@ import pytest
 import scipy.linalg as sl
 from scipy.optimize import brentq
 
-from etcheck.numerics.eigen import one_blas_thread
+from etcheck.numerics.blas import one_blas_thread
 from etcheck.rod.base_state import straight
 from etcheck.rod.exact_straight import exact_root
 from etcheck.rod.linear import linear_operator
