@@ -46,9 +46,10 @@ def bisect_brackets(f, a, b) -> np.ndarray:
     """The roots of the vectorised ``f`` in the brackets [a_i, b_i] (f changes sign across each), by bisection of
     all brackets at once to the last bit (at most ~60 evaluations of ``f`` on the array of midpoints)."""
     a, b = np.array(a, dtype=float), np.array(b, dtype=float)
-    fa = np.asarray(f(a), dtype=float)
-    if np.any(np.sign(fa) * np.sign(np.asarray(f(b), dtype=float)) > 0):
+    fa, fb = np.asarray(f(a), dtype=float), np.asarray(f(b), dtype=float)
+    if np.any(np.sign(fa) * np.sign(fb) > 0):
         raise ValueError("f does not change sign across every bracket")
+    a, b = np.where(fb == 0, b, a), np.where(fa == 0, a, b)  # a root at an end: that end
     for _ in range(1100):  # each pass halves the bracket (or stops it): 2 x 1074 passes reach any float
         m = 0.5 * (a + b)
         open_ = (m != a) & (m != b)
