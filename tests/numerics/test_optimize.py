@@ -29,3 +29,21 @@ def test_bisection_refuses_a_bracket_without_a_sign_change():
 
 def test_the_forwarders_are_scipy_s_functions():
     assert brentq(math.cos, 1.0, 2.0, xtol=1e-15) == pytest.approx(math.pi / 2, rel=1e-15)
+
+
+def test_assignment_from_distinct_minima_is_optimal_and_clusters_go_to_scipy():
+    from scipy.optimize import linear_sum_assignment as scipy_lsa
+
+    from etcheck.numerics.optimize import linear_sum_assignment
+
+    rng = np.random.default_rng(7)
+    for _ in range(2000):
+        n, m = rng.integers(1, 7, size=2)
+        cost = np.round(rng.random((n, m)) ** 2, 2)  # rounding makes ties and shared minima common
+        r, c = linear_sum_assignment(cost)
+        r0, c0 = scipy_lsa(cost)
+        assert cost[r, c].sum() == pytest.approx(cost[r0, c0].sum(), abs=1e-12)
+        assert r.tolist() == sorted(r.tolist()) and len(r) == min(n, m) and len(set(c.tolist())) == len(c)
+    # both rows prefer column 0: the minima do not give an assignment, the Hungarian method does
+    r, c = linear_sum_assignment(np.array([[0.0, 1.0], [0.1, 5.0]]))
+    assert (r.tolist(), c.tolist()) == ([0, 1], [1, 0])
