@@ -52,6 +52,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..numerics.blas import single_blas_thread
+from ..numerics.parallel import split_map
 from .parameters import RodParameters
 from .stability import DOUBLE, K_MODES, THRESHOLD, StraightFamily, _family, nearly_isotropic
 
@@ -220,22 +221,28 @@ def static_curves(params: RodParameters, B_max: float, omega_max: float, omega_r
     """
     pl = plane(params, N)
     rows = np.linspace(0.0, omega_max, 60) if omega_rows is None else np.asarray(omega_rows, dtype=float)
-    loads, changes = [], []
-    for w in rows:
+    columns = np.linspace(0.0, B_max, n_loads)
+
+    def row(w: float):
         r, data = pl.roots("B", w * w)
         r = r[(r >= 0) & (r <= B_max)]
-        loads.append(r)
-        if params.gamma > 0:
-            changes.append(pl.changes(r, data, w))
+        return r, pl.changes(r, data, w) if params.gamma > 0 else None
+
+    def column(b: float):
+        r = pl.roots("w", b)[0]
+        return np.sqrt(r[(r >= 0) & (r <= omega_max**2)])
+
+    # every row and column is independent: on two cores
+    out = split_map(lambda job: row(job[1]) if job[0] == "row" else column(job[1]),
+                    [("row", w) for w in rows] + [("column", b) for b in columns], min_items=8)
+    loads = [r for r, _ in out[:rows.size]]
     Bs = [np.concatenate(loads)] if loads else []
     ws = [np.repeat(rows, [x.size for x in loads])]
-    for b in np.linspace(0.0, B_max, n_loads):
-        r = pl.roots("w", b)[0]
-        r = np.sqrt(r[(r >= 0) & (r <= omega_max**2)])
+    for b, r in zip(columns, out[rows.size:]):
         Bs.append(np.full(r.size, b))
         ws.append(r)
-    return StaticCurves(rows, tuple(loads), tuple(changes) if params.gamma > 0 else None, np.concatenate(Bs),
-                        np.concatenate(ws), int(N))
+    return StaticCurves(rows, tuple(loads), tuple(c for _, c in out[:rows.size]) if params.gamma > 0 else None,
+                        np.concatenate(Bs), np.concatenate(ws), int(N))
 
 
 def _rest_crossings(params: RodParameters, pl: StaticPlane) -> tuple[np.ndarray, np.ndarray]:
