@@ -3,7 +3,7 @@
 Importing scipy.optimize costs about 0.3 s (it loads linear programming,
 scipy.fft and scipy.special); a draft check and a JSON report need none of
 it, or only in a rare branch. These forwarders take the same arguments and
-return the same objects as scipy's. :func:`bisect_brackets` refines many
+return the same objects as scipy's. :func:`bracketed_roots` refines many
 brackets at once where a fine scan has already found them.
 """
 
@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["brentq", "minimize_scalar", "find_root", "linear_sum_assignment", "bisect_brackets"]
+__all__ = ["brentq", "minimize_scalar", "find_root", "linear_sum_assignment", "bracketed_roots"]
 
 
 def brentq(f, a, b, **kwargs):
@@ -59,23 +59,35 @@ def linear_sum_assignment(cost):
     return impl(cost)
 
 
-def bisect_brackets(f, a, b) -> np.ndarray:
-    """The roots of the vectorised ``f`` in the brackets [a_i, b_i] (f changes sign across each), by bisection of
-    all brackets at once to the last bit (at most ~60 evaluations of ``f`` on the array of midpoints)."""
+def bracketed_roots(f, a, b) -> np.ndarray:
+    """The roots of the vectorised ``f`` in the brackets [a_i, b_i] (a_i < b_i, f changes sign across each), all
+    brackets at once, each to within 2 ulp: the Illinois variant of false position (superlinear: ~10 evaluations
+    of ``f`` on an array from a scan's brackets, against ~45 bisections), bisection where a false-position point
+    falls outside its bracket and after 60 passes."""
     a, b = np.array(a, dtype=float), np.array(b, dtype=float)
     fa, fb = np.asarray(f(a), dtype=float), np.asarray(f(b), dtype=float)
     if np.any(np.sign(fa) * np.sign(fb) > 0):
         raise ValueError("f does not change sign across every bracket")
     a, b = np.where(fb == 0, b, a), np.where(fa == 0, a, b)  # a root at an end: that end
-    for _ in range(1100):  # each pass halves the bracket (or stops it): 2 x 1074 passes reach any float
-        m = 0.5 * (a + b)
-        open_ = (m != a) & (m != b)
+    kept = np.zeros(a.shape, dtype=int)  # the end kept by the last pass: -1 a, +1 b
+    eps = np.finfo(float).eps
+    for n in range(1200):  # past 60 passes only bisections: 2 x 1074 halvings reach any float
+        open_ = (b - a) > 4 * eps * np.maximum(np.abs(a), np.abs(b))
         if not open_.any():
             break
-        fm = np.asarray(f(m), dtype=float)
-        left = np.sign(fm) * np.sign(fa) <= 0  # the root lies in [a, m] (or is m)
-        b = np.where(open_ & left, m, b)
-        a, fa = np.where(open_ & ~left, m, a), np.where(open_ & ~left, fm, fa)
-        exact = open_ & (fm == 0)
-        a, b = np.where(exact, m, a), np.where(exact, m, b)
+        m = 0.5 * (a + b)
+        with np.errstate(all="ignore"):
+            c = (a * fb - b * fa) / (fb - fa) if n < 60 else m
+        c = np.where((c > a) & (c < b), c, m)
+        fc = np.asarray(f(c), dtype=float)
+        left = open_ & (np.sign(fc) * np.sign(fa) <= 0)  # the root lies in [a, c]: a is kept
+        right = open_ & ~left
+        # Illinois: an end kept twice in a row counts half, so that false position moves it too
+        fa = np.where(left & (kept == -1), 0.5 * fa, fa)
+        fb = np.where(right & (kept == 1), 0.5 * fb, fb)
+        b, fb = np.where(left, c, b), np.where(left, fc, fb)
+        a, fa = np.where(right, c, a), np.where(right, fc, fa)
+        kept = np.where(left, -1, np.where(right, 1, kept))
+        exact = open_ & (fc == 0)
+        a, b = np.where(exact, c, a), np.where(exact, c, b)
     return 0.5 * (a + b)

@@ -22,7 +22,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..numerics.optimize import bisect_brackets, brentq
+from ..numerics.optimize import bracketed_roots, brentq
 
 SQRT3 = math.sqrt(3.0)
 #: Step of the complex-step derivative (exact to rounding, no cancellation).
@@ -228,14 +228,14 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
     g = lambda mu: _clamped_beam_function(mu, P, stiffness)  # noqa: E731
     # Euler-Bernoulli spacing: mu_n ~ sqrt(stiffness) ((n + 1/2) pi)^2, and rotary
     # inertia only lowers the frequencies; scan finely in the f = 1 frequency
-    # and bisect the first n sign changes to the last bit.
+    # and refine the first n sign changes to the last bits.
     mu_max = math.sqrt(stiffness) * ((n + 1.5) * math.pi) ** 2
     grid = np.linspace(1e-6, mu_max, 400 * (n + 2))
     values = g(grid)
     i = np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0][:n]
     if i.size < n:
         raise RuntimeError(f"found only {i.size} of {n} bending frequencies")
-    return bisect_brackets(g, grid[i], grid[i + 1]) / math.sqrt(f)
+    return bracketed_roots(g, grid[i], grid[i + 1]) / math.sqrt(f)
 
 
 def torsion_frequencies(P: float, Gamma: float, f: float, n: int = 5) -> np.ndarray:
