@@ -28,7 +28,9 @@ BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "MKL_NUM_TH
 
 def pinned_by_environment() -> bool:
     """Whether the environment starts every BLAS library with one thread (each one's variable, or OMP_NUM_THREADS
-    where that is unset, is 1): the CLI sets this before numpy loads, :func:`pin_before_numpy`."""
+    where that is unset, is 1): the CLI sets this before numpy loads, :func:`pin_before_numpy`. Read at the first
+    solve; the libraries read it when they load, so a program that sets these variables after loading numpy has
+    BLAS threads that the solvers then leave running (slower, never wrong)."""
     own = [os.environ.get(v) for v in BLAS_THREAD_VARIABLES]
     return all(v == "1" for v in own) or (os.environ.get("OMP_NUM_THREADS") == "1" and all(v in (None, "1") for v in own))
 
@@ -60,7 +62,6 @@ def single_blas_thread(fn):
             return fn(*args, **kwargs)
 
     return wrapper
-
 
 
 def pin_before_numpy() -> None:

@@ -224,7 +224,8 @@ def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0):
     """D by the exponential basis for arrays (n,); NaN where it does not apply."""
     n = B.size
     lu, lv = R / f, 1.0 / f
-    # p(k) = Pu Pv + q^2, Pu = lu k^4 - alpha k^2 + c0, Pv = lv k^4 - beta k^2 + c0, q = B k + c1
+    # p(k) = Pu Pv + q^2, Pu = lu k^4 - alpha k^2 + c0, Pv = lv k^4 - beta k^2 + c0, q = B k + c1: no k^7, k^5,
+    # k^3 terms (which :func:`_horner` relies on)
     c = np.stack([np.full(n, lu * lv, dtype=complex), np.zeros(n, dtype=complex), -(lu * beta + lv * alpha),
                   np.zeros(n, dtype=complex), alpha * beta + c0 * (lu + lv), np.zeros(n, dtype=complex),
                   -c0 * (alpha + beta) + B**2, 2 * B * c1, c0**2 + c1**2], axis=1)

@@ -224,3 +224,17 @@ def test_nearly_isotropic_flutter_load_against_the_collocation_spectrum():
     Bc = undamped_critical(NEARLY_ISOTROPIC, windows=False).critical_load.value
     assert _growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 - 1e-6)), N=48) < 1e-8
     assert _growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 + 1e-6)), N=48) > 1e-4
+
+
+def test_horner_in_k_squared_is_the_polynomial_and_its_derivative():
+    from etcheck.rod.undamped_straight import _horner, _size
+
+    rng = np.random.default_rng(3)
+    c = rng.normal(size=(40, 9)) + 1j * rng.normal(size=(40, 9))
+    c[:, [1, 3, 5]] = 0.0  # the rows of the exponential basis: p(k) = Q(k^2) + c7 k
+    z = rng.normal(size=(40, 8)) + 1j * rng.normal(size=(40, 8))
+    p, q = _horner(c, z)
+    for i in range(c.shape[0]):
+        np.testing.assert_allclose(p[i], np.polyval(c[i], z[i]), rtol=1e-13)
+        np.testing.assert_allclose(q[i], np.polyval(np.polyder(c[i]), z[i]), rtol=1e-13)
+        np.testing.assert_allclose(_size(c, z)[i], np.polyval(np.abs(c[i]), np.abs(z[i])), rtol=1e-13)
