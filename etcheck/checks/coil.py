@@ -89,7 +89,7 @@ def branch_stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
 def eigenvalue_paths(branch, gamma: float, k: int = 6) -> dict:
     """The k least-|lambda| eigenvalue paths along a branch (rung 3), tracked through crossings and
     labelled by mode type (bending about d1 / d2, torsion); JSON-able (dimensionless)."""
-    bs = branch_spectra(branch, gamma, k=k)
+    bs = branch_spectra(branch, gamma, k=k, stiffness=False)  # no stiffness index: the paths do not show it
     lam = np.asarray(bs.eigenvalues)
     labels = [Counter(bs.labels[:, j].tolist()).most_common(1)[0][0] for j in range(lam.shape[1])]
     return {"parameter": bs.parameter, "values": np.asarray(bs.values).tolist(), "gamma": gamma,

@@ -229,7 +229,8 @@ class BranchSpectra:
     gamma = 0 the threshold is relative, 1e-8 |lambda|, for the neutral
     spectrum); ``index`` (n,): number of negative eigenvalues of the stiffness K
     (:func:`stiffness_index`; Kelvin-Tait-Chetaev: the number of unstable
-    eigenvalues for any gamma > 0); ``decided`` (n,): whether the flag is
+    eigenvalues for any gamma > 0; -1 where not asked for, see
+    :func:`branch_spectra`); ``decided`` (n,): whether the flag is
     trustworthy: |max_real| > 2 max_real_error; at gamma = 0 the neutral
     spectrum's real parts are pure discretisation error (the collocation
     breaks the Hamiltonian symmetry at the level of its error), so there a
@@ -284,10 +285,10 @@ def _point_spectrum(state, gamma: float, nev: int, N: int, vectors: bool, op: Da
     return operator_eigenvalues(op, gamma, nev, vectors)
 
 
-def _state_spectra(job: tuple, gamma: float, nev: int, N: int, M: int) -> tuple:
+def _state_spectra(job: tuple, gamma: float, nev: int, N: int, M: int, index: bool = True) -> tuple:
     """What :func:`branch_spectra` needs of one state, independent of the others: (lam, V) at N, lam at M,
-    the stiffness index and, when the job asks for the check, lam of the state re-solved at M (None when it
-    cannot be re-solved: a branch point)."""
+    the stiffness index (-1 unless ``index``) and, when the job asks for the check, lam of the state re-solved
+    at M (None when it cannot be re-solved: a branch point)."""
     st, check = job
     p = st.params.with_(gamma=gamma)
     st_g = st.with_params(p) if st.params != p else st
@@ -300,7 +301,7 @@ def _state_spectra(job: tuple, gamma: float, nev: int, N: int, M: int) -> tuple:
             lam_S = _point_spectrum(eq.solve_equilibrium(p, st_g, M), gamma, nev, M, False)
         except Exception:  # noqa: BLE001 - a state that cannot be re-solved (branch point) stays unchecked
             pass
-    return lam, V, lam_M, stiffness_index(op, nev), lam_S
+    return lam, V, lam_M, stiffness_index(op, nev) if index else -1, lam_S
 
 
 def _is_stable(lam: np.ndarray, gamma: float) -> bool:
@@ -312,7 +313,7 @@ def _is_stable(lam: np.ndarray, gamma: float) -> bool:
 
 @single_blas_thread
 def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state_stride: int = 5,
-                   name: str | None = None) -> BranchSpectra:
+                   name: str | None = None, stiffness: bool = True) -> BranchSpectra:
     """Eigenvalue paths of the k least-|lambda| pairs along ``branch`` at damping gamma.
 
     ``branch``: a :class:`~etcheck.rod.branches.Branch` (or any sequence of
@@ -320,8 +321,11 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
     taken from the branch or "B"). Linearisation eqs. (71)-(75)
     about each state at N (default: the state's N) and
     M = check_resolution(N); every ``state_stride``-th point (and the last)
-    is re-solved at M for the base-state error (0 disables). See
-    :class:`BranchSpectra` for the fields. Dimensionless.
+    is re-solved at M for the base-state error (0 disables).
+    ``stiffness=False`` leaves out the stiffness index of damped states (-1;
+    a tenth of the cost, and the paths do not need it); undamped, it decides
+    stability and is always computed. See :class:`BranchSpectra` for the
+    fields. Dimensionless.
     """
     t0 = time.perf_counter()
     states = tuple(branch.states) if hasattr(branch, "states") else tuple(branch)
@@ -343,7 +347,7 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
     crossings = []
     prev_vec = prev_lam = None
     check_idx = set(range(0, n, state_stride)) | {n - 1} if state_stride else set()
-    work = partial(_state_spectra, gamma=gamma, nev=nev, N=N0, M=M)
+    work = partial(_state_spectra, gamma=gamma, nev=nev, N=N0, M=M, index=stiffness or gamma == 0)
     solved = split_map(work, [(st, i in check_idx) for i, st in enumerate(states)], min_items=8)
     for i, (st, (lam, V, lam_M, index[i], lam_S)) in enumerate(zip(states, solved)):
         p = st.params.with_(gamma=gamma)

@@ -232,6 +232,12 @@ def test_branch_spectra_tracks_paths_continuously(b1_spun):
     step = np.abs(np.diff(sp.eigenvalues, axis=0))
     assert np.max(step) < 0.2
     json.dumps(sp.as_dict())
+    # without the stiffness index (damped): the same paths, the index left out (-1)
+    paths_only = bs.branch_spectra(states[:6], 0.01, k=3, state_stride=0, stiffness=False)
+    np.testing.assert_array_equal(paths_only.eigenvalues, sp.eigenvalues[:6])
+    assert np.all(paths_only.index == -1) and np.all(sp.index >= 0)
+    # undamped, the index decides stability: always computed
+    assert np.all(bs.branch_spectra(states[:2], 0.0, k=3, state_stride=0, stiffness=False).index >= 0)
 
 
 # --- damping map --------------------------------------------------------------------------------
