@@ -4,7 +4,9 @@ A sign-off check (the default) computes everything the report shows. A draft
 answers the margins and the verdict only, at a looser tolerance: no stability
 map, no Campbell diagram, no accuracy table, no post-buckling analysis (the
 straight tether's margins decide the verdict either way: a tether past its
-first critical load fails them).
+first critical load fails them); a damped tether's critical values start their
+two-resolution ladder one rung lower (N = 12 checked at 20: half the cost,
+errors of ~1e-7 for SET instead of ~1e-11).
 """
 
 from __future__ import annotations

@@ -26,7 +26,7 @@ from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, O
 from etcheck.jsonable import finite_or_none
 from etcheck.rod.analytic import critical_loads
 from etcheck.rod.convergence import accuracy_table, reference_resolution
-from etcheck.rod.damped_critical import damped_critical
+from etcheck.rod.damped_critical import DRAFT_LADDER, LADDER, damped_critical
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import THRESHOLD, CriticalKind, campbell, critical_load, scan_line, stability_map
@@ -132,7 +132,7 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoin
     if route == EXACT:  # root located to round-off; its estimate (two formulations) is judged by the mission's tolerance
         dc = exact_critical(p, tol=max(options.tol, options.eig_tol))
     else:
-        dc = damped_critical(p, tol=options.tol)
+        dc = damped_critical(p, tol=options.tol, ladder=DRAFT_LADDER if options.draft else LADDER)
     B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)
     w_hi = 1.6 * max(p.omega, math.sqrt(p.R))
     load = _pencil_critical(dc.critical_load, "critical load at the operating spin", B_hi)

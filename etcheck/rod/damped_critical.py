@@ -37,10 +37,13 @@ from .parameters import RodParameters
 from .spectrum import check_resolution
 from .stability import DOUBLE, _family
 
-__all__ = ["LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical", "critical_from_roots"]
+__all__ = ["LADDER", "DRAFT_LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical", "critical_from_roots"]
 
 #: Chebyshev resolutions tried in turn until two resolutions agree.
 LADDER = (16, 24, 32, 48, 64, 96, 128)
+#: The ladder of a draft (tolerance 1e-6): one coarser rung first, N = 12 checked at 20 (its pencils cost
+#: half those of 16 and 24), where the scene's roots have converged that far.
+DRAFT_LADDER = (12, *LADDER)
 #: Below this two-resolution disagreement an error that no longer falls by a factor 3 from one rung of
 #: the ladder to the next is round-off (e.g. a load root near the unloaded critical spin, where it falls
 #: like a square root): the ladder stops there and reports the root with that estimate, unconverged.
