@@ -30,17 +30,11 @@ def test_draft_margins_equal_sign_off_within_their_errors(name):
         assert a["name"] == b["name"] and a["verdict"] == b["verdict"]
         assert a["value"] == pytest.approx(b["value"], rel=DRAFT_TOLERANCE + a["error"] + b["error"])
         assert a["error"] <= DRAFT_TOLERANCE
-
-
-def test_a_damped_draft_starts_its_pencils_at_a_coarser_resolution():
-    """The trade a draft makes: SET's critical values from N = 12 checked at 20 (sign-off: 16 at 24), with the
-    larger two-resolution error that comes with it, inside the draft's tolerance."""
-    mission = load_mission(MISSIONS / "set.toml")
-    sign = check(mission, SMALL).results["linear"]
-    draft = check(replace(mission, fidelity="draft")).results["linear"]
-    for axis in ("critical_load", "critical_spin"):
-        assert draft[axis]["N"] < sign[axis]["N"]
-        assert sign[axis]["error"] <= draft[axis]["error"] <= DRAFT_TOLERANCE
+    if sign["linear"]:  # the trade a damped draft makes: its pencils from N = 12 checked at 20 (sign-off: 16 at
+        # 24), with the larger two-resolution error that comes with it, inside the draft's tolerance
+        for axis in ("critical_load", "critical_spin"):
+            assert draft["linear"][axis]["N"] < sign["linear"][axis]["N"]
+            assert sign["linear"][axis]["error"] <= draft["linear"][axis]["error"] <= DRAFT_TOLERANCE
 
 
 def test_draft_leaves_out_the_pictures_and_says_so():
