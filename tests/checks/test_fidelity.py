@@ -44,3 +44,4 @@ def test_draft_leaves_out_the_pictures_and_says_so():
     assert draft["postbuckling"] is None
     html = render(draft, ("html",))["html"].decode()
     assert "not for signature" in html and "Fidelity: draft" in html
+    assert "located to a tolerance of 1×10<sup>-6</sup> (a draft)" in " ".join(html.split())  # not 1e-10
