@@ -25,7 +25,8 @@ at_start = sorted(m for m in ("numpy", "scipy", "astropy") if m in sys.modules)
 code = main(["missions/set.toml", "--draft", "--format", "json", "--out", sys.argv[1]])
 from etcheck.numerics.blas import _blas
 print(json.dumps({"at_start": at_start, "code": code, "loaded": sorted({m.split(".")[0] for m in sys.modules}),
-                  "scipy_optimize": "scipy.optimize" in sys.modules, "blas_scanned": _blas() is not None}))
+                  "scipy_optimize": "scipy.optimize" in sys.modules, "scipy_sparse": "scipy.sparse" in sys.modules,
+                  "blas_scanned": _blas() is not None}))
 """
 
 
@@ -41,6 +42,7 @@ def test_a_json_only_draft_check_loads_no_report_stack(tmp_path):
     assert "numpy" in out["loaded"]  # the probe saw the check's own imports
     assert [m for m in REPORT_AND_STUDY_STACK if m in out["loaded"]] == []
     assert not out["scipy_optimize"]  # 0.3 s of imports a draft check does not need
+    assert not out["scipy_sparse"]  # ARPACK and graph components (0.1 s): no eigenvalues in a damped draft
     assert not out["blas_scanned"]  # BLAS started with one thread: nothing for threadpoolctl to limit
 
 

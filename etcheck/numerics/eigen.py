@@ -27,7 +27,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
-from scipy.sparse.linalg import ArpackError, ArpackNoConvergence, LinearOperator, eigs
 
 from .blas import single_blas_thread
 from .optimize import linear_sum_assignment
@@ -208,6 +207,9 @@ def qep_shift_invert(A0, A1, A2, k: int, sigma: float = 0.0, vectors: bool = Fal
         w1 = _getrs(lu, piv, b, overwrite_b=True)[0]
         w1 *= -1.0
         return np.concatenate([w1, z[:n] + sigma * w1])
+
+    # scipy.sparse.linalg here: a draft (static pencils only) never loads it
+    from scipy.sparse.linalg import ArpackError, ArpackNoConvergence, LinearOperator, eigs
 
     op = LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=float)
     k = min(k, 2 * n - 2)

@@ -40,8 +40,6 @@ from enum import StrEnum
 from functools import cached_property, lru_cache
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import connected_components
 
 from ..numerics.blas import single_blas_thread
 from ..numerics.eigen import eliminate_static, match_spectra, pencil_eigenvalues, qep_dense
@@ -121,6 +119,9 @@ _BLOCKS = ("A00", "AB", "AT", "Aw", "A10", "A1w", "A2")
 
 def _uncoupled(fam) -> list[tuple[np.ndarray, np.ndarray]]:
     """(rows, columns) of the parts of the family's operator that share no row or column (one part if any is not square)."""
+    import scipy.sparse as sp  # here: a draft (static pencils only) never loads scipy.sparse
+    from scipy.sparse.csgraph import connected_components
+
     pattern = sum(np.abs(getattr(fam, name)) for name in _BLOCKS) != 0.0
     n = pattern.shape[0]
     graph = sp.bmat([[None, sp.csr_matrix(pattern)], [sp.csr_matrix(pattern.T), None]])
