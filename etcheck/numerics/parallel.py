@@ -17,14 +17,15 @@ sweep shares between the points of a length, and a 40 x 40 undamped sweep took 3
 
 from __future__ import annotations
 
+import contextlib
 import os
 import pickle
 import signal
 import threading
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
-__all__ = ["split_map", "serial_here", "can_split"]
+__all__ = ["split_map", "serial_here", "serial", "can_split"]
 
 _SERIAL = False
 
@@ -33,6 +34,19 @@ def serial_here() -> None:
     """Never fork from this process (a worker of a pool that already uses every core)."""
     global _SERIAL
     _SERIAL = True
+
+
+@contextlib.contextmanager
+def serial() -> Iterator[None]:
+    """No forked helpers inside the block (a study that keeps every core busy with its own workers, or that
+    shares memoised results between its items)."""
+    global _SERIAL
+    before = _SERIAL
+    _SERIAL = True
+    try:
+        yield
+    finally:
+        _SERIAL = before
 
 
 def can_split() -> bool:

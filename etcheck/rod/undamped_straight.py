@@ -67,6 +67,7 @@ import numpy as np
 
 from ..numerics.blas import single_blas_thread
 from ..numerics.optimize import brentq, find_root, minimize_scalar
+from ..numerics.parallel import can_split, split_map
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur, _smoothing
 from .mode_band import cut, mode_count
@@ -924,7 +925,6 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     (NaN) and the operating point is judged on the load line (stable iff below its first instability).
     """
     p = params.with_(gamma=0.0)
-    w = p.omega
     if p.R == 1.0:
         return _isotropic(p, tol, windows, spin)
     if not spin and p.B > 0:
@@ -936,28 +936,53 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
         spin_hi = _spin_hi(first)
         if windows and p.R != 1.0 and _Line(p, "omega", 0.0, spin_hi).mu.size > MAX_GRID:
             spin_hi = short  # windows past the first static spin would cost too many samples: not sought
-    spin_line, why = _spin_line(p, spin_hi, windows)
+    # the spin line and what the load line needs are independent: on two cores a forked helper follows the load
+    # line meanwhile (pure work; in a sweep worker or on one core only where it is needed, after the spin line)
+    jobs = [lambda: _spin_line(p, spin_hi, windows), lambda: _load_part(p)]
+    (spin_line, why), *ahead = split_map(lambda job: job(), jobs) if can_split() else [jobs[0]()]
     if spin_line is None:  # no spin: the load decides (self-adjoint); the critical spin is not answered
         return _without_spin(p, tol, why)
-    evaluations = spin_line.evaluations
-    if w <= spin_line.hi:
-        stable = not spin_line.unstable_at(w)
-    elif has_real_pair(p):  # a real pair of eigenvalues: unstable whatever the complex ones do
-        stable = False
-    else:
-        pairs, real, spent = _complex_pairs(p)
-        stable, evaluations = pairs == 0 and not real, evaluations + spent
-    if w > 0 and has_real_pair(p.with_(B=0.0)):  # the unloaded rod already has a real pair at this spin
+    stable, spent = _operating_stable(p, spin_line)
+    evaluations = spin_line.evaluations + spent
+    load_part = ahead[0] if ahead else _load_part(p)
+    if isinstance(load_part, Exception):
+        raise load_part
+    if load_part is None:  # the unloaded rod already has a real pair at this spin
         load = CriticalPoint("B", 0.0, CriticalKind.UNSTABLE_AT_START, (0.0, 0.0), 0.0, True,
                              f"already unstable at B = 0: a real pair of eigenvalues ({MODEL})", 0)
         return UndampedCritical(load, _point(spin_line, tol), spin_line.windows, spin_line.hi, stable, evaluations)
-    static = _ex.exact_root(p.with_(B=0.0), "B")
-    if w == 0:  # not gyroscopic: K q = mu M q, stable exactly below the first static load
+    static, followed = load_part
+    if followed is None:  # not gyroscopic (w = 0): K q = mu M q, stable exactly below the first static load
         return UndampedCritical(_point(_static_line(static), tol), _point(spin_line, tol), spin_line.windows,
                                 spin_line.hi, stable, evaluations + static.evaluations)
-    load_line, spent = _load_line(p, static)
+    load_line, spent = followed
     return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
                             evaluations + spent)
+
+
+def _operating_stable(p: RodParameters, spin_line: StabilityLine) -> tuple[bool, int]:
+    """Whether the operating point is stable, from the spin line at the operating load where it reaches the
+    operating spin, else from the complex pairs there; and the evaluations that took beyond the line's."""
+    if p.omega <= spin_line.hi:
+        return not spin_line.unstable_at(p.omega), 0
+    if has_real_pair(p):  # a real pair of eigenvalues: unstable whatever the complex ones do
+        return False, 0
+    pairs, real, spent = _complex_pairs(p)
+    return pairs == 0 and not real, spent
+
+
+def _load_part(p: RodParameters):
+    """What :func:`undamped_critical` needs for the critical load, independent of the spin line: None when the
+    unloaded rod has a real pair at the operating spin (unstable at B = 0), else (the first static load at B = 0,
+    the load line with its evaluations, or None without spin); an error met on the way is returned, to be raised
+    only where the result is used."""
+    try:
+        if p.omega > 0 and has_real_pair(p.with_(B=0.0)):
+            return None
+        static = _ex.exact_root(p.with_(B=0.0), "B")
+        return static, (_load_line(p, static) if p.omega != 0 else None)
+    except (ArithmeticError, ValueError) as exc:
+        return exc
 
 
 def _at_rest(p: RodParameters):

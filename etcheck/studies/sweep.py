@@ -35,6 +35,7 @@ import time
 from collections.abc import Callable, Iterable
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, replace
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -50,6 +51,7 @@ from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.blas import one_blas_thread
 from etcheck.numerics.optimize import brentq
+from etcheck.numerics.parallel import serial
 from etcheck.rod.damped_critical import damped_critical, first_root
 from etcheck.rod.exact_straight import exact_critical, first_exact_root
 from etcheck.rod.parameters import RodParameters
@@ -369,13 +371,13 @@ def _run(fn: Callable, chunks: list[list], options: SweepOptions, on_result: Cal
     workers = options.workers or len(os.sched_getaffinity(0))
     if workers <= 1:
         for chunk in chunks:
-            for key, r in fn(chunk):
+            for key, r in _serially(fn, chunk):
                 on_result(key, r)
         return
     pool = ProcessPoolExecutor(max_workers=min(workers, len(chunks)), initializer=_worker_init,
                                initargs=(os.getpid(),))
     try:
-        futures = [pool.submit(fn, c) for c in chunks]
+        futures = [pool.submit(_serially, fn, c) for c in chunks]
         for fut in as_completed(futures):
             for key, r in fut.result():
                 on_result(key, r)
@@ -398,12 +400,19 @@ def _run_dask(fn: Callable, chunks: list[list], address: str, timeout: float, on
         raise MissionError("command line", "--scheduler", f"cannot reach the dask scheduler at {address}: {exc}",
                            "start one (dask scheduler) or leave --scheduler out to run locally") from None
     try:
-        futures = client.map(fn, chunks, pure=False)
+        futures = client.map(partial(_serially, fn), chunks, pure=False)
         for fut in dask_completed(futures):
             for key, r in fut.result():
                 on_result(key, r)
     finally:
         client.close()
+
+
+def _serially(fn: Callable, chunk: list) -> list:
+    """``fn(chunk)`` without forked helpers: the points of a sweep share memoised roots (the lines at zero load
+    of a length), which a helper would keep to itself, and the sweep's own workers keep every core busy."""
+    with serial():
+        return fn(chunk)
 
 
 def _chunks(items: list, size: int) -> list[list]:

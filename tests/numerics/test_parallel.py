@@ -84,3 +84,11 @@ def test_weights_balance_the_two_sides():
     assert [v for v, _ in out] == [0, 1, 4, 9, 16]
     pids = [pid for _, pid in out]
     assert pids[0] == os.getpid() and len(set(pids[1:])) == 1 and pids[1] != os.getpid()
+
+
+def test_serial_turns_forking_off_inside_its_block_only(monkeypatch):
+    monkeypatch.setattr(parallel, "_SERIAL", False)
+    with parallel.serial():
+        assert not can_split()
+        assert {pid for _, pid in split_map(_square_and_pid, range(6))} == {os.getpid()}
+    assert parallel._SERIAL is False

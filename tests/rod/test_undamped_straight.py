@@ -238,3 +238,22 @@ def test_horner_in_k_squared_is_the_polynomial_and_its_derivative():
         np.testing.assert_allclose(p[i], np.polyval(c[i], z[i]), rtol=1e-13)
         np.testing.assert_allclose(q[i], np.polyval(np.polyder(c[i]), z[i]), rtol=1e-13)
         np.testing.assert_allclose(_size(c, z)[i], np.polyval(np.abs(c[i]), np.abs(z[i])), rtol=1e-13)
+
+
+@pytest.mark.parametrize("omega", [0.0, 0.25])
+def test_the_load_line_followed_by_a_helper_gives_the_same_answer(monkeypatch, omega):
+    """On two cores the load line is followed in a forked helper while the spin line is followed here."""
+    from etcheck.numerics import parallel
+
+    p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, B=0.2, omega=omega, T=0.05, gamma=0.0)
+    monkeypatch.setattr(parallel, "_SERIAL", True)
+    serial = undamped_critical(p, 1e-8, windows=True)
+    import etcheck.rod.exact_straight as ex
+    import etcheck.rod.undamped_straight as us
+
+    for module in (us, ex):  # nothing memoised: the helper computes the load line afresh
+        for fn in vars(module).values():
+            if hasattr(fn, "cache_clear"):
+                fn.cache_clear()
+    monkeypatch.setattr(parallel, "_SERIAL", False)
+    assert undamped_critical(p, 1e-8, windows=True) == serial
