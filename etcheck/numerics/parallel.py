@@ -4,15 +4,16 @@ The helper is a copy of this process (``os.fork``, Linux): nothing is imported
 again and the function is not pickled; only the results come back, pickled
 through a pipe. The map is serial where a fork cannot help or is not safe: one
 core, other threads running (a fork copies only the calling thread, and a lock
-another thread holds would stay locked in the copy), inside a helper or a
-sweep worker (:func:`serial_here`; the sweep already keeps every core busy), or
-fewer than ``min_items`` items. If the helper fails, its items are computed
+another thread holds would stay locked in the copy), inside a helper
+(:func:`serial_here`) or a sweep's chunk (:func:`serial`: the sweep already
+keeps every core busy), or fewer than ``min_items`` items. If the helper fails, its items are computed
 here (an error is then raised here, with its traceback). The results are the
 same bytes either way: the same code runs on one BLAS thread in both processes.
 
 Only work whose result is all that is needed belongs in the map: what the helper memoises (lru caches,
-counters) stays in the helper. Measured: the undamped load line computed in the helper lost the roots a
-sweep shares between the points of a length, and a 40 x 40 undamped sweep took 300 s instead of 69 s.
+counters) stays in the helper. Measured: the undamped load line computed in a helper inside a sweep lost the
+roots the sweep shares between the points of a length (a 40 x 40 undamped sweep took 300 s instead of 69 s);
+a single check computes it in a helper (nothing to share), a sweep's chunks never fork.
 """
 
 from __future__ import annotations

@@ -285,9 +285,9 @@ def _point_spectrum(state, gamma: float, nev: int, N: int, vectors: bool, op: Da
     return operator_eigenvalues(op, gamma, nev, vectors)
 
 
-def _state_spectra(job: tuple, gamma: float, nev: int, N: int, M: int, index: bool = True) -> tuple:
+def _state_spectra(job: tuple, gamma: float, nev: int, N: int, M: int, stiffness: bool = True) -> tuple:
     """What :func:`branch_spectra` needs of one state, independent of the others: (lam, V) at N, lam at M,
-    the stiffness index (-1 unless ``index``) and, when the job asks for the check, lam of the state re-solved
+    the stiffness index (-1 unless ``stiffness``) and, when the job asks for the check, lam of the state re-solved
     at M (None when it cannot be re-solved: a branch point)."""
     st, check = job
     p = st.params.with_(gamma=gamma)
@@ -301,7 +301,7 @@ def _state_spectra(job: tuple, gamma: float, nev: int, N: int, M: int, index: bo
             lam_S = _point_spectrum(eq.solve_equilibrium(p, st_g, M), gamma, nev, M, False)
         except Exception:  # noqa: BLE001 - a state that cannot be re-solved (branch point) stays unchecked
             pass
-    return lam, V, lam_M, stiffness_index(op, nev) if index else -1, lam_S
+    return lam, V, lam_M, stiffness_index(op, nev) if stiffness else -1, lam_S
 
 
 def _is_stable(lam: np.ndarray, gamma: float) -> bool:
@@ -347,7 +347,7 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
     crossings = []
     prev_vec = prev_lam = None
     check_idx = set(range(0, n, state_stride)) | {n - 1} if state_stride else set()
-    work = partial(_state_spectra, gamma=gamma, nev=nev, N=N0, M=M, index=stiffness or gamma == 0)
+    work = partial(_state_spectra, gamma=gamma, nev=nev, N=N0, M=M, stiffness=stiffness or gamma == 0)
     solved = split_map(work, [(st, i in check_idx) for i, st in enumerate(states)], min_items=8)
     for i, (st, (lam, V, lam_M, index[i], lam_S)) in enumerate(zip(states, solved)):
         p = st.params.with_(gamma=gamma)

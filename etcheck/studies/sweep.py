@@ -298,16 +298,13 @@ class _NoAnswer(Exception):
 
 
 def _worker_init(parent: int) -> None:
-    """Local worker: one BLAS thread, no forked helpers; exit when the sweep process dies (kill -9 leaves no
-    orphans)."""
+    """Local worker: one BLAS thread (its chunks run without forked helpers, :func:`_serially`); exit when the
+    sweep process dies (kill -9 leaves no orphans)."""
     import threading
 
     from threadpoolctl import threadpool_limits
 
-    from etcheck.numerics.parallel import serial_here
-
     threadpool_limits(limits=1)  # for the life of the worker
-    serial_here()  # the pool keeps every core busy: no forked helpers on top
 
     def watch() -> None:
         while os.getppid() == parent:
