@@ -40,6 +40,8 @@ from etcheck.rod.branch_stability import secondary_pitchfork
 from etcheck.rod.branches import (
     Branch,
     LiftoffSpin,
+    class_loads,
+    class_starts,
     connecting_branch,
     continue_branch,
     liftoff_estimate,
@@ -56,6 +58,13 @@ from etcheck.scaling import Scales
 
 #: arc-length samples of a drawn shape
 SHAPE_POINTS = 121
+#: relative cost per state of a primary branch (SET at omega = 0.25, one core): its record with the eigenvalue
+#: paths (0.11 s), without them (0.02 s), and the continuation of the connecting branch that leaves it (about
+#: twice its points at 0.055 s each, and the branch point where it ends: 0.14 s)
+COST = {"paths": 1.0, "record": 0.2, "continue": 1.3}
+#: seconds, SET at omega = 0.25, one core: a lift-off spin, a class's restricted pencil and loads, and the
+#: start and continuation of one primary branch
+COST_START = {"liftoff": 0.6, "class": 0.3, "primary": 0.6}
 
 
 @dataclass(frozen=True)
@@ -68,8 +77,9 @@ class DiagramOptions:
     ``B_max``: end of the load range (None: 3, or 1.3 x the highest pitchfork);
     ``N``: Chebyshev resolution of the equilibria; ``connect``: follow the
     connecting branches (b12, b34, ...); ``stability``: mark each point stable
-    or unstable (rung 3, at the scene's damping); ``paths``: also the
-    eigenvalue paths along each branch; ``shape_measure``: measure_1
+    or unstable (rung 3, at the scene's damping); ``paths``: the labels of the
+    branches whose eigenvalue paths are computed (default b1 and b12, the paper's
+    Figs. 9 and 10; None: every branch; (): none); ``shape_measure``: measure_1
     at which the shapes are drawn (the paper's Fig.
     Fig. 7 uses 0.04).
     """
@@ -81,7 +91,11 @@ class DiagramOptions:
     stability: bool = True
     shape_measure: float = 0.04
     max_points: int = 400
-    paths: bool = True
+    paths: tuple[str, ...] | None = ("b1", "b12")
+
+    def with_paths(self, label: str) -> bool:
+        """Whether the eigenvalue paths of branch ``label`` are computed."""
+        return self.stability and (self.paths is None or label in self.paths)
 
 
 @lru_cache(maxsize=256)
@@ -121,14 +135,14 @@ def _b1_to(params: RodParameters, N: int) -> tuple[Any, Branch | None, str]:
     return start, branch, ""
 
 
-def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, LiftoffSpin]]:
+def _labels(params: RodParameters, n: int, known: dict[int, LiftoffSpin] | None = None
+            ) -> list[tuple[str, str, int, LiftoffSpin]]:
     """(label, symmetry, k-th pitchfork of its class, lift-off spin with its error) of branches b1, b2, ... until n of them
-    are still attached to the straight tether at the scene's spin (lifted-off ones are listed too)."""
+    are still attached to the straight tether at the scene's spin (lifted-off ones are listed too); ``known``:
+    lift-off spins already computed, by branch number (the others are computed here)."""
     out, attached, j = [], 0, 0
     none = LiftoffSpin(math.nan, math.nan, 24, 36)
-    # the first n lift-off spins on two cores; further ones (past lifted-off branches) one by one
-    known = dict(zip(range(1, n + 1), split_map(lambda j: _liftoff_of(params, j), range(1, n + 1)))) \
-        if params.omega > 0 else {}
+    known = dict(known or {})
     while attached < n and j < n + 8:
         j += 1
         which = "S1" if j % 2 else "S2"
@@ -136,6 +150,84 @@ def _labels(params: RodParameters, n: int) -> list[tuple[str, str, int, LiftoffS
         w = (known[j] if j in known else _liftoff_of(params, j)) if params.omega > 0 else none
         out.append((f"b{j}", which, kk, w))
         attached += not (math.isfinite(w.omega) and params.omega >= w.omega)
+    return out
+
+
+@dataclass(frozen=True)
+class _Primary:
+    """A primary branch of a diagram: its label, class, place k among its class's pitchforks, lift-off spin,
+    pitchfork load (check resolution) with its error, and the branch continued from there."""
+
+    label: str
+    which: str
+    k: int
+    liftoff: LiftoffSpin
+    load: tuple[float, float]
+    branch: Branch
+
+
+def _load_range(loads: list[float]) -> float:
+    """End of a diagram's load range: 3, or 1.3 times the highest pitchfork drawn."""
+    return max(3.0, 1.3 * max(loads, default=0.0))
+
+
+def _primaries(params: RodParameters, options: DiagramOptions) -> tuple[list[_Primary], list[dict], float]:
+    """The attached primary branches of a diagram (continued), the lifted-off ones, and the end of the load range.
+
+    The lift-off spins of b1..bn decide which branches are attached; beside them (on two cores) the primary
+    branches are started and continued as if none had lifted off: the k-th attached branch of a class starts at
+    its class's k-th pitchfork whatever its label, so that work is kept unless lift-offs change the count of a
+    class or the load range (then the branches concerned are continued again).
+    """
+    p0 = params.with_(B=0.0)
+    n = options.branches
+    guess = {"S1": tuple(range(1, (n + 1) // 2 + 1)), "S2": tuple(range(1, n // 2 + 1))}
+    B_guess = options.B_max or _load_range(
+        [float(x) for c, ks in guess.items() if ks for x in class_loads(p0, c, options.N, len(ks))])
+    tasks = [("liftoff", j) for j in range(1, n + 1) if params.omega > 0] + [
+        ("class", c, ks) for c, ks in guess.items() if ks]
+
+    def run(task):
+        if task[0] == "liftoff":
+            return _liftoff_of(params, task[1])
+        return _class_branches(params, task[1], task[2], options, B_guess)
+
+    done = split_map(run, tasks, weights=[COST_START["liftoff"] if t[0] == "liftoff" else
+                                          COST_START["class"] + COST_START["primary"] * len(t[2]) for t in tasks])
+    made = {(t[1], k): one for t, r in zip(tasks, done) if t[0] == "class" for k, one in zip(t[2], r)}
+    labels = _labels(params, n, {t[1]: r for t, r in zip(tasks, done) if t[0] == "liftoff"})
+    lifted = [{"label": lab, "liftoff_omega": w.omega, "liftoff_omega_error": _finite(w.error)}
+              for lab, _, _, w in labels if math.isfinite(w.omega) and params.omega >= w.omega]
+    # the k-th attached branch of a class starts at that class's k-th pitchfork (lifted ones are gone)
+    count = {"S1": 0, "S2": 0}
+    order = []
+    for lab, which, _, w in labels:
+        if not (math.isfinite(w.omega) and params.omega >= w.omega):
+            count[which] += 1
+            order.append((lab, which, count[which], w))
+    B_max = options.B_max or _load_range(
+        [float(class_loads(p0, c, options.N, count[c])[-1]) for c in count if count[c]])
+    redo = {c: tuple(k for _, which, k, _ in order if which == c and ((c, k) not in made or B_max != B_guess))
+            for c in count}
+    todo = [c for c in redo if redo[c]]
+    for c, again in zip(todo, split_map(lambda c: _class_branches(params, c, redo[c], options, B_max), todo)):
+        made |= dict(zip(((c, k) for k in redo[c]), again))
+    attached = [_Primary(lab, which, k, w, made[(which, k)][1], made[(which, k)][2]) for lab, which, k, w in order]
+    return attached, lifted, B_max
+
+
+def _class_branches(params: RodParameters, which: str, ks: tuple[int, ...], options: DiagramOptions, B_max: float
+                    ) -> list[tuple[Any, tuple[float, float], Branch]]:
+    """(start, pitchfork load at the check resolution and its error, continued branch) of the k-th pitchforks
+    of a class, k in ``ks`` (the load at resolution N and error inf where the check resolution has no k-th)."""
+    p0 = params.with_(B=0.0)
+    starts = class_starts(p0, which, ks, options.N)
+    pl = pitchfork_loads(p0, which, options.N, max(ks))
+    out = []
+    for k, st in zip(ks, starts):
+        load = (float(pl.loads[k - 1]), float(pl.errors[k - 1])) if pl.loads.size >= k else (st.load, math.inf)
+        out.append((st, load, continue_branch(params, st, stop=(0.0, B_max), N=options.N,
+                                              max_points=options.max_points)))
     return out
 
 
@@ -172,7 +264,7 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     if options.stability:
         stable, growth, errs = branch_stability(branch, gamma)
         out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
-        if options.paths:
+        if options.with_paths(label):
             out["eigenvalue_paths"] = eigenvalue_paths(branch, gamma)
     shapes = {}
     try:
@@ -205,54 +297,40 @@ def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramO
 def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> tuple[dict, dict[str, Branch]]:
     """:func:`bifurcation_diagram` and the continued primary branches by label."""
     t_all = time.perf_counter()
-    labels = _labels(params, options.branches)
-    attached = [(lab, which, kk, w) for lab, which, kk, w in labels
-                if not (math.isfinite(w.omega) and params.omega >= w.omega)]
-    lifted = [{"label": lab, "liftoff_omega": w.omega, "liftoff_omega_error": _finite(w.error)}
-              for lab, _, _, w in labels if math.isfinite(w.omega) and params.omega >= w.omega]
-    # the j-th attached branch of a class starts at that class's j-th pitchfork (lifted ones are gone)
-    starts: dict[str, Any] = {}
-    loads: dict[str, tuple[float, float]] = {}  # pitchfork load at the check resolution and its error
-    count = {"S1": 0, "S2": 0}
-    for lab, which, _, _ in attached:
-        count[which] += 1
-        pair = primary_branches(params.with_(B=0.0), count[which], options.N)
-        starts[lab] = next(s for s in pair if s.which == which)
-        pl = pitchfork_loads(params.with_(B=0.0), which, options.N, count[which])
-        loads[lab] = (float(pl.loads[-1]), float(pl.errors[-1])) if pl.loads.size == count[which] else (
-            starts[lab].load, math.inf)
-    B_max = options.B_max or max(3.0, 1.3 * max((s.load for s in starts.values()), default=0.0))
+    attached, lifted, B_max = _primaries(params, options)
+    kept: dict[str, Branch] = {a.label: a.branch for a in attached}
+    info = {a.label: a for a in attached}
 
-    labs = [lab for lab, _, _, _ in attached]
-    kept: dict[str, Branch] = dict(zip(labs, split_map(
-        lambda lab: continue_branch(params, starts[lab], stop=(0.0, B_max), N=options.N, max_points=options.max_points),
-        labs)))
-    info = {lab: (which, w) for lab, which, _, w in attached}
-
-    def record(job) -> BranchRecord:
-        """The data of a primary branch, or of the connecting branch that leaves it (independent of the others)."""
-        lab, connect = job
-        which, w = info[lab]
-        if connect:
-            odd = int(lab[1:])
-            con = connecting_branch(kept[lab], stop=(0.0, B_max), max_points=options.max_points)
-            return _branch_data(con, f"b{odd}{odd + 1}", scales, options, params.gamma) | {"symmetry": None,
-                                                                                           "from": lab}
-        B_pf, B_pf_error = loads[lab]
-        return _branch_data(kept[lab], lab, scales, options, params.gamma) | {
+    def primary_record(lab: str) -> BranchRecord:
+        a = info[lab]
+        B_pf, B_pf_error = a.load
+        return _branch_data(a.branch, lab, scales, options, params.gamma) | {
             "pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
-            "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": which,
-            "liftoff_omega": _finite(w.omega), "liftoff_omega_error": _finite(w.error)}
+            "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": a.which,
+            "liftoff_omega": _finite(a.liftoff.omega), "liftoff_omega_error": _finite(a.liftoff.error)}
+
+    def first(job) -> BranchRecord | Branch:
+        """A primary branch's record, or the continuation of the connecting branch that leaves it."""
+        lab, connect = job
+        if connect:
+            return connecting_branch(kept[lab], stop=(0.0, B_max), max_points=options.max_points)
+        return primary_record(lab)
 
     jobs = []
-    for lab, which, _, _ in attached:
-        jobs.append((lab, False))
-        if options.connect and which == "S1" and any(q.kind == "break" for q in kept[lab].special):
-            jobs.append((lab, True))
-    # on two cores, balanced by the expected cost (states to analyse; a connecting branch is continued first and
-    # is about twice its parent); the same records as one by one
-    weights = [len(kept[lab].states) * (2.0 if connect else 1.0) for lab, connect in jobs]
-    out_branches = split_map(record, jobs, weights=weights)
+    for a in attached:
+        jobs.append((a.label, False))
+        if options.connect and a.which == "S1" and any(q.kind == "break" for q in a.branch.special):
+            jobs.append((a.label, True))
+    # On two cores in two steps (each the same records as one by one): the primary branches' records beside the
+    # connecting branches' continuations, balanced by their expected cost (COST, per state of the parent branch);
+    # then each connecting branch's record, whose states' spectra are independent (split over both cores)
+    weights = [len(kept[lab].states) * (COST["continue"] if connect else COST["paths"] if options.with_paths(lab)
+                                        else COST["record"]) for lab, connect in jobs]
+    firsts = split_map(first, jobs, weights=weights)
+    out_branches = [
+        _branch_data(done, f"b{int(lab[1:])}{int(lab[1:]) + 1}", scales, options, params.gamma)
+        | {"symmetry": None, "from": lab} if connect else done
+        for (lab, connect), done in zip(jobs, firsts)]
     if not out_branches and not lifted:
         raise SolverError("rung 2: no branch was found")
     return {
@@ -264,6 +342,7 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
         "N": options.N,
         "branches": out_branches,
         "lifted_off": lifted,
+        "paths_computed": [b["label"] for b in out_branches if "eigenvalue_paths" in b],
         "time_s": time.perf_counter() - t_all,
     }, kept
 
@@ -365,7 +444,7 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
                        f"has many coils, beyond rung 2's validated range (up to {MAX_LOAD_RATIO:g} times)"}
     # far enough for a stable coil without a secondary pitchfork to prove the required margin (within rung 2's range)
     B_max = max(1.5 * params.B, 5.0 * B_c, min(1.02 * required * params.B, MAX_LOAD_RATIO * B_c))
-    opts = DiagramOptions(branches=1, connect=False, stability=True, paths=False, N=N, B_max=B_max)
+    opts = DiagramOptions(branches=1, connect=False, stability=True, paths=(), N=N, B_max=B_max)
     diagram, kept = _diagram(params, scales, opts)
     out = base | {"computed": True, "diagram": diagram}
     b1 = next((b for b in diagram["branches"] if b["label"] == "b1"), None)

@@ -374,6 +374,7 @@ class BifurcationDiagram(TypedDict):
     N: int
     branches: list[BranchRecord]
     lifted_off: list[LiftedOff]
+    paths_computed: list[str]  # labels of the branches whose eigenvalue paths were computed
     time_s: float
 
 

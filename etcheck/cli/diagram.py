@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import re
 from pathlib import Path
 
 from etcheck.cli.common import add_output_options, formats, run_and_summarise
@@ -37,6 +38,9 @@ def add_parser(sub) -> None:
     p.add_argument("--B-max", type=float, default=None, help="end of the load range (dimensionless B; default 3 or past the last pitchfork)")
     p.add_argument("--N", type=int, default=32, help="Chebyshev resolution of the equilibria (default 32)")
     p.add_argument("--no-stability", action="store_true", help="skip the stability of each state (rung 3)")
+    p.add_argument("--paths", default="b1,b12",
+                   help="branches whose eigenvalue paths are computed and drawn: comma-separated labels, 'all' or "
+                        "'none' (default b1,b12: the paper's Figs. 9 and 10)")
     add_output_options(p, FORMATS, "OUT/<mission>/diagram-w<spin>/")
     p.set_defaults(run=run, parser=p)
 
@@ -70,6 +74,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         parser.error("--R must lie in (0, 1]")
     if args.B_max is not None and not 0 < args.B_max <= 1e3:
         parser.error("--B-max must lie in (0, 1000]")
+    paths = _paths(args.paths, parser)
 
     def action(render):
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
@@ -82,13 +87,29 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         mission = load_mission(args.mission)
         scales = scale(scene(mission)).scales
         omega = _spin(args.spin, scales.frequency)
-        options = DiagramOptions(branches=args.branches, B_max=args.B_max, N=args.N, stability=not args.no_stability)
+        options = DiagramOptions(branches=args.branches, B_max=args.B_max, N=args.N, stability=not args.no_stability,
+                                 paths=paths)
         results = diagram_study(mission, omega, args.R, options)
         tag = folder_name(results["diagram"]["params"]["omega"], args.R)
         return results, write_reports(results, Path(args.out) / mission.slug / tag, fmts, kind="diagram", renderer=render)
 
     with renderer(fmts, "diagram") as render:  # started first: the report stack loads while the study runs
         return run_and_summarise(lambda: action(render), _summary)
+
+
+def _paths(text: str, parser: argparse.ArgumentParser) -> tuple[str, ...] | None:
+    """--paths as branch labels (None: every branch), or a usage error naming the bad label."""
+    text = text.strip().lower()
+    if text == "all":
+        return None
+    if text == "none":
+        return ()
+    labels = tuple(x.strip() for x in text.split(",") if x.strip())
+    bad = [x for x in labels if not re.fullmatch(r"b[1-9][0-9]*", x)]
+    if bad or not labels:
+        parser.error(f"--paths: {', '.join(bad) or '(empty)'} is not a branch label; give labels such as b1,b12, "
+                     "'all' or 'none'")
+    return labels
 
 
 def _summary(results: dict, paths: list) -> None:

@@ -1,4 +1,4 @@
-"""A map over items on two cores: a forked helper takes every second item.
+"""A map over items on two cores: a forked helper and this process take the items from one queue.
 
 The helper is a copy of this process (``os.fork``, Linux): nothing is imported
 again and the function is not pickled; only the results come back, pickled
@@ -58,52 +58,86 @@ def can_split() -> bool:
 
 def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
               weights: Sequence[float] | None = None) -> list:
-    """``[fn(x) for x in items]``, part of the items computed by a forked helper when that helps: those at odd
-    positions, or, with ``weights`` (the expected cost of each item), a share of about half the total weight
-    (heaviest first, each to the lighter side)."""
+    """``[fn(x) for x in items]``, the items shared with a forked helper when that helps.
+
+    Both processes take the next item from one queue as soon as they are free (so a long item on one side does not
+    leave the other idle): in the given order, or with ``weights`` (the expected cost of each item) heaviest first.
+    This process takes the first item of the queue before the helper starts (so that with two items each side
+    computes one, the first here). While the helper runs, the items here run without further forks (two
+    processes for two cores).
+    """
     items = list(items)
     if len(items) < max(2, min_items) or not can_split():
         return [fn(x) for x in items]
-    if weights is None:
-        mine_idx, theirs_idx = list(range(0, len(items), 2)), list(range(1, len(items), 2))
-    else:
-        sides: tuple[list[int], list[int]] = ([], [])
-        load = [0.0, 0.0]
-        for i in sorted(range(len(items)), key=lambda i: -float(weights[i])):
-            side = 0 if load[0] <= load[1] else 1
-            sides[side].append(i)
-            load[side] += float(weights[i])
-        mine_idx, theirs_idx = sorted(sides[0]), sorted(sides[1])
-    if not theirs_idx:
-        return [fn(x) for x in items]
+    order = list(range(len(items))) if weights is None else sorted(range(len(items)), key=lambda i: -float(weights[i]))
+    queue = _Queue(order)
+    first = queue.take()
     read, write = os.pipe()
     pid = os.fork()
-    if pid == 0:  # the helper: compute its share, send it, leave without any clean-up of the parent's state
+    if pid == 0:  # the helper: compute what it takes, send it, leave without any clean-up of the parent's state
         code = 1
         try:
             os.close(read)
             serial_here()
-            out = [fn(items[i]) for i in theirs_idx]
+            queue.forget()  # what this process took before the fork is its own
+            out = {}
+            while (i := queue.take()) is not None:
+                out[i] = fn(items[i])
             with os.fdopen(write, "wb") as fh:
                 pickle.dump(out, fh, protocol=pickle.HIGHEST_PROTOCOL)
             code = 0
         finally:
             os._exit(code)
     os.close(write)
+    mine = {}
     try:
-        mine = [fn(items[i]) for i in mine_idx]
+        with serial():
+            i = first
+            while i is not None:
+                mine[i] = fn(items[i])
+                i = queue.take()
     except BaseException:
         os.close(read)
+        queue.close()
         os.kill(pid, signal.SIGKILL)
         os.waitpid(pid, 0)
         raise
+    queue.close()
     with os.fdopen(read, "rb") as fh:
         data = fh.read()
     _, status = os.waitpid(pid, 0)
-    theirs = pickle.loads(data) if status == 0 and data else [fn(items[i]) for i in theirs_idx]
-    out: list = [None] * len(items)
-    for i, v in zip(mine_idx, mine):
-        out[i] = v
-    for i, v in zip(theirs_idx, theirs):
-        out[i] = v
-    return out
+    theirs = pickle.loads(data) if status == 0 and data else {}
+    # what the helper took but did not deliver (it failed) is computed here
+    return [mine[i] if i in mine else theirs[i] if i in theirs else fn(items[i]) for i in range(len(items))]
+
+
+class _Queue:
+    """Item positions in a pipe, written in full before the fork: each process reads the next one (a read of a
+    pipe is atomic), end-of-file when all are taken. Positions travel in blocks so that any number fits the
+    pipe's buffer."""
+
+    BLOCKS = 4096  # at most this many entries of 8 bytes: 32 KiB, within Linux's 64 KiB pipe buffer
+
+    def __init__(self, order: list[int]) -> None:
+        size = -(-len(order) // self.BLOCKS)
+        self._blocks = [order[k:k + size] for k in range(0, len(order), size)]
+        self._read, w = os.pipe()
+        os.write(w, b"".join(k.to_bytes(8, "little") for k in range(len(self._blocks))))
+        os.close(w)
+        self._pending: list[int] = []
+
+    def take(self) -> int | None:
+        """The next item position, or None when the queue is empty."""
+        if not self._pending:
+            raw = os.read(self._read, 8)
+            if not raw:
+                return None
+            self._pending = list(self._blocks[int.from_bytes(raw, "little")])
+        return self._pending.pop(0)
+
+    def forget(self) -> None:
+        """Drop the positions of a block taken before a fork (in the copy that did not take it)."""
+        self._pending = []
+
+    def close(self) -> None:
+        os.close(self._read)

@@ -88,6 +88,7 @@ __all__ = [
     "LiftoffSpin",
     "liftoff_estimate",
     "primary_branches",
+    "class_starts",
     "continue_branch",
     "connecting_branch",
     "locate",
@@ -476,11 +477,19 @@ def primary_branches(params: RodParameters, k: int = 1, N: int = 40) -> tuple[Br
     kernel direction. At omega = T = 0 both loads equal beta_k^3 sqrt(R)/f
     (eq. (91)); spin or tension (R != 1) splits them.
     """
+    return class_starts(params, "S1", (k,), N)[0], class_starts(params, "S2", (k,), N)[0]
+
+
+@single_blas_thread
+def class_starts(params: RodParameters, which: str, ks: tuple[int, ...], N: int = 40) -> tuple[BranchStart, ...]:
+    """The branch starts at the k-th pitchforks (k in ``ks``) of the straight rod inside one symmetry class
+    (as :func:`primary_branches`; one restricted pencil for all of them). Dimensionless."""
+    which = _class(which)
+    A, C, b = _straight_pencil(params, N, which, "B")
+    roots = _real_roots(A, C)
+    roots = roots[roots > 1e-12]
     out = []
-    for which in ("S1", "S2"):
-        A, C, b = _straight_pencil(params, N, which, "B")
-        roots = _real_roots(A, C)
-        roots = roots[roots > 1e-12]
+    for k in ks:
         if roots.size < k:
             raise ValueError(f"class {which} has only {roots.size} pitchforks with B > 0 at {params}")
         Bk = float(roots[k - 1])

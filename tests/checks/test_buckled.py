@@ -17,6 +17,7 @@ from etcheck.checks.pipeline import check
 from etcheck.cli.main import main
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.rod.analytic import critical_loads
+from etcheck.rod.branches import pitchfork_loads
 from etcheck.rod.stability import divergence_loads
 from etcheck.scaling import scale, scene
 
@@ -68,14 +69,28 @@ def test_spin_splits_the_pair_at_the_divergence_loads(set_scaled):
     assert loads["b2"] - loads["b1"] > 1e-2
 
 
-def test_b1_lifted_off_at_075(set_scaled):
-    d = _diagram(set_scaled, 0.75, branches=1, B_max=0.6, stability=False, connect=False)
+def test_lifted_off_b1_leaves_the_first_S1_pitchfork_to_b3(set_scaled):
+    """The primary branches are started before the lift-off spins are known (as if none had lifted off): at
+    omega = 0.75 b1 has lifted off, so the first pitchfork of class S1 is b3's and the range ends past it."""
+    p = set_scaled.params.with_(omega=0.75)
+    d = _diagram(set_scaled, 0.75, branches=2, stability=False, connect=False)
     assert [x["label"] for x in d["lifted_off"]] == ["b1"]
+    by = {b["label"]: b for b in d["branches"]}
+    assert list(by) == ["b2", "b3"] and by["b3"]["symmetry"] == "S1" and by["b2"]["symmetry"] == "S2"
+    for label, which in (("b3", "S1"), ("b2", "S2")):
+        assert by[label]["pitchfork_B"] == pitchfork_loads(p.with_(B=0.0), which, 32, 1).loads[0]
+    # with b1 gone, b2's pitchfork is the first divergence load of the spinning straight tether (rung 1)
+    assert by["b2"]["pitchfork_B"] == pytest.approx(divergence_loads(p, n=1)[0], rel=1e-8)
     assert d["lifted_off"][0]["liftoff_omega"] < 0.75
-    (b2,) = d["branches"]
-    assert b2["label"] == "b2"
-    # with b1 gone, b2's pitchfork is the first divergence load of the spinning straight tether
-    assert b2["pitchfork_B"] == pytest.approx(divergence_loads(set_scaled.params.with_(omega=0.75), n=1)[0], rel=1e-8)
+    assert d["B_max"] == pytest.approx(1.3 * by["b3"]["pitchfork_B"], rel=1e-9)  # past the highest pitchfork drawn
+
+
+def test_eigenvalue_paths_only_along_the_branches_asked_for(set_scaled):
+    d = _diagram(set_scaled, 0.25, branches=2, B_max=0.65, connect=False, paths=("b2",))
+    assert d["paths_computed"] == ["b2"]
+    assert ["eigenvalue_paths" in b for b in d["branches"]] == [False, True]
+    assert all(b["stable"] for b in d["branches"])  # the stability of every state, paths or not
+    assert not DiagramOptions(stability=False).with_paths("b1") and DiagramOptions(paths=None).with_paths("b7")
 
 
 @pytest.mark.slow  # 4 s; the command on valid scenes: tests/cli/test_subcommand_properties.py
@@ -91,14 +106,15 @@ def test_diagram_command_writes_reports(tmp_path):
     assert (folder / "diagram.pdf").stat().st_size > 0
 
 
-@pytest.mark.parametrize("args", [["--spin", "5 s"], ["--R", "2"], ["--branches", "0"], ["--spin", "-1"]])
+@pytest.mark.parametrize("args", [["--spin", "5 s"], ["--R", "2"], ["--branches", "0"], ["--spin", "-1"],
+                                  ["--paths", "b1,x"]])
 def test_diagram_bad_input_exits_2(args, tmp_path, capsys):
     with pytest.raises(SystemExit) as exc:
         code = main(["diagram", "missions/set.toml", "--out", str(tmp_path), *args])
         raise SystemExit(code)
     assert exc.value.code == 2
     err = capsys.readouterr().err
-    assert "Traceback" not in err and ("--spin" in err or "--R" in err or "--branches" in err)
+    assert "Traceback" not in err and any(x in err for x in ("--spin", "--R", "--branches", "--paths"))
 
 
 # --- the check report gains a post-buckling section only when needed ---------------------------------

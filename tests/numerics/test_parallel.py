@@ -1,6 +1,7 @@
 """The two-core map: same results in the same order as a serial map, whoever computed them."""
 
 import os
+import time
 
 import pytest
 
@@ -20,12 +21,24 @@ def test_same_results_in_the_same_order_as_a_serial_map(n):
     assert [v for v, _ in out] == [x * x for x in range(n)]
 
 
+def _sleep_and_pid(seconds):
+    time.sleep(seconds)
+    return os.getpid()
+
+
 @forks
-def test_every_second_item_is_computed_by_a_helper():
-    out = split_map(_square_and_pid, range(7))
-    pids = [pid for _, pid in out]
-    assert set(pids[0::2]) == {os.getpid()}
-    assert len(set(pids[1::2])) == 1 and pids[1] != os.getpid()
+def test_the_first_item_is_computed_here_and_the_second_by_a_helper():
+    pids = split_map(_sleep_and_pid, [0.5, 0.0])
+    assert pids[0] == os.getpid() != pids[1]
+
+
+@forks
+def test_a_free_side_takes_the_next_item():
+    """One long item here: the helper takes every short one meanwhile (a static split would leave half of them
+    waiting here)."""
+    pids = split_map(_sleep_and_pid, [0.8] + [0.02] * 6)
+    assert pids[0] == os.getpid()
+    assert os.getpid() not in pids[1:] and len(set(pids[1:])) == 1
 
 
 @forks
@@ -66,8 +79,9 @@ def _may_split(_):
 
 
 @forks
-def test_a_helper_never_forks_again():
-    assert split_map(_may_split, range(4)) == [True, False, True, False]
+def test_neither_side_forks_again_while_both_run():
+    assert split_map(_may_split, range(4)) == [False] * 4
+    assert can_split()
 
 
 def test_serial_here_turns_forking_off(monkeypatch):
@@ -78,12 +92,18 @@ def test_serial_here_turns_forking_off(monkeypatch):
 
 
 @forks
-def test_weights_balance_the_two_sides():
-    """The heaviest item alone on one side, the rest on the other; results in input order."""
-    out = split_map(_square_and_pid, range(5), weights=[10.0, 1.0, 2.0, 3.0, 1.0])
-    assert [v for v, _ in out] == [0, 1, 4, 9, 16]
-    pids = [pid for _, pid in out]
-    assert pids[0] == os.getpid() and len(set(pids[1:])) == 1 and pids[1] != os.getpid()
+def test_weights_order_the_queue_heaviest_first():
+    """The heaviest item (here the last) is taken first, here; the helper takes the rest meanwhile."""
+    pids = split_map(_sleep_and_pid, [0.02, 0.02, 0.02, 0.02, 0.8], weights=[1.0, 1.0, 1.0, 1.0, 10.0])
+    assert pids[4] == os.getpid()
+    assert os.getpid() not in pids[:4] and len(set(pids[:4])) == 1
+
+
+@forks
+def test_more_items_than_the_queue_has_entries():
+    """Items travel in blocks when there are more than the queue's entries (the pipe must not fill up)."""
+    n = 3 * parallel._Queue.BLOCKS + 7
+    assert split_map(abs, [-x for x in range(n)]) == list(range(n))
 
 
 def test_serial_turns_forking_off_inside_its_block_only(monkeypatch):

@@ -8,8 +8,11 @@ pitchfork, ▲: fold).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
+from etcheck.report.figures.common import draw
 from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
 
@@ -53,6 +56,7 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     ax.set_title(title, fontsize=9)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=7, loc="best")
+    fig.subplots_adjust(left=0.15)  # room for signed tick labels: the figure is drawn once (no second, cropping pass)
     return _image(fig)
 
 
@@ -144,7 +148,8 @@ def shapes_plot(shapes: list[tuple[str, dict]], length_m: float | None = None) -
         ax.tick_params(labelsize=7)
     if len(shapes) > 1:
         ax1.legend(fontsize=7, loc="best")
-    fig.subplots_adjust(left=0.0, right=0.98, top=0.93, bottom=0.1)
+    # the 3-D axes draw below their box: room for them, so that the figure is drawn once
+    fig.subplots_adjust(left=0.0, right=0.98, top=0.93, bottom=0.15)
     return _image(fig)
 
 
@@ -175,29 +180,37 @@ def eigen_paths_plot(paths: dict, xlabel: str, title: str) -> str:
 
 
 def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
-    figs = {
-        "measure1": branch_plot(d, "values", "measure1", "B (dimensionless load)",
-                                r"measure$_1 = \int_0^1 |x^0(s)|\,ds$",
-                                "bifurcation diagram (cf. arXiv:0810.3668 Fig. 5)", "pitchfork_B"),
-        "measure2": branch_plot(d, "values", "measure2", "B (dimensionless load)",
-                                r"measure$_2 = \int_0^1 x^0 y^0\,ds$",
-                                "connecting branches come in mirror pairs (cf. arXiv:0810.3668 Fig. 6)",
-                                "pitchfork_B"),
-        "physical": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]",
-                                "maximum lateral deflection [m]", "the same branches in physical units",
-                                "pitchfork_IB0_N_per_m"),
+    """The diagram report's figures by name, drawn two at a time in the report process (:func:`draw`)."""
+    jobs = {
+        "measure1": lambda: {"measure1": branch_plot(d, "values", "measure1", "B (dimensionless load)",
+                                                     r"measure$_1 = \int_0^1 |x^0(s)|\,ds$",
+                                                     "bifurcation diagram (cf. arXiv:0810.3668 Fig. 5)",
+                                                     "pitchfork_B")},
+        "measure2": lambda: {"measure2": branch_plot(d, "values", "measure2", "B (dimensionless load)",
+                                                     r"measure$_2 = \int_0^1 x^0 y^0\,ds$",
+                                                     "connecting branches come in mirror pairs "
+                                                     "(cf. arXiv:0810.3668 Fig. 6)", "pitchfork_B")},
+        "physical": lambda: {"physical": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]",
+                                                     "maximum lateral deflection [m]",
+                                                     "the same branches in physical units", "pitchfork_IB0_N_per_m")},
     }
     for b in d["branches"]:
-        if b.get("eigenvalue_paths") and b["label"] in ("b1", "b12"):
-            figs[f"paths_{b['label']}"] = eigen_paths_plot(
-                b["eigenvalue_paths"], "B (dimensionless load)",
-                f"lowest eigenvalues along {b['label']} (γ = {b['eigenvalue_paths']['gamma']:.4g})")
+        if b.get("eigenvalue_paths"):
+            jobs[f"paths_{b['label']}"] = functools.partial(_paths_figure, b)
     key = next((k for b in d["branches"] for k in b["shapes"] if k.startswith("measure1=")), None)
     chosen = [(f"{b['label']} (B = {b['shapes'][key]['B']:.4g})", b["shapes"][key])
               for b in d["branches"] if key in b["shapes"]]
     if chosen:
-        figs["shapes"] = shapes_plot(chosen, length_m)
-    return figs
+        jobs["shapes"] = lambda: {"shapes": shapes_plot(chosen, length_m)}
+    return draw(jobs)
+
+
+def _paths_figure(b: dict) -> dict[str, str]:
+    """The eigenvalue paths of branch ``b`` (the paper's Figs. 9 and 10 for b1 and b12; any branch whose paths
+    were computed)."""
+    p = b["eigenvalue_paths"]
+    return {f"paths_{b['label']}": eigen_paths_plot(
+        p, "B (dimensionless load)", f"lowest eigenvalues along {b['label']} (γ = {p['gamma']:.4g})")}
 
 
 def damping_maps(r: dict) -> str:
