@@ -29,6 +29,8 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
     "damping" (a damping map of the coiled tether).
     """
     out: dict[str, bytes] = {}
+    text = results_json(results)
+    results = json.loads(text)  # the reports show what results.json holds (plain JSON types only)
     html = None
     if "html" in formats or "pdf" in formats:
         # imported here: jinja2 and matplotlib are not needed for JSON or data files
@@ -44,7 +46,7 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
 
         out["pdf"] = render_pdf(html)
     if "json" in formats:
-        out["json"] = (json.dumps(results, indent=2, allow_nan=False, ensure_ascii=False, default=_json_default) + "\n").encode()
+        out["json"] = text.encode()
     if "csv" in formats or "nc" in formats:
         from etcheck.report.sweep_files import to_csv, to_netcdf
 
@@ -64,6 +66,10 @@ def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html
     :func:`etcheck.report.background.renderer`.
     """
     names = {"sweep": SWEEP_FILENAMES, "diagram": DIAGRAM_FILENAMES, "damping": DAMPING_FILENAMES}.get(kind, FILENAMES)
+    if renderer is not None:
+        # plain JSON types to another process: an enum or a numpy value would make it import the modules that
+        # define them (etcheck.checks.margins loads astropy and scipy: 0.6 s of a report process's time)
+        results = json.loads(results_json(results))
     rendered = (renderer or render)(results, formats, kind)
     folder = Path(folder)
     try:
@@ -96,6 +102,11 @@ def atomic_write(path: Path, data: bytes) -> None:
             raise
     except OSError as exc:
         raise ReportError(f"cannot write {path}: {exc.strerror}") from None
+
+
+def results_json(results: dict) -> str:
+    """The text of results.json: indented UTF-8 JSON without NaN, numpy values as plain numbers."""
+    return json.dumps(results, indent=2, allow_nan=False, ensure_ascii=False, default=_json_default) + "\n"
 
 
 def _json_default(obj):

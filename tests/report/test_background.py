@@ -57,3 +57,34 @@ def test_the_report_process_renders_the_same_bytes_and_reports_failures():
 def test_no_process_for_data_only_formats_or_after_numpy():
     assert not _worth_a_process(("json",))
     assert not _worth_a_process(("html", "pdf"))  # this test process has numpy loaded: rendered in place
+
+
+def _plain(value) -> bool:
+    if type(value) is dict:
+        return all(type(k) is str and _plain(v) for k, v in value.items())
+    if type(value) is list:
+        return all(_plain(v) for v in value)
+    return type(value) in (str, int, float, bool, type(None))
+
+
+def test_another_process_is_sent_plain_json_types(tmp_path):
+    """An enum or a numpy value would make the report process import the modules that define them when it
+    unpickles the results (etcheck.checks.margins loads astropy and scipy: 0.6 s of its time)."""
+    import numpy as np
+
+    from etcheck.checks.margins import Verdict
+    from etcheck.report import render, write_reports
+
+    sent = []
+
+    def spy(results, fmts, kind):
+        sent.append(results)
+        return render(results, fmts, kind)
+
+    results = {"verdict": Verdict.PASS, "value": np.float64(1.5), "n": np.int64(3), "rows": np.arange(2.0),
+               "flags": [np.bool_(True)], "nested": {"v": (Verdict.FAIL, 1)}}
+    (path,) = write_reports(results, tmp_path, ("json",), renderer=spy)
+    assert _plain(sent[0]) and not _plain(results)
+    assert sent[0] == {"verdict": "pass", "value": 1.5, "n": 3, "rows": [0.0, 1.0], "flags": [True],
+                       "nested": {"v": ["fail", 1]}}
+    assert path.read_text() == render(results, ("json",))["json"].decode()
