@@ -40,6 +40,7 @@ from etcheck.rod.branch_stability import secondary_pitchfork
 from etcheck.rod.branches import (
     Branch,
     LiftoffSpin,
+    ResolutionCheck,
     class_loads,
     class_starts,
     connecting_branch,
@@ -185,7 +186,7 @@ def _primaries(params: RodParameters, options: DiagramOptions) -> tuple[list[_Pr
     B_guess = options.B_max or _load_range(
         [float(x) for c, ks in guess.items() if ks for x in class_loads(p0, c, options.N, len(ks))])
     tasks = [("liftoff", j) for j in range(1, n + 1) if params.omega > 0] + [
-        ("class", c, ks) for c, ks in guess.items() if ks]
+        ("class", c, (k,)) for c, ks in guess.items() for k in ks]  # one branch per task: balanced
 
     def run(task):
         if task[0] == "liftoff":
@@ -207,11 +208,10 @@ def _primaries(params: RodParameters, options: DiagramOptions) -> tuple[list[_Pr
             order.append((lab, which, count[which], w))
     B_max = options.B_max or _load_range(
         [float(class_loads(p0, c, options.N, count[c])[-1]) for c in count if count[c]])
-    redo = {c: tuple(k for _, which, k, _ in order if which == c and ((c, k) not in made or B_max != B_guess))
-            for c in count}
-    todo = [c for c in redo if redo[c]]
-    for c, again in zip(todo, split_map(lambda c: _class_branches(params, c, redo[c], options, B_max), todo)):
-        made |= dict(zip(((c, k) for k in redo[c]), again))
+    todo = [(which, k) for _, which, k, _ in order if (which, k) not in made or B_max != B_guess]
+    for (c, k), (again,) in zip(todo, split_map(lambda ck: _class_branches(params, ck[0], (ck[1],), options, B_max),
+                                                todo)):
+        made[(c, k)] = again
     attached = [_Primary(lab, which, k, w, made[(which, k)][1], made[(which, k)][2]) for lab, which, k, w in order]
     return attached, lifted, B_max
 
@@ -243,10 +243,12 @@ def _shape(state: eq.Equilibrium, L: float) -> Shape:
             "x_m": (x[:, 0] * L).tolist(), "y_m": (x[:, 1] * L).tolist(), "z_m": (x[:, 2] * L).tolist()}
 
 
-def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float) -> BranchRecord:
+def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float,
+                 check: ResolutionCheck | None = None) -> BranchRecord:
+    """The record of a branch (``check``: its resolution check, when already made)."""
     L = scales.length
     t0 = time.perf_counter()
-    check = resolution_check(branch)
+    check = resolution_check(branch) if check is None else check
     out = branch.summary() | {
         "label": label,
         "points": len(branch.values),
@@ -309,11 +311,13 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
             "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": a.which,
             "liftoff_omega": _finite(a.liftoff.omega), "liftoff_omega_error": _finite(a.liftoff.error)}
 
-    def first(job) -> BranchRecord | Branch:
-        """A primary branch's record, or the continuation of the connecting branch that leaves it."""
+    def first(job) -> BranchRecord | tuple[Branch, ResolutionCheck]:
+        """A primary branch's record, or the continuation of the connecting branch that leaves it (and its
+        resolution check: serial work, done where the branch is)."""
         lab, connect = job
         if connect:
-            return connecting_branch(kept[lab], stop=(0.0, B_max), max_points=options.max_points)
+            con = connecting_branch(kept[lab], stop=(0.0, B_max), max_points=options.max_points)
+            return con, resolution_check(con)
         return primary_record(lab)
 
     jobs = []
@@ -328,7 +332,7 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
                                         else COST["record"]) for lab, connect in jobs]
     firsts = split_map(first, jobs, weights=weights)
     out_branches = [
-        _branch_data(done, f"b{int(lab[1:])}{int(lab[1:]) + 1}", scales, options, params.gamma)
+        _branch_data(done[0], f"b{int(lab[1:])}{int(lab[1:]) + 1}", scales, options, params.gamma, done[1])
         | {"symmetry": None, "from": lab} if connect else done
         for (lab, connect), done in zip(jobs, firsts)]
     if not out_branches and not lifted:

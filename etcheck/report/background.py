@@ -106,7 +106,16 @@ def _warm(formats: tuple[str, ...], kind: str) -> None:
     from etcheck.report.figures.common import pyplot
 
     html.environment().get_template(html.TEMPLATES[kind])
-    pyplot()
+    plt = pyplot()
+    if kind != "check":  # a study runs for seconds: its first figure's font and mathtext set-up is done now
+        from etcheck.report.figures.common import image
+
+        fig, ax = plt.subplots(figsize=(2.0, 1.5))
+        ax.plot([0.0, 1.0], [0.0, 1.0], label="a")
+        ax.set_xlabel(r"measure$_1 = \int_0^1 |x^0|\,ds$ [m]")
+        ax.set_title("γ", fontsize=8)
+        ax.legend(fontsize=7)
+        image(fig)
     if "pdf" in formats:
         with contextlib.suppress(ImportError, OSError):  # a missing PDF engine is reported when a PDF is rendered
             import weasyprint  # noqa: F401

@@ -46,6 +46,7 @@ available).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -413,6 +414,24 @@ def _real_roots(A: np.ndarray, C: np.ndarray) -> np.ndarray:
     alpha, beta = sla.eig(A, -C, right=False, homogeneous_eigvals=True)
     ok = np.abs(beta) > 1e-12 * np.abs(alpha)
     x = alpha[ok] / beta[ok]
+    x = x[np.abs(x.imag) <= 1e-7 * np.maximum(np.abs(x), 1e-12)].real
+    return np.sort(x)
+
+
+def _low_rank_roots(A: np.ndarray, C: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """:func:`_real_roots` of A + x C when C is non-zero only in ``rows`` (and A is regular): its finite
+    eigenvalues are x = -1/mu for the eigenvalues mu of the small matrix C[rows] A^-1 E_rows (one LU of A,
+    |rows| solves and a |rows|-square eigenproblem instead of QZ of the whole pencil); QZ when A is singular."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)
+        lu = sla.lu_factor(A, check_finite=False)
+    if not np.all(np.isfinite(lu[0])) or np.any(np.diag(lu[0]) == 0.0):
+        return _real_roots(A, C)
+    E = np.zeros((A.shape[0], rows.size))
+    E[rows, np.arange(rows.size)] = 1.0
+    mu = np.linalg.eigvals(C[rows] @ sla.lu_solve(lu, E, check_finite=False))
+    ok = np.abs(mu) > 1e-12 * np.max(np.abs(mu), initial=0.0)
+    x = -1.0 / mu[ok]
     x = x[np.abs(x.imag) <= 1e-7 * np.maximum(np.abs(x), 1e-12)].real
     return np.sort(x)
 
@@ -824,7 +843,17 @@ def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 
     it does not happen below ``omega_max``.
     """
     base = params.with_(B=0.0, omega=0.0)
-    roots0 = class_loads(base, which, N, n=k)
+    # the restricted Jacobian of the straight rod is affine in B and in omega^2 (no cross term: the Lorentz
+    # and centrifugal loads add), so the pencil at any spin is A + omega^2 W + B C, assembled once
+    A, C, _ = _straight_pencil(base, N, which, "B")
+    W = _straight_pencil(base, N, which, "omega")[1]
+    rows = np.flatnonzero(np.any(C != 0.0, axis=1))  # the Lorentz load reaches a sixth of the rows
+
+    def loads(w: float, n: int) -> np.ndarray:
+        r = _low_rank_roots(A + w**2 * W, C, rows)
+        return r[r > 1e-12][:n]
+
+    roots0 = loads(0.0, k)
     if roots0.size < k:
         raise ValueError("not enough pitchforks at omega = 0")
     cur = float(roots0[k - 1])
@@ -832,7 +861,7 @@ def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 
     slope = 0.0
     while w < omega_max:
         w2 = w + d_omega
-        r = class_loads(base.with_(omega=w2), which, N, n=50)
+        r = loads(w2, 50)
         guess = cur + slope * d_omega
         if r.size == 0 or np.min(np.abs(r - guess)) > max(0.25 * cur, 0.02) or (cur < 0.5 * roots0[k - 1] and
                                                                                 np.min(r) > 2 * cur):

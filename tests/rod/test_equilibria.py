@@ -326,6 +326,23 @@ def test_liftoff_spins():
     assert abs(br.class_loads(p, "b2", N_LO)[0] - divergence_loads(p, n=1)[0]) < 1e-8
 
 
+@pytest.mark.parametrize("omega,T,which", [(0.0, 0.0, "S1"), (0.4, 0.0, "S2"), (0.7, 0.3, "S1"), (1.3, -0.2, "S2")])
+def test_low_rank_pencil_roots_equal_the_qz_roots(omega, T, which):
+    """The lift-off tracking solves A + B C through the rows C reaches (a small eigenproblem after one LU): the
+    same real roots as QZ of the whole pencil, and QZ itself where A is singular."""
+    p = SET.with_(omega=omega, T=T, B=0.0)
+    A, C, _ = br._straight_pencil(p, N_LO, which, "B")
+    rows = np.flatnonzero(np.any(C != 0.0, axis=1))
+    assert rows.size < A.shape[0] // 4
+    fast, qz = br._low_rank_roots(A, C, rows), br._real_roots(A, C)
+    small = qz[np.abs(qz) < 1e3]
+    assert small.size >= 3
+    assert np.allclose(fast[np.abs(fast) < 1e3], small, rtol=1e-10, atol=0.0)
+    singular = A.copy()
+    singular[:, 0] = 0.0
+    assert np.array_equal(br._low_rank_roots(singular, C, rows), br._real_roots(singular, C))
+
+
 @pytest.mark.xfail(strict=True, reason="paper Sec. 7.2: b2 lifts off near omega = 1.25; the straight-rod linear "
                                        "theory gives 1.00621 (P = 0.001), exactly 1 for P = 0")
 def test_b2_liftoff_paper_value():
