@@ -191,11 +191,15 @@ def _primaries(params: RodParameters, options: DiagramOptions) -> tuple[list[_Pr
     def run(task):
         if task[0] == "liftoff":
             return _liftoff_of(params, task[1])
-        return _class_branches(params, task[1], task[2], options, B_guess)
+        try:
+            return _class_branches(params, task[1], task[2], options, B_guess)
+        except (ValueError, SolverError) as exc:  # a guessed branch that may not be needed: raised below if it is
+            return exc
 
     done = split_map(run, tasks, weights=[COST_START["liftoff"] if t[0] == "liftoff" else
                                           COST_START["class"] + COST_START["primary"] * len(t[2]) for t in tasks])
-    made = {(t[1], k): one for t, r in zip(tasks, done) if t[0] == "class" for k, one in zip(t[2], r)}
+    made = {(t[1], k): one for t, r in zip(tasks, done) if t[0] == "class" and not isinstance(r, Exception)
+            for k, one in zip(t[2], r)}
     labels = _labels(params, n, {t[1]: r for t, r in zip(tasks, done) if t[0] == "liftoff"})
     lifted = [{"label": lab, "liftoff_omega": w.omega, "liftoff_omega_error": _finite(w.error)}
               for lab, _, _, w in labels if math.isfinite(w.omega) and params.omega >= w.omega]

@@ -73,7 +73,13 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
     queue = _Queue(order)
     first = queue.take()
     read, write = os.pipe()
-    pid = os.fork()
+    try:
+        pid = os.fork()
+    except OSError:  # no process to spare (a resource limit): one by one
+        for fd in (read, write):
+            os.close(fd)
+        queue.close()
+        return [fn(x) for x in items]
     if pid == 0:  # the helper: compute what it takes, send it, leave without any clean-up of the parent's state
         code = 1
         try:

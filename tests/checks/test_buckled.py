@@ -86,6 +86,23 @@ def test_lifted_off_b1_leaves_the_first_S1_pitchfork_to_b3(set_scaled):
     assert d["B_max"] == pytest.approx(1.3 * by["b3"]["pitchfork_B"], rel=1e-9)  # past the highest pitchfork drawn
 
 
+def test_a_guessed_branch_that_fails_is_not_needed_when_it_lifted_off(set_scaled, monkeypatch):
+    """The primary branches are started before the lift-off spins are known: at omega = 0.75 the guess (b1, the
+    first S1 pitchfork) is not needed (b1 lifted off; the diagram's branch is b2), so its failure costs nothing."""
+    from etcheck.checks import buckled
+
+    real = buckled._class_branches
+
+    def s1_fails(params, which, ks, options, B_max):
+        if which == "S1":
+            raise ValueError("no pitchfork in class S1")
+        return real(params, which, ks, options, B_max)
+
+    monkeypatch.setattr(buckled, "_class_branches", s1_fails)
+    d = _diagram(set_scaled, 0.75, branches=1, B_max=0.6, stability=False, connect=False)
+    assert [b["label"] for b in d["branches"]] == ["b2"] and [x["label"] for x in d["lifted_off"]] == ["b1"]
+
+
 def test_eigenvalue_paths_only_along_the_branches_asked_for(set_scaled):
     d = _diagram(set_scaled, 0.25, branches=2, B_max=0.65, connect=False, paths=("b2",))
     assert d["paths_computed"] == ["b2"]

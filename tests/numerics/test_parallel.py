@@ -119,3 +119,14 @@ def test_serial_turns_forking_off_inside_its_block_only(monkeypatch):
         assert not can_split()
         assert {pid for _, pid in split_map(_square_and_pid, range(6))} == {os.getpid()}
     assert parallel._SERIAL is False
+
+
+def test_no_process_to_spare_means_one_by_one(monkeypatch):
+    monkeypatch.setattr(parallel, "can_split", lambda: True)
+
+    def no_fork():
+        raise OSError("resource temporarily unavailable")
+
+    monkeypatch.setattr(os, "fork", no_fork)
+    out = split_map(_square_and_pid, range(5))
+    assert out == [(x * x, os.getpid()) for x in range(5)]
