@@ -120,22 +120,25 @@ def _jsonable(x):
 class DampedOperator:
     """The discretised linearisation split by its gamma dependence (dimensionless).
 
-    A(lambda) = A0 + lambda (A1g + gamma A1d) + lambda^2 A2, shapes
-    (12(N+1), 12(N+1)): A1g gyroscopic (Coriolis, rotary inertia), A1d the
-    Kelvin-Voigt part of eq. (74). Base-state dependent only, so
+    A(lambda) = A0 + lambda A1(gamma) + lambda^2 A2, shapes (12(N+1), 12(N+1)):
+    A1(gamma) is ``A1`` (built at gamma = 1) with its Kelvin-Voigt rows
+    ``damped`` (eq. (74); no gyroscopic term there) times gamma, its other
+    rows gyroscopic (Coriolis, rotary inertia). Base-state dependent only, so
     one build serves every gamma.
     """
 
     params: RodParameters
     N: int
     A0: np.ndarray
-    A1g: np.ndarray
-    A1d: np.ndarray
+    A1: np.ndarray
+    damped: slice
     A2: np.ndarray
 
     def at(self, gamma: float) -> tuple:
         """(A0, A1, A2) at damping gamma."""
-        return self.A0, self.A1g + gamma * self.A1d, self.A2
+        A1 = self.A1.copy()
+        A1[self.damped] *= gamma
+        return self.A0, A1, self.A2
 
 
 def damped_operator(params: RodParameters, base, N: int) -> DampedOperator:
@@ -146,10 +149,7 @@ def damped_operator(params: RodParameters, base, N: int) -> DampedOperator:
     (checked against a gamma = 0 build in the tests)."""
     p0 = params.with_(gamma=0.0)
     A0, A1, A2 = linear_operator(p0.with_(gamma=1.0), base, N)
-    rows = slice(3 * int(N), 6 * int(N))
-    A1g, A1d = A1.copy(), np.zeros_like(A1)
-    A1d[rows], A1g[rows] = A1[rows], 0.0
-    return DampedOperator(p0, int(N), A0, A1g, A1d, A2)
+    return DampedOperator(p0, int(N), A0, A1, slice(3 * int(N), 6 * int(N)), A2)
 
 
 def operator_eigenvalues(op: DampedOperator, gamma: float, nev: int, vectors: bool = False):
