@@ -46,7 +46,6 @@ available).
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -68,6 +67,7 @@ from ..numerics.continuation import (
     switch_branch,
     weights,
 )
+from ..numerics.eigen import pencil_eigenvalues
 from . import equilibria as eq
 from .linear import NFIELDS
 from .parameters import RodParameters
@@ -413,27 +413,12 @@ def _straight_pencil(params: RodParameters, N: int, which: str, axis: str = "B")
 def _real_roots(A: np.ndarray, C: np.ndarray) -> np.ndarray:
     alpha, beta = sla.eig(A, -C, right=False, homogeneous_eigvals=True)
     ok = np.abs(beta) > 1e-12 * np.abs(alpha)
-    x = alpha[ok] / beta[ok]
-    x = x[np.abs(x.imag) <= 1e-7 * np.maximum(np.abs(x), 1e-12)].real
-    return np.sort(x)
+    return _real(alpha[ok] / beta[ok])
 
 
-def _low_rank_roots(A: np.ndarray, C: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """:func:`_real_roots` of A + x C when C is non-zero only in ``rows`` (and A is regular): its finite
-    eigenvalues are x = -1/mu for the eigenvalues mu of the small matrix C[rows] A^-1 E_rows (one LU of A,
-    |rows| solves and a |rows|-square eigenproblem instead of QZ of the whole pencil); QZ when A is singular."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", sla.LinAlgWarning)
-        lu = sla.lu_factor(A, check_finite=False)
-    if not np.all(np.isfinite(lu[0])) or np.any(np.diag(lu[0]) == 0.0):
-        return _real_roots(A, C)
-    E = np.zeros((A.shape[0], rows.size))
-    E[rows, np.arange(rows.size)] = 1.0
-    mu = np.linalg.eigvals(C[rows] @ sla.lu_solve(lu, E, check_finite=False))
-    ok = np.abs(mu) > 1e-12 * np.max(np.abs(mu), initial=0.0)
-    x = -1.0 / mu[ok]
-    x = x[np.abs(x.imag) <= 1e-7 * np.maximum(np.abs(x), 1e-12)].real
-    return np.sort(x)
+def _real(x: np.ndarray) -> np.ndarray:
+    """The real ones among eigenvalues x (imaginary part below 1e-7 of their size), sorted."""
+    return np.sort(x[np.abs(x.imag) <= 1e-7 * np.maximum(np.abs(x), 1e-12)].real)
 
 
 @single_blas_thread
@@ -845,12 +830,12 @@ def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 
     base = params.with_(B=0.0, omega=0.0)
     # the restricted Jacobian of the straight rod is affine in B and in omega^2 (no cross term: the Lorentz
     # and centrifugal loads add), so the pencil at any spin is A + omega^2 W + B C, assembled once
+    # (the Lorentz load reaches a sixth of the columns: pencil_eigenvalues solves it through them)
     A, C, _ = _straight_pencil(base, N, which, "B")
     W = _straight_pencil(base, N, which, "omega")[1]
-    rows = np.flatnonzero(np.any(C != 0.0, axis=1))  # the Lorentz load reaches a sixth of the rows
 
     def loads(w: float, n: int) -> np.ndarray:
-        r = _low_rank_roots(A + w**2 * W, C, rows)
+        r = _real(pencil_eigenvalues(A + w**2 * W, C))
         return r[r > 1e-12][:n]
 
     roots0 = loads(0.0, k)
