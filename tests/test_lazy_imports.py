@@ -24,7 +24,12 @@ from etcheck.cli.main import main
 at_start = sorted(m for m in ("numpy", "scipy", "astropy") if m in sys.modules)
 code = main(["missions/set.toml", "--draft", "--format", "json", "--out", sys.argv[1]])
 from etcheck.numerics.blas import _blas
-print(json.dumps({"at_start": at_start, "code": code, "loaded": sorted({m.split(".")[0] for m in sys.modules}),
+import numpy, scipy._lib.array_api_compat.numpy as clone
+from etcheck._numpy_clone import _HOOK
+tools = {"numpy_tools": sorted(m for m in ("numpy.f2py", "numpy.testing", "charset_normalizer") if m in sys.modules),
+         "numpy_restored": "f2py" in numpy.__all__ and "testing" in dir(numpy), "hook_left": _HOOK in sys.meta_path,
+         "clone_works": float(clone.sum(clone.asarray([1.0, 2.0]))) == 3.0}
+print(json.dumps(tools | {"at_start": at_start, "code": code, "loaded": sorted({m.split(".")[0] for m in sys.modules}),
                   "scipy_optimize": "scipy.optimize" in sys.modules, "scipy_sparse": "scipy.sparse" in sys.modules,
                   "blas_scanned": _blas() is not None}))
 """
@@ -44,6 +49,8 @@ def test_a_json_only_draft_check_loads_no_report_stack(tmp_path):
     assert not out["scipy_optimize"]  # 0.3 s of imports a draft check does not need
     assert not out["scipy_sparse"]  # ARPACK and graph components (0.1 s): no eigenvalues in a damped draft
     assert not out["blas_scanned"]  # BLAS started with one thread: nothing for threadpoolctl to limit
+    # scipy's clone of numpy without numpy's developer tools (0.15 s), numpy itself unchanged afterwards
+    assert out["numpy_tools"] == [] and out["numpy_restored"] and out["clone_works"] and not out["hook_left"]
 
 
 REPORT_PROBE = """

@@ -7,7 +7,9 @@ Tools:
 
 * :func:`companion`          first companion linearisation L - lambda M;
 * :func:`eliminate_static`   QR elimination of unknowns that enter only A0
-                             (reduced, smaller QEP + back-substitution);
+                             (reduced, smaller QEP + back-substitution;
+                             :func:`factor_static`: the QR alone, to reduce
+                             other matrices with it);
 * :func:`qep_dense`          all finite eigenvalues by QZ on the linearisation;
 * :func:`qep_shift_invert`   the k eigenvalues nearest a real shift sigma by
                              ARPACK on the shift-inverted companion, one LU
@@ -35,7 +37,9 @@ from .optimize import linear_sum_assignment
 __all__ = [
     "companion",
     "StaticElimination",
+    "StaticFactor",
     "eliminate_static",
+    "factor_static",
     "qep_dense",
     "qep_shift_invert",
     "pencil_eigenvalues",
@@ -59,30 +63,32 @@ def companion(A0: np.ndarray, A1: np.ndarray, A2: np.ndarray):
 
 
 @dataclass(frozen=True)
-class StaticElimination:
-    """Result of :func:`eliminate_static`.
+class StaticFactor:
+    """A0[:, drop] = Q [R; 0] (``qr``, ``tau``: LAPACK's Householder form of Q, never formed): see
+    :func:`factor_static`. ``keep``: the other unknowns."""
 
-    ``B0, B1, B2`` act on the kept unknowns ``keep``; with A0[:, drop] = Q [R; 0] (``qr``, ``tau``: LAPACK's
-    Householder form of Q, never formed) the eliminated unknowns ``drop`` follow from
-    ``y_drop = -solve(R, Q1^T (A0 + lambda A1 + lambda^2 A2)[:, keep] y_keep)``.
-    """
-
-    B0: np.ndarray
-    B1: np.ndarray
-    B2: np.ndarray
     keep: np.ndarray
     drop: np.ndarray
     qr: np.ndarray
     tau: np.ndarray
-    A: tuple
 
-    def reduce(self, A: np.ndarray) -> np.ndarray:
-        """Q2^T A[:, keep]: the reduced form of another matrix that does not meet the dropped unknowns."""
-        return _qt(self.qr, self.tau, A[:, self.keep])[self.drop.size:]
+    def reduce(self, *A: np.ndarray) -> list[np.ndarray]:
+        """Q2^T A[:, keep] of each matrix (none may meet the dropped unknowns), in one application of Q to
+        their non-zero columns (a parameter's derivative reaches few)."""
+        sub = [a[:, self.keep] for a in A]
+        cols = [np.flatnonzero(np.any(a != 0.0, axis=0)) for a in sub]
+        Z = _qt(self.qr, self.tau, np.hstack([a[:, c] for a, c in zip(sub, cols)]))[self.drop.size:]
+        out, j = [], 0
+        for c in cols:
+            o = np.zeros((Z.shape[0], self.keep.size))
+            o[:, c] = Z[:, j:j + c.size]
+            out.append(o)
+            j += c.size
+        return out
 
-    def recover(self, lam: complex, y_keep: np.ndarray) -> np.ndarray:
-        """Full eigenvector from the reduced one at eigenvalue lam."""
-        A0, A1, A2 = self.A
+    def recover(self, A: tuple, lam: complex, y_keep: np.ndarray) -> np.ndarray:
+        """Full eigenvector of the QEP ``A = (A0, A1, A2)`` from the reduced one at eigenvalue lam."""
+        A0, A1, A2 = A
         k, r = self.keep, self.drop.size
         rhs = (A0[:, k] + lam * A1[:, k] + lam**2 * A2[:, k]) @ y_keep
         q1t = _qt(self.qr, self.tau, np.column_stack([rhs.real, rhs.imag]))[:r]
@@ -93,30 +99,51 @@ class StaticElimination:
         return y
 
 
-def eliminate_static(A0, A1, A2, drop) -> StaticElimination:
-    """Eliminate unknowns whose columns appear only in A0 (lambda-free).
+def factor_static(A0: np.ndarray, drop) -> StaticFactor:
+    """QR of the columns ``drop`` of A0 (full column rank required): the rows Q2^T A0 no longer involve them.
 
-    With A0[:, drop] = Q [R; 0] (full column rank required) the rows
-    Q2^T Q(lambda) of the QEP no longer involve the dropped unknowns, giving a
-    square QEP of size n - len(drop) with the same finite eigenvalues. Q stays
-    in Householder form (LAPACK geqrf, applied by ormqr): forming it cost 4x the
-    factorisation at 12 (N + 1) = 300.
+    Q stays in Householder form (LAPACK geqrf, applied by ormqr): forming it cost 4x the factorisation at
+    12 (N + 1) = 300.
     """
     drop = np.asarray(drop)
-    n = A0.shape[0]
-    mask = np.ones(n, dtype=bool)
+    mask = np.ones(A0.shape[0], dtype=bool)
     mask[drop] = False
-    keep = np.nonzero(mask)[0]
-    if np.any(A1[:, drop]) or np.any(A2[:, drop]):
-        raise ValueError("eliminated unknowns must not appear in A1 or A2")
     (qr, tau), _ = sla.qr(A0[:, drop], mode="raw")
     r = drop.size
     if abs(qr[r - 1, r - 1]) <= 1e-13 * abs(qr[0, 0]):
         raise np.linalg.LinAlgError("static block is rank deficient")
-    reduced = _qt(qr, tau, np.hstack([A0[:, keep], A1[:, keep], A2[:, keep]]))[r:]
-    m = keep.size
-    return StaticElimination(B0=reduced[:, :m], B1=reduced[:, m:2 * m], B2=reduced[:, 2 * m:], keep=keep, drop=drop,
-                             qr=qr, tau=tau, A=(A0, A1, A2))
+    return StaticFactor(keep=np.nonzero(mask)[0], drop=drop, qr=qr, tau=tau)
+
+
+@dataclass(frozen=True)
+class StaticElimination:
+    """Result of :func:`eliminate_static`: ``B0, B1, B2`` act on the kept unknowns ``factor.keep``; the
+    eliminated unknowns follow from ``y_drop = -solve(R, Q1^T (A0 + lambda A1 + lambda^2 A2)[:, keep] y_keep)``
+    (:meth:`recover`)."""
+
+    B0: np.ndarray
+    B1: np.ndarray
+    B2: np.ndarray
+    factor: StaticFactor
+    A: tuple
+
+    def recover(self, lam: complex, y_keep: np.ndarray) -> np.ndarray:
+        """Full eigenvector from the reduced one at eigenvalue lam."""
+        return self.factor.recover(self.A, lam, y_keep)
+
+
+def eliminate_static(A0, A1, A2, drop) -> StaticElimination:
+    """Eliminate unknowns whose columns appear only in A0 (lambda-free).
+
+    With A0[:, drop] = Q [R; 0] (:func:`factor_static`) the rows Q2^T Q(lambda) of the QEP no longer involve
+    the dropped unknowns, giving a square QEP of size n - len(drop) with the same finite eigenvalues.
+    """
+    drop = np.asarray(drop)
+    if np.any(A1[:, drop]) or np.any(A2[:, drop]):
+        raise ValueError("eliminated unknowns must not appear in A1 or A2")
+    factor = factor_static(A0, drop)
+    B0, B1, B2 = factor.reduce(A0, A1, A2)
+    return StaticElimination(B0=B0, B1=B1, B2=B2, factor=factor, A=(A0, A1, A2))
 
 
 def _qt(qr: np.ndarray, tau: np.ndarray, X: np.ndarray) -> np.ndarray:

@@ -253,3 +253,15 @@ def static_operator(params: RodParameters, base: BaseState, N: int) -> np.ndarra
     A0 = _assemble(E0, G0, col)
     A0[NFIELDS * col.N:] = boundary_rows(base, col.N)
     return A0
+
+
+def static_difference(params: RodParameters, base: BaseState, ref: RodParameters, ref_base: BaseState,
+                      N: int) -> np.ndarray:
+    """``static_operator(params, base, N) - static_operator(ref, ref_base, N)``, assembled from the difference of
+    the coefficients (A0 is linear in them): only the entries that differ are written, without cancellation."""
+    col = collocation(int(N))
+    E0, _, G0, _, _ = coefficient_blocks(params, base, col.t)
+    E0r, _, G0r, _, _ = coefficient_blocks(ref, ref_base, col.t)
+    A0 = _assemble(E0 - E0r, G0 - G0r, col)
+    A0[NFIELDS * col.N:] = boundary_rows(base, col.N) - boundary_rows(ref_base, col.N)
+    return A0

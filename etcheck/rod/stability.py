@@ -42,10 +42,10 @@ from functools import cached_property, lru_cache
 import numpy as np
 
 from ..numerics.blas import single_blas_thread
-from ..numerics.eigen import eliminate_static, match_spectra, pencil_eigenvalues, qep_dense
+from ..numerics.eigen import eliminate_static, factor_static, match_spectra, pencil_eigenvalues, qep_dense
 from ..numerics.parallel import split_map
 from .base_state import straight
-from .linear import NFIELDS, linear_operator, static_operator
+from .linear import NFIELDS, linear_operator, static_difference, static_operator
 from .mode_band import band_modes
 from .parameters import RodParameters
 from .spectrum import (
@@ -139,7 +139,7 @@ class _Part:
         sub = {name: getattr(fam, name)[np.ix_(rows, cols)] for name in _BLOCKS}
         static = np.nonzero(np.isin(cols, fam.static_cols))[0]
         el = eliminate_static(sub["A00"], sub["A10"], sub["A2"], static)
-        self.r = {name: el.reduce(sub[name]) for name in _BLOCKS}
+        self.r = dict(zip(_BLOCKS, el.factor.reduce(*(sub[name] for name in _BLOCKS))))
         self.gamma = fam.params.gamma
         self.constant = not any(np.any(self.r[name]) for name in ("AB", "AT", "Aw", "A1w"))
         self.all = qep_dense(self.r["A00"], self.r["A10"], self.r["A2"]) if self.constant else None
@@ -172,22 +172,32 @@ class StraightFamily:
     def __init__(self, params: RodParameters, N: int):
         self.params = params
         self.N = int(N)
-        p0 = params.with_(B=0.0, omega=0.0, T=0.0)
-        A00, A10, A2 = linear_operator(p0, straight(p0), self.N)
-        pB = p0.with_(B=1.0)
-        pT = p0.with_(T=1.0)
-        pw = p0.with_(omega=1.0)
-        self.A00, self.A10, self.A2 = A00, A10, A2
-        self.AB = static_operator(pB, straight(pB), self.N) - A00
-        self.AT = static_operator(pT, straight(pT), self.N) - A00
-        A0w, A1w, _ = linear_operator(pw, straight(pw), self.N)
-        self.Aw = A0w - A00
-        self.A1w = A1w - A10
+        self._p0 = p0 = params.with_(B=0.0, omega=0.0, T=0.0)
+        self.A00 = A00 = static_operator(p0, straight(p0), self.N)
+        self.AB, self.AT, self.Aw = (static_difference(q, straight(q), p0, straight(p0), self.N)
+                                     for q in (p0.with_(B=1.0), p0.with_(T=1.0), p0.with_(omega=1.0)))
         n = self.N + 1
         self.static_cols = np.arange(6 * n, NFIELDS * n)
-        el = eliminate_static(A00, A10, A2, self.static_cols)
-        self.reduced = {"A00": el.B0, "A10": el.B1, "A2": el.B2} | {
-            name: el.reduce(getattr(self, name)) for name in ("AB", "AT", "Aw", "A1w")}
+        self._factor = factor_static(A00, self.static_cols)
+        self.reduced_static = dict(zip(("A00", "AB", "AT", "Aw"), self._factor.reduce(A00, self.AB, self.AT, self.Aw)))
+
+    @cached_property
+    def _dynamic(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(A10, A1w, A2): the damping, gyroscopic and inertia blocks, made when first needed (the static pencils,
+        i.e. every critical load and spin with damping, never are)."""
+        _, A10, A2 = linear_operator(self._p0, straight(self._p0), self.N)
+        pw = self._p0.with_(omega=1.0)
+        return A10, linear_operator(pw, straight(pw), self.N)[1] - A10, A2
+
+    A10 = cached_property(lambda self: self._dynamic[0])
+    A1w = cached_property(lambda self: self._dynamic[1])
+    A2 = cached_property(lambda self: self._dynamic[2])
+
+    @cached_property
+    def reduced(self) -> dict[str, np.ndarray]:
+        """Every block reduced (Q2^T A[:, keep]: phi, m eliminated)."""
+        dyn = dict(zip(("A10", "A1w", "A2"), self._factor.reduce(*self._dynamic)))
+        return self.reduced_static | dyn
 
     @cached_property
     def parts(self) -> list[_Part]:
@@ -196,7 +206,7 @@ class StraightFamily:
 
     def operator(self, B: float, omega: float, T: float, reduced: bool = False):
         """(A0, A1, A2) at the given load, spin and tension (``reduced``: phi, m eliminated)."""
-        r = self.reduced if reduced else vars(self)
+        r = self.reduced if reduced else {name: getattr(self, name) for name in _BLOCKS}
         A0 = r["A00"] + B * r["AB"] + T * r["AT"] + omega**2 * r["Aw"]
         A1 = r["A10"] + omega * r["A1w"]
         return A0, A1, r["A2"]
@@ -240,7 +250,7 @@ class StraightFamily:
         (:func:`nearly_isotropic`: its double roots split under round-off,
         possibly into a complex pair).
         """
-        r = self.reduced
+        r = self.reduced_static
         vals = {"B": B, "omega": omega, "T": T}
         if axis == "ray":
             n0 = B * r["AB"] + omega**2 * r["Aw"]
@@ -248,7 +258,7 @@ class StraightFamily:
         else:
             n0 = r[{"B": "AB", "T": "AT", "omega": "Aw"}[axis]]
             vals[axis] = 0.0
-        A0 = self.operator(vals["B"], vals["omega"], vals["T"], reduced=True)[0]
+        A0 = r["A00"] + vals["B"] * r["AB"] + vals["T"] * r["AT"] + vals["omega"]**2 * r["Aw"]
         x = pencil_eigenvalues(A0, n0)
         imag_tol = DOUBLE if nearly_isotropic(self.params.R) else 1e-8
         real = np.abs(x.imag) <= imag_tol * np.maximum(np.abs(x), 1e-300)
