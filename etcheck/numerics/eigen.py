@@ -227,7 +227,7 @@ def qep_shift_invert(A0, A1, A2, k: int, sigma: float = 0.0, vectors: bool = Fal
     """
     n = A0.shape[0]
     Qs = A0 + sigma * A1 + sigma**2 * A2
-    lu, piv = sla.lu_factor(Qs, check_finite=False)
+    lu, piv = sla.lu_factor(Qs, overwrite_a=True, check_finite=False)  # Qs is ours: no copy
     # A2 z2 + (A1 + sigma A2) z1 through the rows and columns that A1, A2 reach (with damping, gyroscopic and
     # inertia terms in a few fields only: a third of the entries) in one product, and LAPACK's getrs called
     # directly: 1.6x fewer seconds per product at 12 (N + 1) = 396

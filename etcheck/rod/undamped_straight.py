@@ -136,9 +136,10 @@ def _exponents(c: np.ndarray) -> np.ndarray:
     between starts from the roots of the row before it and takes Newton steps, and keeps them only when they
     are certified: eight roots, pairwise apart by more than :data:`_CONFLUENT` of their size, each with a
     backward error below 1e-13 (eight distinct roots of a degree-8 polynomial are all of them). Uncertified rows are solved by
-    :func:`_exponents_qr` too. E on the lines of SET 237 -> ~190 ms CPU; the same roots to round-off."""
+    :func:`_exponents_qr` too (and every row of a short run: fewer than :data:`_QR_BELOW`). E on the lines of SET
+    237 -> ~190 ms CPU; the same roots to round-off."""
     n = c.shape[0]
-    if n < 4 * _STRIDE:
+    if n < _QR_BELOW:
         return _exponents_qr(c)
     k = np.empty((n, 8), dtype=complex)
     anchor = np.arange(0, n, _STRIDE)
@@ -160,6 +161,9 @@ def _exponents(c: np.ndarray) -> np.ndarray:
 _PAIRS = np.triu_indices(8, 1)
 #: Every how many rows :func:`_exponents` solves one by QR (the rows between follow from it by Newton).
 _STRIDE = 4
+#: Fewer rows than this are all solved by QR: below it the Newton sweeps cost more in numpy's per-call overhead
+#: than they save (measured on a spin line of SET: 65 rows 2.0 -> 1.3 ms, 121 rows 4.0 -> 3.0 ms; equal at ~200).
+_QR_BELOW = 192
 
 
 def _horner(c: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
