@@ -284,12 +284,14 @@ def _factored(kap, lu, lv, a, b, w2, B2, static):
     return (lu * kap**2 - a * kap - w2) * (lv * kap**2 - b * kap - w2) + B2 * kap
 
 
-def _log_vandermonde(k: np.ndarray) -> np.ndarray:
+def _log_vandermonde(k: np.ndarray, d: np.ndarray | None = None) -> np.ndarray:
     """log prod_{i<j} (k_j - k_i) for each row of k (modulo 2 pi i), from the logs of products of 7
     differences at a time (a complex log costs ten multiplications; seven factors stay far inside the
-    floating-point range for any exponents below 1e40 in size and above 1e-40 apart)."""
-    i, j = np.triu_indices(k.shape[1], 1)
-    d = k[:, j] - k[:, i]
+    floating-point range for any exponents below 1e40 in size and above 1e-40 apart). ``d``: the differences
+    k_j - k_i in the order of ``np.triu_indices``, where the caller has them already."""
+    if d is None:
+        i, j = np.triu_indices(k.shape[1], 1)
+        d = k[:, j] - k[:, i]
     cols = d.shape[1]
     return sum(np.log(np.prod(d[:, a:a + 7], axis=1)) for a in range(0, cols, 7))
 
