@@ -5,11 +5,14 @@ One fresh interpreter (sys.modules of this test process is shared with every oth
 
 from __future__ import annotations
 
+import importlib
 import json
 import os
 import subprocess
 import sys
 from pathlib import Path
+
+import pytest
 
 from etcheck.numerics.blas import BLAS_THREAD_VARIABLES
 
@@ -26,7 +29,7 @@ code = main(["missions/set.toml", "--draft", "--format", "json", "--out", sys.ar
 from etcheck.numerics.blas import _blas
 import numpy, scipy._lib.array_api_compat.numpy as clone
 from etcheck._numpy_clone import _HOOK
-tools = {"numpy_tools": sorted(m for m in ("numpy.f2py", "numpy.testing", "charset_normalizer") if m in sys.modules),
+tools = {"numpy_tools": sorted(m for m in ("numpy.f2py", "charset_normalizer") if m in sys.modules),
          "numpy_restored": "f2py" in numpy.__all__ and "testing" in dir(numpy), "hook_left": _HOOK in sys.meta_path,
          "clone_works": float(clone.sum(clone.asarray([1.0, 2.0]))) == 3.0}
 print(json.dumps(tools | {"at_start": at_start, "code": code, "loaded": sorted({m.split(".")[0] for m in sys.modules}),
@@ -49,7 +52,7 @@ def test_a_json_only_draft_check_loads_no_report_stack(tmp_path):
     assert not out["scipy_optimize"]  # 0.3 s of imports a draft check does not need
     assert not out["scipy_sparse"]  # ARPACK and graph components (0.1 s): no eigenvalues in a damped draft
     assert not out["blas_scanned"]  # BLAS started with one thread: nothing for threadpoolctl to limit
-    # scipy's clone of numpy without numpy's developer tools (0.15 s), numpy itself unchanged afterwards
+    # scipy's clone of numpy without numpy's f2py and its Fortran parser (0.13 s), numpy unchanged afterwards
     assert out["numpy_tools"] == [] and out["numpy_restored"] and out["clone_works"] and not out["hook_left"]
 
 
@@ -66,3 +69,30 @@ def test_the_report_process_of_a_check_loads_no_units_or_solvers():
     run = subprocess.run([sys.executable, "-c", REPORT_PROBE], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr[-2000:]
     assert json.loads(run.stdout.strip().splitlines()[-1]) == []
+
+
+@pytest.mark.parametrize("fails", [False, True])
+def test_the_import_hook_hides_numpys_tools_only_while_the_clone_is_made(tmp_path, monkeypatch, fails):
+    import numpy
+
+    from etcheck import _numpy_clone as hook
+
+    name = f"fake_clone_{int(fails)}"
+    (tmp_path / f"{name}.py").write_text(
+        "import numpy\n"
+        "SEEN = ('f2py' in numpy.__all__, 'f2py' in dir(numpy), 'linalg' in dir(numpy))\n"
+        + ("raise RuntimeError('the clone failed')\n" if fails else ""))
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(hook, "CLONE", name)
+    hook.install()
+    try:
+        if fails:
+            with pytest.raises(RuntimeError, match="the clone failed"):
+                importlib.import_module(name)
+        else:
+            assert importlib.import_module(name).SEEN == (False, False, True)
+    finally:
+        hook.uninstall()
+        sys.modules.pop(name, None)
+    assert "f2py" in numpy.__all__ and "f2py" in dir(numpy) and "testing" in dir(numpy)
+    assert hook._HOOK not in sys.meta_path
