@@ -205,9 +205,10 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     the Campbell diagram and the stability map.
 
     With damping the critical values are first roots of the static pencils
-    (Kelvin-Tait-Chetaev: one dense QZ per resolution, no scan) and there are
-    no stability windows; without damping they come from the spectral scan
-    (flutter possible). The map's static curves and damped rows come from
+    (Kelvin-Tait-Chetaev: one small pencil per resolution, no scan) and there
+    are no stability windows; without damping they come from the exact undamped
+    determinant, the spectral scans where it cannot isolate a change (flutter
+    possible). The map's static curves and damped rows come from
     :mod:`etcheck.rod.static_map` (one LU per family, small Schur complements
     per row, rows classified by crossing directions: no eigenvalue solve); the
     Campbell diagram is one resolution with a two-resolution error on three

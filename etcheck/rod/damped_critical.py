@@ -17,8 +17,9 @@ compressive load), the straight rod is stable exactly while
 
 and the critical spin at the operating load is the first omega root at
 (B, T) when B < B_c(0, T). No eigenvalue scan and no bisection: each value
-is one dense QZ per resolution, located exactly (to the discretisation
-error, which the two-resolution agreement estimates). This is what makes
+is one small pencil per resolution (``StraightFamily.pencil_roots``), located
+exactly (to the discretisation error, which the two-resolution agreement
+estimates). This is what makes
 parametric sweeps cheap; :mod:`etcheck.rod.stability` is the general
 (also undamped) scan that it must agree with, and a test checks it does.
 """

@@ -243,8 +243,10 @@ class StraightFamily:
 
         Returns values of B (or T) or of omega^2 (axis "omega"). ``axis =
         "ray"`` gives the values t where A0(t B, sqrt(t) omega, T) is singular
-        (load and spin squared scaled together from zero). One QZ of the
-        reduced pencil (phi, m eliminated once for the family). A root
+        (load and spin squared scaled together from zero). One pencil of the
+        reduced operator (phi, m eliminated once for the family), solved by
+        :func:`~etcheck.numerics.eigen.pencil_eigenvalues` (an LU of A0 and an
+        eigenproblem through the columns the axis reaches). A root
         counts as real when its imaginary part is below 1e-8 times its
         modulus, or below :data:`DOUBLE` times it for a nearly isotropic rod
         (:func:`nearly_isotropic`: its double roots split under round-off,

@@ -18,7 +18,7 @@ D = diag(B I, omega^2 I). So
   the 4N x 4N S_w(B) = W_ww - B W_wB (I + B W_BB)^-1 W_Bw;
 
 the same values as the static pencils of :class:`etcheck.rod.stability.StraightFamily`
-(one QZ of the 6(N+1) reduced pencil each), at a fraction of the cost. (The
+(one pencil of the 6(N+1) reduced operator each), at a fraction of the cost. (The
 Schur complements need the other block regular: a row exactly at a spin root
 of the unloaded rod, or a column exactly at a static load of the rod at rest,
 is ill-conditioned; the grids of a check do not fall on them but by chance.)

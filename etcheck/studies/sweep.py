@@ -10,7 +10,7 @@ lowest rung that is exact for it:
 * rung 0 (chi roots) for the critical load at zero spin and tension;
 * rung 1 static pencils with damping (the Kelvin-Tait-Chetaev structure,
   :mod:`etcheck.rod.damped_critical`): critical load at the point's spin,
-  critical spin at the point's load, one QZ per resolution;
+  critical spin at the point's load, one small pencil per resolution;
 * without damping (flutter windows are possible) the exact undamped
   determinant (:mod:`etcheck.rod.undamped_straight`): divergence and
   flutter points located exactly along the load and spin lines.
