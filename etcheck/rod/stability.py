@@ -42,7 +42,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 
 from ..numerics.blas import single_blas_thread
-from ..numerics.eigen import eliminate_static, factor_static, match_spectra, pencil_eigenvalues, qep_dense
+from ..numerics.eigen import factor_static, match_spectra, pencil_eigenvalues, qep_dense
 from ..numerics.parallel import split_map
 from .base_state import straight
 from .linear import NFIELDS, linear_operator, static_difference, static_operator
@@ -138,8 +138,7 @@ class _Part:
     def __init__(self, fam, rows: np.ndarray, cols: np.ndarray):
         sub = {name: getattr(fam, name)[np.ix_(rows, cols)] for name in _BLOCKS}
         static = np.nonzero(np.isin(cols, fam.static_cols))[0]
-        el = eliminate_static(sub["A00"], sub["A10"], sub["A2"], static)
-        self.r = dict(zip(_BLOCKS, el.factor.reduce(*(sub[name] for name in _BLOCKS))))
+        self.r = dict(zip(_BLOCKS, factor_static(sub["A00"], static).reduce(*(sub[name] for name in _BLOCKS))))
         self.gamma = fam.params.gamma
         self.constant = not any(np.any(self.r[name]) for name in ("AB", "AT", "Aw", "A1w"))
         self.all = qep_dense(self.r["A00"], self.r["A10"], self.r["A2"]) if self.constant else None
@@ -160,9 +159,11 @@ class StraightFamily:
     A0 = A00 + B AB + T AT + omega^2 Aw,  A1 = A10 + omega A1w,  A2 fixed, at
     resolution N (P, R, Gamma, f, gamma from ``params``); dimensionless.
     The lambda-free unknowns phi, m enter A0 through columns that none of
-    B, omega, T touches, so one QR eliminates them for the whole family: every
-    block is also kept reduced (``reduced``: Q2^T A[:, keep], size 6(N+1)),
-    on which the static pencils run. For the eigenvalues the operator is
+    B, omega, T touches, so one QR eliminates them for the whole family: the
+    blocks of A0 are also kept reduced (``reduced_static``: Q2^T A[:, keep],
+    size 6(N+1)), on which the static pencils run; A10, A1w, A2 (and
+    ``reduced``, every block) are built when first asked for: the static pencils,
+    i.e. every damped critical value, never need them. For the eigenvalues the operator is
     also split into its uncoupled parts (read off the sparsity of all blocks;
     for the straight rod: bending xi1,2, a1,2 with phi1,2, m1,2; torsion a3, m3;
     axial xi3, phi3), each reduced the same way; a part that none of B, omega,
