@@ -99,6 +99,10 @@ class DiagramOptions:
         return self.stability and (self.paths is None or label in self.paths)
 
 
+#: the default diagram (b1, b2, b3 with stability, paths of b1 and b12)
+DEFAULT_DIAGRAM = DiagramOptions()
+
+
 @lru_cache(maxsize=256)
 def _liftoff_cached(P: float, R: float, Gamma: float, f: float, T: float, which: str, k: int) -> LiftoffSpin:
     return liftoff_estimate(RodParameters(P=P, R=R, Gamma=Gamma, f=f, T=T), which=which, k=k, N=24)
@@ -285,7 +289,8 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     return out
 
 
-def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DiagramOptions()) -> BifurcationDiagram:
+def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DEFAULT_DIAGRAM
+                        ) -> BifurcationDiagram:
     """Branches of whirling equilibria of the tether in the load B (rung 2), with stability (rung 3).
 
     ``params`` fixes omega, T, R, ... (B is the continuation parameter).

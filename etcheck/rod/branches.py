@@ -179,16 +179,18 @@ def _components(A: np.ndarray) -> list[np.ndarray]:
 
 def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sparse.csc_array:
     """Orthonormal basis (columns) of ker(A - sign I) for A block diagonal on ``blocks``:
-    one small SVD per block (as scipy.linalg.null_space, rcond 1e-9; the blocks of one size in one batched
-    call), so the basis is as sparse as A's blocks (most are 1 x 1 or 2 x 2: the signed permutation s -> 1 - s)."""
+    one small SVD per block (as scipy.linalg.null_space, rcond 1e-9; the blocks of one size gathered in one
+    indexing step), so the basis is as sparse as A's blocks (most are 1 x 1 or 2 x 2: the signed permutation
+    s -> 1 - s)."""
     kernels: list = [None] * len(blocks)
     for size in sorted({b.size for b in blocks}):
         which = [i for i, b in enumerate(blocks) if b.size == size]
         idx = np.stack([blocks[i] for i in which])
-        _, sv, vh = sla.svd(A[idx[:, :, None], idx[:, None, :]] - sign * np.eye(size), lapack_driver="gesvd")
-        rank = np.sum(sv > 1e-9 * sv.max(axis=1, initial=0.0)[:, None], axis=1)
-        for j, i in enumerate(which):
-            kernels[i] = vh[j, rank[j]:].T.conj()
+        # one block at a time (what scipy's batched svd does inside, where it has one: scipy >= 1.16)
+        for i, M in zip(which, A[idx[:, :, None], idx[:, None, :]] - sign * np.eye(size)):
+            _, sv, vh = sla.svd(M, lapack_driver="gesvd", check_finite=False)
+            rank = int(np.sum(sv > 1e-9 * sv.max(initial=0.0)))
+            kernels[i] = vh[rank:].T.conj()
     rows, cols, vals, k = [], [], [], 0
     for idx, Z in zip(blocks, kernels):
         Z[np.abs(Z) < 1e-15] = 0.0

@@ -99,6 +99,10 @@ class SweepOptions:
     buckled: bool = False
 
 
+#: a sweep's default settings
+DEFAULT_SWEEP = SweepOptions()
+
+
 # --------------------------------------------------------------------------- points
 
 
@@ -419,7 +423,7 @@ def _chunks(items: list, size: int) -> list[list]:
 # --------------------------------------------------------------------------- the sweep
 
 
-def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = SweepOptions(),
+def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFAULT_SWEEP,
           progress: Callable[[int, int, int], None] | None = None) -> dict[str, Any]:
     """Run the sweep; returns JSON-able results (dimensionless and SI).
 
