@@ -21,15 +21,16 @@ SWEEP_FILENAMES = {"html": "sweep.html", "pdf": "sweep.pdf", "json": "sweep.json
                    "nc": "sweep.nc"}
 
 
-def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict[str, bytes]:
+def render(results: dict | str, formats: tuple[str, ...], kind: str = "check") -> dict[str, bytes]:
     """Render the requested formats to bytes (nothing is written).
 
+    ``results``: the results, or the text of results.json made from them (:func:`results_json`).
     ``kind`` is "check" (a mission check), "sweep" (a what-if sweep, which
     also has the data formats csv and nc), "diagram" (a bifurcation diagram) or
     "damping" (a damping map of the coiled tether).
     """
     out: dict[str, bytes] = {}
-    text = results_json(results)
+    text = results if isinstance(results, str) else results_json(results)
     results = json.loads(text)  # the reports show what results.json holds (plain JSON types only)
     html = None
     if "html" in formats or "pdf" in formats:
@@ -58,19 +59,18 @@ def render(results: dict, formats: tuple[str, ...], kind: str = "check") -> dict
 
 
 def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html", "pdf", "json"),
-                  kind: str = "check", renderer: Callable[[dict, tuple[str, ...], str], dict[str, bytes]] | None = None
+                  kind: str = "check",
+                  renderer: Callable[[dict | str, tuple[str, ...], str], dict[str, bytes]] | None = None
                   ) -> list[Path]:
     """Render and atomically write the reports into ``folder``; returns the paths.
 
     ``renderer``: a function like :func:`render` (default), e.g. the report process of
-    :func:`etcheck.report.background.renderer`.
+    :func:`etcheck.report.background.renderer`, which is handed the text of results.json: plain JSON types (an
+    enum or a numpy value would make that process import the modules that define them; etcheck.checks.margins
+    loads astropy and scipy: 0.6 s of its time), serialised once.
     """
     names = {"sweep": SWEEP_FILENAMES, "diagram": DIAGRAM_FILENAMES, "damping": DAMPING_FILENAMES}.get(kind, FILENAMES)
-    if renderer is not None:
-        # plain JSON types to another process: an enum or a numpy value would make it import the modules that
-        # define them (etcheck.checks.margins loads astropy and scipy: 0.6 s of a report process's time)
-        results = json.loads(results_json(results))
-    rendered = (renderer or render)(results, formats, kind)
+    rendered = renderer(results_json(results), formats, kind) if renderer is not None else render(results, formats, kind)
     folder = Path(folder)
     try:
         folder.mkdir(parents=True, exist_ok=True)

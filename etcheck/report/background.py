@@ -28,7 +28,7 @@ DRAWN = ("html", "pdf")
 
 @contextlib.contextmanager
 def renderer(formats: tuple[str, ...], kind: str = "check"
-             ) -> Iterator[Callable[[dict, tuple[str, ...], str], dict[str, bytes]]]:
+             ) -> Iterator[Callable[[dict | str, tuple[str, ...], str], dict[str, bytes]]]:
     """A ``render(results, formats, kind)`` that runs in a report process started now (when it can help);
     ``kind``: the report it will mostly render (its template is compiled while waiting).
 
@@ -48,7 +48,7 @@ def renderer(formats: tuple[str, ...], kind: str = "check"
     proc.start()
     theirs.close()
 
-    def remote(results: dict, fmts: tuple[str, ...], kind: str = "check") -> dict[str, bytes]:
+    def remote(results: dict | str, fmts: tuple[str, ...], kind: str = "check") -> dict[str, bytes]:
         try:
             ours.send((results, fmts, kind))
             status, value = ours.recv()
