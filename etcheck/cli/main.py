@@ -9,6 +9,7 @@ from etcheck import __version__
 from etcheck.cli import accuracy, check, damping_map, diagram, sweep
 from etcheck.cli.common import EXIT_TEXT
 from etcheck.numerics.blas import pin_before_numpy
+from etcheck.numerics.heap import keep_freed_memory
 
 #: subcommand modules; each has ``add_parser(subparsers)`` that sets ``run(args, parser) -> int``
 COMMANDS = (check, sweep, diagram, damping_map, accuracy)
@@ -31,6 +32,7 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     pin_before_numpy()  # small matrices, parallel processes: BLAS threads only cost time (and ~20 ms to limit)
+    keep_freed_memory()  # the solvers' matrices reuse freed memory instead of fresh pages (etcheck.numerics.heap)
     argv = list(sys.argv[1:] if argv is None else argv)
     names = {m.NAME for m in COMMANDS}
     if argv and argv[0] not in names and not argv[0].startswith("-"):

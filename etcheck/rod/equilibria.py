@@ -69,7 +69,7 @@ import scipy.linalg as sla
 
 from ..errors import SolverError
 from ..numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
-from .linear import NFIELDS, boundary_rows, collocation, static_operator, stiffness_diag
+from .linear import NFIELDS, collocation, static_operator, stiffness_diag, welded_rows
 from .parameters import RodParameters
 
 __all__ = [
@@ -364,10 +364,11 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
             di = Dt[:, :, i]
             # d[(w.d)(d x w)] = (w.dd)(d x w) + (w.d)(dd x w) with dd = -P [d_i]x a, w^T [d_i]x = (w x d_i)^T:
             # P (-(d x w) (w x d_i)^T + (w . d) [w]x [d_i]x)
-            t = (-np.cross(di, w)[:, None, :, None] * np.cross(w, D[:, :, i])[None, :, None, :]
+            t = (-_cross(di, np.broadcast_to(w, di.shape))[:, None, :, None]
+                 * _cross(np.broadcast_to(w, (n1, 3)), D[:, :, i])[None, :, None, :]
                  + (di @ w)[:, None, None, None] * (_skew(w) @ skew_d[i])[None])
             put(3, 1, -ci * weighted(P, t))
-    out[NFIELDS * N:] = boundary_rows(state, N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
+    out[NFIELDS * N:] = welded_rows(D[[0, -1]], N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
     return out
 
 

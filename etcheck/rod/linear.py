@@ -75,6 +75,7 @@ __all__ = [
     "static_operator",
     "field_slice",
     "boundary_rows",
+    "welded_rows",
 ]
 
 VARIABLES = ("xi1", "xi2", "xi3", "a1", "a2", "a3", "phi1", "phi2", "phi3", "m1", "m2", "m3")
@@ -201,23 +202,27 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
     N = col.N
     out = np.zeros((NFIELDS * (N + 1), NFIELDS * (N + 1)))
     ode = out[: NFIELDS * N].reshape(NFIELDS, N, NFIELDS, N + 1)  # a view
-    zero = np.zeros(N)
     nz = [np.any(C != 0.0, axis=0) if C is not None else np.zeros((NFIELDS, NFIELDS), dtype=bool) for C in (E, G)]
-    for e, v in zip(*np.nonzero(nz[0] | nz[1])):
-        ce = E[:, e, v] if nz[0][e, v] else zero
-        cg = G[:, e, v] if nz[1][e, v] else zero
-        ode[e, :, v, :] = ce[:, None] * col.PD - cg[:, None] * col.P
+    e, v = np.nonzero(nz[0] | nz[1])
+    if e.size:  # all pairs at once: (pairs, N) coefficients times the (N, N+1) matrices
+        ce = np.where(nz[0][e, v], E[:, e, v], 0.0).T if E is not None else np.zeros((e.size, N))
+        cg = np.where(nz[1][e, v], G[:, e, v], 0.0).T if G is not None else np.zeros((e.size, N))
+        ode[e, :, v, :] = ce[:, :, None] * col.PD - cg[:, :, None] * col.P
     return out
 
 
 def boundary_rows(base: BaseState, N: int) -> np.ndarray:
     """The 12 linearised welded boundary conditions (eqs. (76)-(81))."""
+    return welded_rows(base.D0(np.array([0.0, 1.0])), N)
+
+
+def welded_rows(D: np.ndarray, N: int) -> np.ndarray:
+    """:func:`boundary_rows` from the base state's frames at the two ends, ``D`` (2, 3, 3), column i = d_i."""
     rows = np.zeros((12, NFIELDS, N + 1))
     # s = 0: xi1 = xi2 = 0, phi3 = 0; s = 1: xi = 0
     rows[0, 0, 0] = rows[1, 1, 0] = rows[2, 8, 0] = 1.0
     rows[[6, 7, 8], [0, 1, 2], N] = 1.0
     # at each end: (a x d3).e1 = a.(d3 x e1), (a x d3).e2 = a.(d3 x e2), (a x d1).e2 = a.(d1 x e2)
-    D = base.D0(np.array([0.0, 1.0]))  # (2, 3, 3), column i = d_i
     d1, d3 = D[:, :, 0], D[:, :, 2]
     zero = np.zeros(2)
     g = np.stack([np.stack([zero, d3[:, 2], -d3[:, 1]], axis=1),  # d3 x e1
