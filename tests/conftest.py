@@ -13,3 +13,10 @@ def pytest_configure(config):
     interpreters, and where PYTHONDONTWRITEBYTECODE is set (as on CI) each would compile ~0.25 s of source."""
     if not hasattr(config, "workerinput"):  # the xdist controller, or a run without xdist
         compileall.compile_dir(Path(__file__).resolve().parents[1] / "etcheck", quiet=1)
+
+
+def pytest_sessionstart(session):
+    """Every test process reuses freed matrices as the CLI's does (etcheck.numerics.heap): the same numbers, sooner."""
+    from etcheck.numerics.heap import keep_freed_memory
+
+    keep_freed_memory()

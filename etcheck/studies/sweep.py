@@ -302,13 +302,17 @@ class _NoAnswer(Exception):
 
 
 def _worker_init(parent: int) -> None:
-    """Local worker: one BLAS thread (its chunks run without forked helpers, :func:`_serially`); exit when the
-    sweep process dies (kill -9 leaves no orphans)."""
+    """Local worker: one BLAS thread (its chunks run without forked helpers, :func:`_serially`), freed matrices
+    kept for reuse (:mod:`etcheck.numerics.heap`: the worker is etcheck's own process); exit when the sweep process
+    dies (kill -9 leaves no orphans)."""
     import threading
 
     from threadpoolctl import threadpool_limits
 
+    from etcheck.numerics.heap import keep_freed_memory
+
     threadpool_limits(limits=1)  # for the life of the worker
+    keep_freed_memory()
 
     def watch() -> None:
         while os.getppid() == parent:
