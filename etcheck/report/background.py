@@ -8,6 +8,16 @@ cores the report stack costs no wall time. The process is a fork of a small
 one (the CLI before numpy is loaded, with one thread), on Linux only; anywhere
 else, for data-only formats, or on one core, the reports are rendered in this
 process, with the same bytes.
+
+Beside a study (a sweep, a diagram, a damping map: seconds of work on every
+core) the report process runs at the lowest priority (nice 19): loading the
+report stack (~1.7 CPU-seconds) then takes only what the study leaves idle
+(its serial start, the gaps between its parallel steps) instead of slowing
+it, and the report is drawn after the study, when nothing else runs.
+Measured, ``etcheck diagram missions/set.toml --spin 0.25 --branches 3``:
+10.7 s against 11.5 s (means of 6 interleaved runs). A check (a second of
+work, its report the longer part) keeps the normal priority: its report
+would wait for the check's cores.
 """
 
 from __future__ import annotations
@@ -24,6 +34,8 @@ from etcheck.report.figures.common import forking_allowed
 
 #: the formats a report process is started for (JSON and data files need no report stack)
 DRAWN = ("html", "pdf")
+#: niceness added to a study's report process (module docstring); a check's keeps its parent's
+STUDY_NICE = 19
 
 
 @contextlib.contextmanager
@@ -61,6 +73,7 @@ def renderer(formats: tuple[str, ...], kind: str = "check"
             raise ReportError(value)
         raise RuntimeError(value)
 
+    remote.pid = proc.pid  # type: ignore[attr-defined]  # the report process, for the tests
     try:
         yield remote
     finally:
@@ -80,6 +93,8 @@ def _worth_a_process(formats: tuple[str, ...]) -> bool:
 def _serve(conn, parent_end, formats: tuple[str, ...], kind: str) -> None:
     """The report process: load and warm the report stack, then render what the parent sends until it closes."""
     parent_end.close()
+    if kind != "check":
+        os.nice(STUDY_NICE)
     try:
         _warm(formats, kind)
         while True:

@@ -89,3 +89,31 @@ def test_another_process_is_sent_plain_json_types(tmp_path):
     assert json.loads(sent[0]) == {"verdict": "pass", "value": 1.5, "n": 3, "rows": [0.0, 1.0], "flags": [True],
                                    "nested": {"v": ["fail", 1]}}
     assert path.read_text() == render(results, ("json",))["json"].decode()
+
+
+NICENESS = """
+import os, sys, time
+from etcheck.report.background import renderer
+kind = sys.argv[1]
+ours = os.getpriority(os.PRIO_PROCESS, 0)
+want = min(ours + 19, 19) if kind != "check" else ours
+with renderer(("html",), kind) as remote:
+    deadline = time.monotonic() + 30
+    while True:  # the report process sets its priority first thing: wait for it
+        theirs = os.getpriority(os.PRIO_PROCESS, remote.pid)
+        if theirs == want or time.monotonic() > deadline:
+            break
+        time.sleep(0.05)
+    time.sleep(0.2)
+    theirs = os.getpriority(os.PRIO_PROCESS, remote.pid)  # and keeps it
+print(theirs - want)
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the report process is a fork (Linux)")
+@pytest.mark.parametrize("kind", ["diagram", "sweep", "damping", "check"])
+def test_a_studys_report_process_takes_only_idle_cores(kind):
+    """A study's report process at the lowest priority (nice 19), a check's at its parent's."""
+    run = subprocess.run([sys.executable, "-c", NICENESS, kind], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert int(run.stdout.strip()) == 0, "report process priority off by " + run.stdout
