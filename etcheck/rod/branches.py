@@ -609,8 +609,8 @@ def connecting_branch(branch: Branch, bp: RodBranchPoint | None = None, ds: floa
     ``bp`` defaults to the first "break" point of ``branch``. The new branch
     leaves along the kernel of the Jacobian restricted to the -1 eigenspace of
     the branch's symmetry (a pure symmetry-breaking direction, parameter
-    tangent 0); ``sign`` picks one of the mirror pair (measure_2 of either
-    sign). Stops when measure_1 drops below ``min_measure1`` (at omega = T = 0
+    tangent 0); ``sign`` picks one of the mirror pair: +1 the one along which
+    measure_2 grows from the branch point, -1 its mirror image. Stops when measure_1 drops below ``min_measure1`` (at omega = T = 0
     the branch heads into the degenerate pitchfork of the straight rod, where
     the full Jacobian becomes doubly singular), when it leaves ``stop``, or,
     with ``stop_at_bp``, at the first branch point it meets: with spin, b12
@@ -628,7 +628,7 @@ def connecting_branch(branch: Branch, bp: RodBranchPoint | None = None, ds: floa
     full = _RodProblem(branch.params, branch.parameter, branch.N, None)
     J, _ = full._full(u, p)
     _, _, vh = np.linalg.svd(b.L_minus @ J @ b.V_minus)
-    v = sign * (b.V_minus @ vh[-1])
+    v = sign * _toward_positive_measure2(u, b.V_minus @ vh[-1])
     stop_fn = None if min_measure1 is None else (lambda uu, pp: eq.measure1(uu) < min_measure1)
     opts = ContinuationOptions(ds=ds, ds_min=1e-7, ds_max=ds_max, p_min=stop[0], p_max=stop[1],
                                max_points=max_points, tol=1e-10, stop=stop_fn,
@@ -637,6 +637,17 @@ def connecting_branch(branch: Branch, bp: RodBranchPoint | None = None, ds: floa
     odd = branch.name[1:] if branch.name.startswith("b") and branch.name[1:].isdigit() else None
     name = f"b{odd}{int(odd) + 1}" if odd is not None else branch.name + "-connecting"
     return _branch(name, full, res)
+
+
+def _toward_positive_measure2(u: eq.Equilibrium, v: np.ndarray, h: float = 1e-4) -> np.ndarray:
+    """The kernel direction v (unit 2-norm) oriented so that measure_2 grows along it: an SVD returns either sign,
+    and which one follows from the round-off of the matrix (one of the mirror pair of connecting branches,
+    :func:`connecting_branch`'s ``sign``, would otherwise be taken at random). Where measure_2 does not change to
+    first order, the largest component is made positive."""
+    dm = eq.measures(eq.retract(u, h * v)).measure2 - eq.measures(eq.retract(u, -h * v)).measure2
+    if abs(dm) > 1e-6 * h:
+        return v if dm > 0 else -v
+    return v if v[np.argmax(np.abs(v))] > 0 else -v
 
 
 @single_blas_thread

@@ -321,6 +321,17 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
         """Add T of shape (N, N+1, 3, 3) [k, j, row comp, col comp] to block (rg, cg)."""
         J[3 * rg:3 * rg + 3, :, 3 * cg:3 * cg + 3, :] += T.transpose(2, 0, 3, 1)
 
+    def put_weighted(rg: int, cg: int, C: np.ndarray, at: str) -> None:
+        """Add P[k, j] C to block (rg, cg) for a 3 x 3 C that is constant (``at`` "", shape (3, 3)), per node j
+        ("j", (N+1, 3, 3)) or per first-kind point k ("k", (N, 3, 3)), in the block's layout [a, k, b, j]."""
+        if at == "j":
+            C = C.transpose(1, 2, 0)[:, None]
+        elif at == "k":
+            C = C.transpose(1, 0, 2)[..., None]
+        else:
+            C = C[:, None, :, None]
+        J[3 * rg:3 * rg + 3, :, 3 * cg:3 * cg + 3, :] += C * P[None, :, None, :]
+
     def put_identity(rg: int, cg: int, W: np.ndarray, sign: float = 1.0) -> None:
         """Add sign W[k, j] I to block (rg, cg)."""
         for a in range(3):
@@ -331,11 +342,10 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
         return W[:, :, None, None] * C
 
     # d(d_i(t_k)) / d a_j = P_kj (a_j x d_i,j) = -P_kj skew(d_i,j) a_j
-    skew_d = [_skew(D[:, :, i]) for i in range(3)]  # (N+1, 3, 3) each
-    dd3 = weighted(P, -skew_d[2][None])
+    skew_d3 = _skew(D[:, :, 2])  # (N+1, 3, 3)
     # x rows: PD xi - d(d3)
     put_identity(0, 0, PD)
-    put(0, 1, -dd3)
+    put_weighted(0, 1, skew_d3, "j")
     # constitutive rows: d(Dt) K kb + Dt K dkb - P m
     v = kb * K[None, :]  # (N, 3) body vector K kb
     Dv = np.einsum("jab,kb->kja", D, v)  # D_j (K kb_k)
@@ -348,28 +358,51 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
     put_identity(1, 3, P, -1.0)
     # force rows: PD phi + B d(d3) x e3 - w x (w x P xi)
     put_identity(2, 2, PD)
-    put(2, 1, weighted(P, params.B * (_skew(_E3) @ skew_d[2])[None]))  # -B e3 x d(d3), d(d3) = -P [d3]x
+    put_weighted(2, 1, params.B * (_skew(_E3) @ skew_d3), "j")  # -B e3 x d(d3), d(d3) = -P [d3]x
     ww = _skew(w) @ _skew(w)
-    put(2, 0, weighted(P, -ww[None, None]))
+    put_weighted(2, 0, -ww, "")
     # moment rows: PD m + d(d3) x Ft + d3t x P phi - rotary terms
     put_identity(3, 3, PD)
-    # -[Ft]x d(d3) = P [Ft]x [d3]x = P (d3 Ft^T - (Ft . d3) I)
-    d3 = D[:, :, 2]
-    put(3, 1, weighted(P, d3[None, :, :, None] * Ft[:, None, None, :] - (Ft @ d3.T)[:, :, None, None] * _EYE3))
-    put(3, 2, weighted(P, _skew(Dt[:, :, 2])[:, None]))
-    if params.omega != 0.0:
-        for ci, i in ((params.P * params.R, 0), (params.P, 1)):
-            if ci == 0.0:
-                continue
-            di = Dt[:, :, i]
-            # d[(w.d)(d x w)] = (w.dd)(d x w) + (w.d)(dd x w) with dd = -P [d_i]x a, w^T [d_i]x = (w x d_i)^T:
-            # P (-(d x w) (w x d_i)^T + (w . d) [w]x [d_i]x)
-            t = (-_cross(di, np.broadcast_to(w, di.shape))[:, None, :, None]
-                 * _cross(np.broadcast_to(w, (n1, 3)), D[:, :, i])[None, :, None, :]
-                 + (di @ w)[:, None, None, None] * (_skew(w) @ skew_d[i])[None])
-            put(3, 1, -ci * weighted(P, t))
+    J[9:12, :, 3:6, :] += _moment_rotation_block(params, D, Dt, Ft, P)
+    put_weighted(3, 2, _skew(Dt[:, :, 2]), "k")
     out[NFIELDS * N:] = welded_rows(D[[0, -1]], N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
     return out
+
+
+def _moment_rotation_block(params: RodParameters, D: np.ndarray, Dt: np.ndarray, Ft: np.ndarray,
+                           P: np.ndarray) -> np.ndarray:
+    """d(moment rows) / d(rotations a_j): block (3, 1) of :func:`_exact_jacobian` as [a, k, b, j] (its layout in
+    the Jacobian), a sum of terms P_kj f(k) g(j), each written as one product over the pairs (k, j).
+
+    -[Ft]x d(d3) = P [Ft]x [d3]x = P (d3 Ft^T - (Ft . d3) I); the rotary terms (eq. (72)), for d = d_i(t_k),
+    d_i,j = d_i at node j: d[(w.d)(d x w)] = (w.dd)(d x w) + (w.d)(dd x w) with dd = -P [d_i,j]x a and
+    w^T [d_i,j]x = (w x d_i,j)^T, times -c_i: c_i P ((d x w) (w x d_i,j)^T - (w . d) [w]x [d_i,j]x), where
+    [w]x [d]x = d w^T - (w . d) I."""
+    N, n1 = P.shape
+    d3 = D[:, :, 2]
+    # d3_j[a] Ft_k[b] - (Ft_k . d3_j) delta_ab
+    block = d3.T[:, None, None, :] * Ft[None, :, :, None]
+    diag = Ft @ d3.T  # (k, j)
+    w = params.omega * _E3
+    terms = [(ci, i) for ci, i in ((params.P * params.R, 0), (params.P, 1)) if ci != 0.0 and params.omega != 0.0]
+    if terms:
+        c = np.array([ci for ci, _ in terms])
+        dk = Dt[:, :, [i for _, i in terms]]  # (k, comp, term)
+        dj = D[:, :, [i for _, i in terms]]  # (j, comp, term)
+        wk = np.broadcast_to(w, (N, 3))
+        wj = np.broadcast_to(w, (n1, 3))
+        u = np.stack([_cross(dk[:, :, t], wk) for t in range(len(terms))], axis=-1) * c  # c_i (d x w): (k, a, t)
+        v = np.stack([_cross(wj, dj[:, :, t]) for t in range(len(terms))], axis=-1)  # (w x d_i,j): (j, b, t)
+        # sum_t u[k, a, t] v[j, b, t] as one product, rows (a, k), columns (b, j)
+        block += (u.transpose(1, 0, 2).reshape(3 * N, -1) @ v.transpose(2, 1, 0).reshape(-1, 3 * n1)).reshape(3, N, 3, n1)
+        s = (dk * w[None, :, None]).sum(axis=1) * c  # c_i (w . d): (k, t)
+        # -c_i (w . d) (d_i,j w^T - (w . d_i,j) I)
+        wd = dj.transpose(0, 2, 1) @ w  # (j, t): w . d_i,j
+        outer = np.einsum("kt,jat->akj", s, dj)  # sum_t s_t(k) d_i,j[a]
+        block -= outer[:, :, None, :] * w[None, None, :, None]
+        diag -= s @ wd.T
+    block[[0, 1, 2], :, [0, 1, 2], :] -= diag
+    return block * P[None, :, None, :]
 
 
 def parameter_derivative(params: RodParameters, state: Equilibrium, name: str) -> np.ndarray:

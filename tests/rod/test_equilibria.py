@@ -400,6 +400,25 @@ def test_spin_resolves_the_connection():
     assert np.max(np.abs(b12.measure2)) > 1e-3 and np.min(b12.measure1) > 0.04
 
 
+@pytest.mark.parametrize("flip", [False, True])
+def test_connecting_branch_sign_picks_the_mirror_image_whatever_the_svd_returns(b1, monkeypatch, flip):
+    """sign = +1 leaves b1's secondary pitchfork along the connecting branch whose measure_2 grows, -1 along its
+    mirror image, whichever sign the SVD gives the kernel vector (round-off decides it: a Jacobian assembled in
+    another order once gave the other member of the pair)."""
+    if flip:
+        svd = np.linalg.svd
+
+        def flipped(a, *args, **kwargs):
+            u, s_, vh = svd(a, *args, **kwargs)
+            return u, s_, -vh
+
+        monkeypatch.setattr(br.np.linalg, "svd", flipped)
+    up = br.connecting_branch(b1[N_LO], stop=(0.0, 3.0), max_points=3)
+    down = br.connecting_branch(b1[N_LO], stop=(0.0, 3.0), max_points=3, sign=-1.0)
+    assert np.all(up.measure2 > 1e-4) and np.all(down.measure2 < -1e-4)
+    assert np.allclose(up.measure2, -down.measure2, rtol=1e-2)  # the mirror image (sampled at nearby points)
+
+
 def test_second_pair_and_b34():
     """BP2: b3 (Fix(S1)) carries a symmetry-breaking pitchfork near B = 13.46 from
     which b34 runs back down to BP2; b4 (Fix(S2)) has none below B = 15."""
