@@ -130,16 +130,22 @@ def _compile_bytecode() -> None:
     compileall.compile_dir(ROOT / "etcheck", quiet=1)
 
 
-def _cli_study(args: list[str], target: float, result: str, error: Callable[[dict], float | None]):
+def _cli_study(args: list[str], target: float, result: str, error: Callable[[dict], float | None],
+               repeat: int = 1):
+    """The best wall time of ``repeat`` cold runs of a study (as :func:`_cli_check`)."""
     def measure():
-        with tempfile.TemporaryDirectory() as out:
-            wall, proc = _cli(args, max(PATIENCE * target, 120.0), Path(out))
-            if proc is None:
-                return _stopped(wall)
-            files = sorted(Path(out).glob(f"**/{result}"))
-            if proc.returncode not in (0, 1) or not files:
-                return wall, None, f"exit {proc.returncode}: {proc.stderr.strip()[-200:]}"
-            return wall, error(json.loads(files[0].read_text())), f"exit {proc.returncode}"
+        best = None
+        for _ in range(repeat):
+            with tempfile.TemporaryDirectory() as out:
+                wall, proc = _cli(args, max(PATIENCE * target, 120.0), Path(out))
+                if proc is None:
+                    return _stopped(wall)
+                files = sorted(Path(out).glob(f"**/{result}"))
+                if proc.returncode not in (0, 1) or not files:
+                    return wall, None, f"exit {proc.returncode}: {proc.stderr.strip()[-200:]}"
+                if best is None or wall < best[0]:
+                    best = (wall, error(json.loads(files[0].read_text())), f"exit {proc.returncode}")
+        return best if repeat == 1 else (best[0], best[1], f"best of {repeat}, {best[2]}")
     return measure
 
 
@@ -277,7 +283,7 @@ ROWS = (
     Row("B*(omega) at 10 spins", 5.0, True, _pitchfork_curve),
     Row("etcheck diagram missions/set.toml --spin 0.25 --branches 3", 10.0, True,
         _cli_study(["diagram", "missions/set.toml", "--spin", "0.25", "--branches", "3"], 10.0, "diagram.json",
-                   _diagram_error)),
+                   _diagram_error, repeat=2)),
     Row("etcheck damping-map missions/set.toml", 60.0, True,
         _cli_study(["damping-map", "missions/set.toml"], 60.0, "damping.json", _damping_error)),
     Row("40 x 40 length x spin sweep of SET, damped", 5.0, False, _sweep("damped", 5.0)),
