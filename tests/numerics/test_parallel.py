@@ -61,8 +61,11 @@ def test_a_failed_helper_leaves_its_items_to_this_process():
 
 
 def _fails_here(job):
+    """Fails on the first item: the one this process always computes (taken before the helper starts), so that
+    the error is raised here whichever items the helper takes meanwhile."""
     parent, x = job
-    if os.getpid() == parent and x == 2:
+    if os.getpid() == parent and x == 0:
+        time.sleep(0.2)  # the helper is running by now
         raise ValueError("bad item")
     return x
 
