@@ -263,7 +263,6 @@ def jacobian(params: RodParameters, state: Equilibrium, exact: bool = True) -> n
     return _exact_jacobian(params, state)
 
 
-_EYE3 = np.eye(3)
 _SKEW_BASIS = np.array([[[0, 0, 0], [0, 0, -1], [0, 1, 0]],
                         [[0, 0, 1], [0, 0, 0], [-1, 0, 0]],
                         [[0, -1, 0], [1, 0, 0], [0, 0, 0]]], dtype=float)
