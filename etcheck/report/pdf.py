@@ -16,11 +16,14 @@ from __future__ import annotations
 import contextlib
 import io
 import struct
+import threading
 from collections.abc import Iterator
 
 from etcheck.errors import ReportError
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+#: one report typeset at a time while WeasyPrint's method is replaced (threads would restore each other's)
+_TYPESETTING = threading.Lock()
 
 
 def render_pdf(html: str) -> bytes:
@@ -36,7 +39,7 @@ def render_pdf(html: str) -> bytes:
             f"the PDF engine (WeasyPrint) cannot load: {exc}. Install the Pango library "
             "(Debian: apt-get install libpango-1.0-0 libpangoft2-1.0-0) or run with --format html,json"
         ) from None
-    with _figures_as_drawn():
+    with _TYPESETTING, _figures_as_drawn():
         return weasyprint.HTML(string=html).write_pdf()
 
 

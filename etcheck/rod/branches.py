@@ -610,7 +610,8 @@ def connecting_branch(branch: Branch, bp: RodBranchPoint | None = None, ds: floa
     leaves along the kernel of the Jacobian restricted to the -1 eigenspace of
     the branch's symmetry (a pure symmetry-breaking direction, parameter
     tangent 0); ``sign`` picks one of the mirror pair: +1 the one along which
-    measure_2 grows from the branch point, -1 its mirror image. Stops when measure_1 drops below ``min_measure1`` (at omega = T = 0
+    measure_2 grows from the branch point, -1 its mirror image. Stops when
+    measure_1 drops below ``min_measure1`` (at omega = T = 0
     the branch heads into the degenerate pitchfork of the straight rod, where
     the full Jacobian becomes doubly singular), when it leaves ``stop``, or,
     with ``stop_at_bp``, at the first branch point it meets: with spin, b12
