@@ -60,9 +60,9 @@ from etcheck.scaling import Scales
 #: arc-length samples of a drawn shape
 SHAPE_POINTS = 121
 #: relative cost per state of a primary branch (SET at omega = 0.25, one core): its record with the eigenvalue
-#: paths (0.11 s), without them (0.02 s), and the continuation of the connecting branch that leaves it (about
-#: twice its points at 0.055 s each, and the branch point where it ends: 0.14 s)
-COST = {"paths": 1.0, "record": 0.2, "continue": 1.3}
+#: paths (0.11 s), without them (0.008 s), its stability (0.015 s), and the continuation of the connecting branch
+#: that leaves it (about twice its points at 0.055 s each, and the branch point where it ends: 0.14 s)
+COST = {"paths": 1.0, "record": 0.07, "stability": 0.13, "connect": 1.3}
 #: seconds, SET at omega = 0.25, one core: a lift-off spin, a class's restricted pencil and loads, and the
 #: start and continuation of one primary branch
 COST_START = {"liftoff": 0.6, "class": 0.3, "primary": 0.6}
@@ -252,8 +252,9 @@ def _shape(state: eq.Equilibrium, L: float) -> Shape:
 
 
 def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float,
-                 check: ResolutionCheck | None = None) -> BranchRecord:
-    """The record of a branch (``check``: its resolution check, when already made)."""
+                 check: ResolutionCheck | None = None, stability: bool = True) -> BranchRecord:
+    """The record of a branch (``check``: its resolution check, when already made; ``stability=False``: without
+    its stability, which :func:`_with_stability` adds)."""
     L = scales.length
     t0 = time.perf_counter()
     check = resolution_check(branch) if check is None else check
@@ -272,8 +273,9 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
         ],
     }
     if options.stability:
-        stable, growth, errs = branch_stability(branch, gamma)
-        out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
+        if stability:
+            stable, growth, errs = branch_stability(branch, gamma)
+            out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
         if options.with_paths(label):
             out["eigenvalue_paths"] = eigenvalue_paths(branch, gamma)
     shapes = {}
@@ -286,6 +288,39 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
                                                     "measure1": float(branch.measure1[-1])}
     out["shapes"] = shapes
     out["check_time"] = time.perf_counter() - t0
+    return out
+
+
+def _second_step(attached: list[_Primary], options: DiagramOptions) -> list[tuple[str, str]]:
+    """The items of a diagram's second step, in the order of its records: per primary branch its record ("paths"
+    when its eigenvalue paths are drawn, else "record"), its "stability", and the "connect"ing branch that leaves
+    its secondary pitchfork (S1 branches)."""
+    jobs = []
+    for a in attached:
+        jobs.append((a.label, "paths" if options.with_paths(a.label) else "record"))
+        if options.stability:
+            jobs.append((a.label, "stability"))
+        if options.connect and a.which == "S1" and any(q.kind == "break" for q in a.branch.special):
+            jobs.append((a.label, "connect"))
+    return jobs
+
+
+def _stability(branch: Branch, gamma: float) -> tuple[dict, float]:
+    """The stability entries of a branch's record (:func:`~etcheck.checks.coil.branch_stability`) and the seconds
+    they took."""
+    t0 = time.perf_counter()
+    stable, growth, errs = branch_stability(branch, gamma)
+    return {"stable": stable, "max_growth": growth, "growth_error": errs}, time.perf_counter() - t0
+
+
+def _with_stability(record: BranchRecord, stability: tuple[dict, float]) -> BranchRecord:
+    """A record made with ``stability=False`` and its branch's :func:`_stability`: the same record, in the same
+    order, as one made in one go."""
+    entries, spent = stability
+    i = min(list(record).index(k) for k in ("eigenvalue_paths", "shapes") if k in record)  # where they stand
+    items = list(record.items())
+    out = dict(items[:i]) | entries | dict(items[i:])
+    out["check_time"] = record["check_time"] + spent
     return out
 
 
@@ -315,35 +350,40 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
     def primary_record(lab: str) -> BranchRecord:
         a = info[lab]
         B_pf, B_pf_error = a.load
-        return _branch_data(a.branch, lab, scales, options, params.gamma) | {
+        return _branch_data(a.branch, lab, scales, options, params.gamma, stability=False) | {
             "pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
             "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": a.which,
             "liftoff_omega": _finite(a.liftoff.omega), "liftoff_omega_error": _finite(a.liftoff.error)}
 
-    def first(job) -> BranchRecord | tuple[Branch, ResolutionCheck]:
-        """A primary branch's record, or the continuation of the connecting branch that leaves it (and its
-        resolution check: serial work, done where the branch is)."""
-        lab, connect = job
-        if connect:
+    def first(job):
+        """A primary branch's record without its stability, or that stability (the spectra of its probe states),
+        or the continuation of the connecting branch that leaves it (and its resolution check: serial work, done
+        where the branch is)."""
+        lab, kind = job
+        if kind == "connect":
             con = connecting_branch(kept[lab], stop=(0.0, B_max), max_points=options.max_points)
             return con, resolution_check(con)
+        if kind == "stability":
+            return _stability(kept[lab], params.gamma)
         return primary_record(lab)
 
-    jobs = []
-    for a in attached:
-        jobs.append((a.label, False))
-        if options.connect and a.which == "S1" and any(q.kind == "break" for q in a.branch.special):
-            jobs.append((a.label, True))
-    # On two cores in two steps (each the same records as one by one): the primary branches' records beside the
-    # connecting branches' continuations, balanced by their expected cost (COST, per state of the parent branch);
-    # then each connecting branch's record, whose states' spectra are independent (split over both cores)
-    weights = [len(kept[lab].states) * (COST["continue"] if connect else COST["paths"] if options.with_paths(lab)
-                                        else COST["record"]) for lab, connect in jobs]
-    firsts = split_map(first, jobs, weights=weights)
-    out_branches = [
-        _branch_data(done[0], f"b{int(lab[1:])}{int(lab[1:]) + 1}", scales, options, params.gamma, done[1])
-        | {"symmetry": None, "from": lab} if connect else done
-        for (lab, connect), done in zip(jobs, firsts)]
+    jobs = _second_step(attached, options)
+    # On two cores in two steps (each the same records as one by one): the primary branches' records and, as items
+    # of their own, their stability, beside the connecting branches' continuations, balanced by their expected
+    # cost (COST, per state of the parent branch: the last items to finish are small); then each connecting
+    # branch's record, whose states' spectra are independent (split over both cores)
+    weights = [len(kept[lab].states) * COST[kind] for lab, kind in jobs]
+    firsts = dict(zip(jobs, split_map(first, jobs, weights=weights)))
+
+    def record(lab: str, kind: str) -> BranchRecord:
+        done = firsts[(lab, kind)]
+        if kind == "connect":
+            return _branch_data(done[0], f"b{int(lab[1:])}{int(lab[1:]) + 1}", scales, options, params.gamma,
+                                done[1]) | {"symmetry": None, "from": lab}
+        stability = firsts.get((lab, "stability"))
+        return done if stability is None else _with_stability(done, stability)
+
+    out_branches = [record(lab, kind) for lab, kind in jobs if kind != "stability"]
     if not out_branches and not lifted:
         raise SolverError("rung 2: no branch was found")
     return {
