@@ -1,5 +1,3 @@
-import sys
+from etcheck.cli.main import run
 
-from etcheck.cli.main import main
-
-sys.exit(main())
+run()

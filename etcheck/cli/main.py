@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import os
 import sys
 
 from etcheck import __version__
@@ -43,3 +45,25 @@ def main(argv: list[str] | None = None) -> int:
         p.print_help()
         return 2
     return args.run(args, args.parser)
+
+
+def run() -> None:
+    """The ``etcheck`` command (and ``python -m etcheck``): :func:`main`, then the process ends at once.
+
+    Everything is written by then (reports atomically and synced, the report process and any helpers joined);
+    what is left is the interpreter's teardown of ~640 modules and their objects, ~0.1 s of a cold
+    ``--format json`` run (measured: median 1.69 -> 1.54 s over 8 interleaved runs). Output is flushed first; a
+    reader that went away (a closed pipe) ends it with 141, as the shell reports a command stopped by SIGPIPE.
+    """
+    try:
+        code = main()
+    except SystemExit as exc:  # argparse: a usage error (2), --help or --version (0)
+        if not isinstance(exc.code, int | None):
+            raise
+        code = exc.code or 0
+    except BrokenPipeError:  # the reader went away (`etcheck ... | head`): the shell's code for SIGPIPE, no traceback
+        code = 128 + 13
+    for stream in (sys.stdout, sys.stderr):
+        with contextlib.suppress(OSError, ValueError):  # a closed pipe: nothing more to say
+            stream.flush()
+    os._exit(code)
