@@ -274,8 +274,7 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     }
     if options.stability:
         if stability:
-            stable, growth, errs = branch_stability(branch, gamma)
-            out |= {"stable": stable, "max_growth": growth, "growth_error": errs}
+            out |= _stability(branch, gamma)[0]
         if options.with_paths(label):
             out["eigenvalue_paths"] = eigenvalue_paths(branch, gamma)
     shapes = {}

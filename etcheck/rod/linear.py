@@ -205,8 +205,8 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
     nz = [np.any(C != 0.0, axis=0) if C is not None else np.zeros((NFIELDS, NFIELDS), dtype=bool) for C in (E, G)]
     e, v = np.nonzero(nz[0] | nz[1])
     if e.size:  # all pairs at once: (pairs, N) coefficients times the (N, N+1) matrices
-        ce = np.where(nz[0][e, v], E[:, e, v], 0.0).T if E is not None else np.zeros((e.size, N))
-        cg = np.where(nz[1][e, v], G[:, e, v], 0.0).T if G is not None else np.zeros((e.size, N))
+        ce = E[:, e, v].T if E is not None else np.zeros((e.size, N))
+        cg = G[:, e, v].T if G is not None else np.zeros((e.size, N))
         ode[e, :, v, :] = ce[:, :, None] * col.PD - cg[:, :, None] * col.P
     return out
 
