@@ -66,7 +66,7 @@ from functools import lru_cache
 import numpy as np
 
 from ..numerics.blas import single_blas_thread
-from ..numerics.optimize import brentq, find_root, minimize_scalar
+from ..numerics.optimize import bracketed_roots, brentq, find_root, minimize_scalar
 from ..numerics.parallel import can_split, split_map
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur, _smoothing
@@ -506,8 +506,8 @@ class _Line:
             x = self.mu[i]
             top = self.E(ps, np.full(ps.size, x))
             top[0], top[-1] = a.top[k], b.top[k]
-            flips = np.nonzero(np.sign(top[:-1]) * np.sign(top[1:]) < 0)[0]
-            change += sum(self._through_cut(ps[j], ps[j + 1], x, side) for j in flips)
+            j = np.nonzero(np.sign(top[:-1]) * np.sign(top[1:]) < 0)[0]
+            change += int(np.sum(self._through_cut(ps[j], ps[j + 1], x, side)))
         return change
 
     def cut_crossings(self, smp: list[_Sample]) -> np.ndarray:
@@ -519,19 +519,26 @@ class _Line:
             top = self.E(ps.ravel(), np.full(ps.size, x)).reshape(ps.shape)
             top[:, 0] = [a.top[k] for a in smp[:-1]]
             top[:, -1] = [b.top[k] for b in smp[1:]]
-            for r, j in zip(*np.nonzero(np.sign(top[:, :-1]) * np.sign(top[:, 1:]) < 0)):
-                out[r] += self._through_cut(ps[r, j], ps[r, j + 1], x, side)
+            r, j = np.nonzero(np.sign(top[:, :-1]) * np.sign(top[:, 1:]) < 0)
+            np.add.at(out, r, self._through_cut(ps[r, j], ps[r, j + 1], x, side))
         return out
 
-    def _through_cut(self, pa: float, pb: float, x: float, side: int) -> int:
-        """+1 if the root of E at the cut x between pa and pb enters the counted side as p goes from pa to pb,
-        else -1 (side +1: counted below x, -1: above)."""
-        pc = brentq(lambda p: self.E(p, x).item(), pa, pb, xtol=1e-12 * max(abs(pa), abs(pb)))
-        hp = 1e-6 * max(abs(pb - pa), 1e-12)
+    def _through_cut(self, pa: np.ndarray, pb: np.ndarray, x: float, side: int) -> np.ndarray:
+        """For each root of E at the cut x between pa and pb (arrays): +1 if it enters the counted side as p goes
+        from pa to pb, else -1 (side +1: counted below x, -1: above). All roots at once
+        (:func:`~etcheck.numerics.optimize.bracketed_roots`, one evaluation of E per pass for all), then the
+        sign of dmu/dp = -E_p / E_mu there by central differences."""
+        if pa.size == 0:
+            return np.zeros(0, dtype=int)
+        n = pa.size
+        at = np.full(n, x)
+        pc = bracketed_roots(lambda p: self.E(p, at), np.minimum(pa, pb), np.maximum(pa, pb))
+        hp = 1e-6 * np.maximum(np.abs(pb - pa), 1e-12)
         hm = 1e-6 * abs(x)
-        e = self.E(np.array([pc - hp, pc + hp, pc, pc]), np.array([x, x, x - hm, x + hm]))
+        e = self.E(np.concatenate([pc - hp, pc + hp, pc, pc]),
+                   np.concatenate([at, at, at - hm, at + hm])).reshape(4, n)
         dx_dp = -((e[1] - e[0]) / (2 * hp)) / ((e[3] - e[2]) / (2 * hm))
-        return -1 if dx_dp * np.sign(pb - pa) * side > 0 else 1
+        return np.where(dx_dp * np.sign(pb - pa) * side > 0, -1, 1)
 
     # --- a fold of the real roots: flutter ----------------------------------------------------
 

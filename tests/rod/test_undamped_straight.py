@@ -192,6 +192,31 @@ def test_complex_pairs_at_a_point_as_along_the_located_line(B, omega):
     assert (pairs > 0 or real) == line.unstable_at(omega)
 
 
+def test_roots_through_the_cut_all_at_once_as_one_by_one():
+    """The roots that pass a line's cut (the unloaded long tether spun up: 7 sign changes of E at the cut, roots
+    entering and leaving) get, all located together, the directions that a scalar Brent root and central
+    differences give each on its own."""
+    from scipy.optimize import brentq
+
+    from etcheck.rod.undamped_straight import _Line
+
+    line = _Line(RodParameters(P=2e-6, R=0.55, Gamma=0.77, f=500.0), "omega", 0.0, 1000.0)
+    x = line.mu_cut
+    ps = np.linspace(0.0, 1000.0, 97)
+    top = line.E(ps, np.full(ps.size, x))
+    j = np.nonzero(np.sign(top[:-1]) * np.sign(top[1:]) < 0)[0]
+
+    def one(pa: float, pb: float) -> int:
+        pc = brentq(lambda q: line.E(q, x).item(), pa, pb, xtol=1e-12 * max(abs(pa), abs(pb)))
+        hp, hm = 1e-6 * abs(pb - pa), 1e-6 * abs(x)
+        e = line.E(np.array([pc - hp, pc + hp, pc, pc]), np.array([x, x, x - hm, x + hm]))
+        return -1 if -((e[1] - e[0]) / hp) / ((e[3] - e[2]) / hm) > 0 else 1
+
+    expected = [one(ps[i], ps[i + 1]) for i in j]
+    assert j.size >= 5 and {-1, 1} <= set(expected)
+    assert line._through_cut(ps[j], ps[j + 1], x, 1).tolist() == expected
+    assert line._through_cut(ps[j + 1][::-1], ps[j][::-1], x, -1).tolist() == expected[::-1]  # backwards, above
+
 def test_taut_scene_whose_unloaded_spin_line_spent_the_schur_budget():
     """Regression (random taut undamped scene, R = 0.5): anchoring the load line by locating every change on the
     unloaded rod's spin line sent 33 points past the Schur route's budget; the critical load is the first
