@@ -1112,7 +1112,9 @@ def _spin_line(p: RodParameters, spin_hi: float, windows: bool) -> tuple[Stabili
     """The spin line at the operating load from 0 to spin_hi (unstable from the start, not followed, when the
     rod has a real pair at rest and no windows are asked); (None, why) without spin where it cannot be drawn."""
     at_rest = p.with_(B=0.0, omega=0.0)  # stable at rest iff B is below its first static load (T >= 0)
-    if not windows and (p.B >= _ex.exact_root(at_rest, "B").value or has_real_pair(p.with_(omega=0.0))):  # a real pair
+    # below it, without compression, the stiffness is positive definite at rest: no real pair there (for real
+    # lambda and real q, q^T (lambda^2 M + lambda G + K) q = lambda^2 q^T M q + q^T K q > 0)
+    if not windows and (p.B >= _ex.exact_root(at_rest, "B").value or (p.T < 0 and has_real_pair(p.with_(omega=0.0)))):
         return StabilityLine("omega", 0.0, 0.0, True, (), (), 0, 0), ""
     try:
         return stability_line(p, "omega", 0.0, spin_hi, samples=64 if windows else 25), ""
@@ -1148,5 +1150,8 @@ def has_real_pair(params: RodParameters, n: int = 64) -> bool:
         return False
     mu_lo = _rayleigh_floor(params, params.B, params.omega, params.T)
     mu = -np.linspace(math.sqrt(-mu_lo), 0.0, n + 1) ** 2
-    E = characteristic_mu(params, mu)
+    ends = characteristic_mu(params, mu[[0, -1]])
+    if np.sign(ends[0]) * np.sign(ends[1]) < 0:  # an odd number of roots between: the scan would see a change
+        return True
+    E = np.concatenate([ends[:1], characteristic_mu(params, mu[1:-1]), ends[1:]])
     return bool(np.any(np.sign(E[:-1]) * np.sign(E[1:]) < 0))

@@ -140,6 +140,19 @@ def test_a_taut_rod_spun_slowly_has_no_spurious_real_pairs():
         assert not has_real_pair(p.with_(omega=omega))
 
 
+@pytest.mark.parametrize("R,T", [(21 / 38, 0.0), (0.2, 30.0), (0.9, 0.0), (0.5, 300.0)])
+def test_real_pairs_only_past_the_first_static_load_at_rest(R, T):
+    """Without spin and compression the stiffness is positive definite below the first static load: no real pair
+    (the spin line of a sweep point relies on it and does not look); just past it without tension a root mu < 0
+    (under tension the roots past it can come as a close pair that the 64-point scan need not see)."""
+    from etcheck.rod.exact_straight import exact_root
+
+    p = RodParameters(P=1e-3, R=R, Gamma=0.76923, T=T)
+    static = exact_root(p, "B").value
+    assert not any(has_real_pair(p.with_(B=s * static)) for s in (0.2, 0.6, 0.97, 0.999))
+    assert T > 0 or has_real_pair(p.with_(B=1.01 * static))
+
+
 def test_without_spin_the_critical_load_is_the_first_chi_root():
     u = undamped_critical(RodParameters(**SET, B=0.1), windows=False)
     assert u.critical_load.value == pytest.approx(critical_loads(SET["R"], RodParameters(**SET).f, 1)[0], rel=1e-9)
