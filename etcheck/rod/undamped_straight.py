@@ -444,7 +444,7 @@ class _Line:
             aE = np.abs(E)
             dips = np.nonzero((si[:-2] == si[1:-1]) & (si[1:-1] == si[2:]) & (aE[1:-1] < aE[:-2])
                               & (aE[1:-1] < aE[2:]))[0] + 1
-            cand += [(i, mu[j - 1], mu[j + 1], si[j], max(aE[j - 1], aE[j + 1]), 1.0) for j in dips]
+            cand += [(i, mu[j - 1], mu[j + 1], si[j], max(aE[j - 1], aE[j + 1]), 1.0, E[j - 1], E[j + 1]) for j in dips]
         for i, pair in self._close_pairs(ps, cand):
             roots[i] += pair
         out = []
@@ -460,7 +460,8 @@ class _Line:
         """Close pairs of roots at the dips of |E| between grid points: each dip is zoomed in
         (9 points, 8 levels, all dips in one evaluation per level) until E changes sign (two
         roots), the dip clearly stays off zero (parabola through its three lowest points), or it
-        touches zero (a double root)."""
+        touches zero (a double root). ``cand``: (row, ends of the dip, sign of E there, scale of E, last
+        parabola's minimum over the lowest sample, E at the ends): E is evaluated only inside."""
         found = []
         t = np.linspace(0.0, 1.0, 9)
         for level in range(8):
@@ -469,7 +470,9 @@ class _Line:
             a = np.array([c[1] for c in cand])
             b = np.array([c[2] for c in cand])
             x = a[:, None] + (b - a)[:, None] * t[None, :]
-            E = self.E(np.array([ps[c[0]] for c in cand])[:, None], x)
+            x[:, -1] = b
+            inner = self.E(np.array([ps[c[0]] for c in cand])[:, None], x[:, 1:-1])
+            E = np.column_stack([[c[6] for c in cand], inner, [c[7] for c in cand]])
             nxt = []
             for c, xi, Ei in zip(cand, x, E):
                 i, sg, size = c[0], c[3], c[4]
@@ -486,7 +489,7 @@ class _Line:
                 if abs(Ei[m]) <= 1e3 * _EPS * size:
                     found.append((i, [xi[m], xi[m]]))  # touching to rounding: a double root
                 elif low < 0.5 * e1 or level < 2:  # the parabola is rough on the first levels
-                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, low / e1))
+                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, low / e1, Ei[m - 1], Ei[m + 1]))
             cand = nxt
         # after 8 levels (4^8 finer) the parabola through the lowest samples still has its minimum at zero
         # or below it: E falls like the square of the distance, a double root or a pair closer than the
@@ -940,16 +943,9 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
         return _isotropic(p, tol, windows, spin)
     if not spin and p.B > 0:
         return _load_only(p, tol)
-    first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
-    short = max(1.02 * first[0] if first.size else 2.0, 1e-3)  # stable at rest: unstable past the first static spin
-    spin_hi = short
-    if windows or p.R == 1.0:  # R = 1: the static points are double, a root mu touches 0 and comes back
-        spin_hi = _spin_hi(first)
-        if windows and p.R != 1.0 and _Line(p, "omega", 0.0, spin_hi).mu.size > MAX_GRID:
-            spin_hi = short  # windows past the first static spin would cost too many samples: not sought
     # the spin line and what the load line needs are independent: on two cores a forked helper follows the load
     # line meanwhile (pure work; in a sweep worker or on one core only where it is needed, after the spin line)
-    jobs = [lambda: _spin_line(p, spin_hi, windows), lambda: _load_part(p)]
+    jobs = [lambda: _spin_line(p, _spin_end(p, windows), windows), lambda: _load_part(p)]
     (spin_line, why), *ahead = split_map(lambda job: job(), jobs) if can_split() else [jobs[0]()]
     if spin_line is None:  # no spin: the load decides (self-adjoint); the critical spin is not answered
         return _without_spin(p, tol, why)
@@ -969,6 +965,18 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     load_line, spent = followed
     return UndampedCritical(_point(load_line, tol), _point(spin_line, tol), spin_line.windows, spin_line.hi, stable,
                             evaluations + spent)
+
+
+def _spin_end(p: RodParameters, windows: bool) -> float:
+    """End of the spin line at the operating load (R < 1): just past the first static spin, or with ``windows``
+    as far as :func:`_spin_hi` unless that would cost more than :data:`MAX_GRID` samples per point."""
+    first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
+    short = max(1.02 * first[0] if first.size else 2.0, 1e-3)  # stable at rest: unstable past the first static spin
+    if not windows:
+        return short
+    spin_hi = _spin_hi(first)
+    # windows past the first static spin would cost too many samples: not sought
+    return short if _Line(p, "omega", 0.0, spin_hi).mu.size > MAX_GRID else spin_hi
 
 
 def _operating_stable(p: RodParameters, spin_line: StabilityLine) -> tuple[bool, int]:
