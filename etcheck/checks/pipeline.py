@@ -7,6 +7,7 @@ JSON-able data; reports are rendered from those alone (see :mod:`etcheck.report`
 from __future__ import annotations
 
 import time
+from contextlib import nullcontext
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import cast
@@ -36,6 +37,7 @@ from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, linear_stability
 from etcheck.checks.validity import validity
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
+from etcheck.numerics.parallel import ahead
 from etcheck.rod.stability import CriticalKind
 from etcheck.scaling import Scaled, Scene, scale, scene
 
@@ -81,9 +83,13 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=())
     if chosen.rung == 1 and chosen.complete:
-        linear = linear_stability(scaled, options, chosen.route)
-        # the spectral accuracy table says nothing about the exact determinant (no resolution to trade)
-        accuracy_rows = accuracy(scaled, options.accuracy_N) if options.accuracy_N and chosen.route != EXACT else None
+        # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
+        # nothing from the rest, so a helper computes it meanwhile (SET: the check 0.74 -> 0.58 s)
+        table = bool(options.accuracy_N) and chosen.route != EXACT
+        beside = ahead(lambda: accuracy(scaled, options.accuracy_N)) if table else nullcontext(lambda: None)
+        with beside as accuracy_later:
+            linear = linear_stability(scaled, options, chosen.route)
+            accuracy_rows = accuracy_later()
     margins = straight_margins(mission, sc, scaled, chosen, static, linear)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
     if post and post.get("computed"):

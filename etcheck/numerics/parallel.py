@@ -26,7 +26,7 @@ import threading
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
-__all__ = ["split_map", "serial_here", "serial", "can_split"]
+__all__ = ["split_map", "ahead", "serial_here", "serial", "can_split"]
 
 _SERIAL = False
 
@@ -115,6 +115,60 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
     theirs = pickle.loads(data) if status == 0 and data else {}
     # what the helper took but did not deliver (it failed) is computed here
     return [mine[i] if i in mine else theirs[i] if i in theirs else fn(items[i]) for i in range(len(items))]
+
+
+@contextlib.contextmanager
+def ahead(fn: Callable[[], Any]) -> Iterator[Callable[[], Any]]:
+    """Start ``fn()`` in a forked helper now (where :func:`can_split`) and go on here; the block gets a function
+    that returns its result, waiting for the helper. Where no helper could start, or it failed, ``fn()`` runs here
+    when the result is asked (an error is then raised here). A helper whose result was not asked when the block
+    ends is stopped. For independent work that would otherwise wait for this process's next free moment: the
+    check's accuracy table beside its spectra."""
+    if not can_split():
+        yield fn
+        return
+    read, write = os.pipe()
+    try:
+        pid = os.fork()
+    except OSError:  # no process to spare: here, when asked
+        for fd in (read, write):
+            os.close(fd)
+        yield fn
+        return
+    if pid == 0:  # the helper: compute, send, leave without any clean-up of the parent's state
+        code = 1
+        try:
+            os.close(read)
+            serial_here()
+            out = fn()
+            with os.fdopen(write, "wb") as fh:
+                pickle.dump(out, fh, protocol=pickle.HIGHEST_PROTOCOL)
+            code = 0
+        finally:
+            os._exit(code)
+    os.close(write)
+    got: list = []
+    reaped = [False]
+
+    def result() -> Any:
+        if not got and not reaped[0]:
+            with os.fdopen(os.dup(read), "rb") as fh:
+                data = fh.read()
+            _, status = os.waitpid(pid, 0)
+            reaped[0] = True
+            if status == 0 and data:
+                got.append(pickle.loads(data))
+        if not got:  # the helper failed: here
+            got.append(fn())
+        return got[0]
+
+    try:
+        yield result
+    finally:
+        if not reaped[0]:  # not asked (an error here): the helper's work is not needed
+            os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+        os.close(read)
 
 
 class _Queue:

@@ -133,3 +133,48 @@ def test_no_process_to_spare_means_one_by_one(monkeypatch):
     monkeypatch.setattr(os, "fork", no_fork)
     out = split_map(_square_and_pid, range(5))
     assert out == [(x * x, os.getpid()) for x in range(5)]
+
+
+# --- ahead: one independent piece of work in a helper while this process goes on --------------------------
+
+
+@forks
+def test_ahead_computes_in_a_helper_while_this_process_goes_on():
+    t0 = time.perf_counter()
+    with parallel.ahead(lambda: _sleep_and_pid(0.5)) as later:
+        here = _sleep_and_pid(0.5)
+        there = later()
+    assert here == os.getpid() != there
+    assert time.perf_counter() - t0 < 0.9  # side by side, not one after the other
+    assert later() == there  # asked again: the same result, no second run
+
+
+def test_ahead_without_a_helper_computes_here_when_asked(monkeypatch):
+    monkeypatch.setattr(parallel, "_SERIAL", True)
+    calls = []
+    with parallel.ahead(lambda: calls.append(os.getpid()) or 7) as later:
+        assert calls == []  # nothing yet
+        assert later() == 7
+    assert calls == [os.getpid()]
+
+
+def _fails_in_a_helper(parent):
+    if os.getpid() != parent:
+        raise RuntimeError("helper fails")
+    return "here"
+
+
+@forks
+def test_ahead_whose_helper_failed_computes_here():
+    me = os.getpid()
+    with parallel.ahead(lambda: _fails_in_a_helper(me)) as later:
+        assert later() == "here"
+
+
+@forks
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="children listed by /proc (Linux)")
+def test_ahead_not_asked_leaves_no_helper_behind():
+    before = _children()
+    with pytest.raises(ValueError, match="error here"), parallel.ahead(lambda: _sleep_and_pid(30)):
+        raise ValueError("error here")
+    assert _children() <= before  # killed and reaped
