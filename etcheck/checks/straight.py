@@ -46,7 +46,11 @@ class WhirlOptions:
     ``map_points``: grid of the stability map per axis; ``row_points``: spins
     at which the damped map is cut exactly at its static points; ``campbell_points``:
     spin values of the Campbell diagram; ``accuracy_N``: resolutions of the
-    accuracy table (empty: skip it); ``draft``: critical values and verdict only.
+    accuracy table (empty: skip it); ``accuracy_beside``: the table computed by a
+    forked helper while the spectra are computed here (where a core is free: its
+    solves are timed, and read up to twice as long beside other work, such as
+    the CLI's report process loading the report stack); ``draft``: critical
+    values and verdict only.
     """
 
     tol: float = 1e-10
@@ -57,6 +61,7 @@ class WhirlOptions:
     row_points: int = 61
     campbell_points: int = 41
     accuracy_N: tuple[int, ...] = (8, 12, 16, 24, 32)
+    accuracy_beside: bool = True
     draft: bool = False
 
     def __post_init__(self) -> None:

@@ -33,7 +33,9 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
     def action(render):
         from etcheck.checks.pipeline import check
+        from etcheck.checks.straight import DEFAULT_OPTIONS
         from etcheck.input.mission import load_mission
+        from etcheck.report import render as in_process
         from etcheck.report import write_reports
 
         mission = load_mission(args.mission)
@@ -41,7 +43,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             mission = replace(mission, fidelity="draft")
         if sys.stderr.isatty():
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
-        result = check(mission)
+        # while a report process loads the report stack, the accuracy table's timed solves run after the rest
+        result = check(mission, replace(DEFAULT_OPTIONS, accuracy_beside=render is in_process))
         if mission.uncertainty is not None:  # the [uncertainty] table: sensitivities and probabilities (issue 15)
             from etcheck.studies.uncertainty import attach
 

@@ -154,3 +154,23 @@ def test_unconverged_critical_value_carries_its_error_or_is_not_located(monkeypa
         assert load["verdict"] == "incomplete" and "was not located" in load["why"]
         assert results["linear"]["critical_load"]["value"] is None
         assert results["verdict"] in ("incomplete", "fail")
+
+
+@pytest.mark.parametrize("beside", [True, False])
+def test_the_accuracy_table_beside_the_spectra_or_after_them(monkeypatch, beside):
+    """With ``accuracy_beside`` the table goes to a helper (``ahead``) while the spectra are computed; without it
+    (the CLI while its report process loads the report stack: the table's solves are timed) it is computed here,
+    after the rest. The same table either way, times aside."""
+    from dataclasses import replace
+
+    import etcheck.checks.pipeline as pipeline
+
+    started = []
+    real = pipeline.ahead
+    monkeypatch.setattr(pipeline, "ahead", lambda fn: started.append(fn) or real(fn))
+    table = check(mission(spin="0.05 rpm"), replace(LIGHT, accuracy_beside=beside)).results["accuracy"]
+    assert len(started) == (1 if beside else 0)
+    assert [row["N"] for row in table] == [8, 12]
+    reference = check(mission(spin="0.05 rpm"), replace(LIGHT, accuracy_beside=not beside)).results["accuracy"]
+    for a, b in zip(table, reference):
+        assert (a["eigenvalue_error"], a["load_error"]) == (b["eigenvalue_error"], b["load_error"])
