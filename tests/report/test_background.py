@@ -111,7 +111,9 @@ print(theirs - want)
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="the report process is a fork (Linux)")
-@pytest.mark.parametrize("kind", ["diagram", "sweep", "damping", "check"])
+@pytest.mark.parametrize("kind", ["diagram", "check",  # every study kind takes the same branch as the diagram:
+                                  pytest.param("sweep", marks=pytest.mark.slow),
+                                  pytest.param("damping", marks=pytest.mark.slow)])
 def test_a_studys_report_process_takes_only_idle_cores(kind):
     """A study's report process at the lowest priority (nice 19), a check's at its parent's."""
     run = subprocess.run([sys.executable, "-c", NICENESS, kind], cwd=ROOT, capture_output=True, text=True, timeout=120)

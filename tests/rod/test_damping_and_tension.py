@@ -14,7 +14,7 @@ from etcheck.rod.stability import THRESHOLD, _family, critical_load
 from etcheck.rod.static_map import plane, stable_rows, static_curves
 
 
-@pytest.mark.parametrize("gamma", [0.2, 0.5, 2.0])
+@pytest.mark.parametrize("gamma", [0.2, pytest.param(0.5, marks=pytest.mark.slow), 2.0])  # 0.5: between the two
 def test_heavy_damping_spectrum_converges_outside_the_cluster(gamma):
     p = RodParameters(P=0.001, R=0.5, Gamma=0.77, omega=0.2, gamma=gamma)
     s = spectrum(p, k=6)
