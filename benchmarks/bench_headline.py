@@ -291,10 +291,39 @@ ROWS = (
 )
 
 
+def _reference_workload() -> float:
+    """Milliseconds of a fixed mix of the rows' kinds of work, best of 5: dense LU factors and solves at n = 396
+    (a branch state's operator at N = 32) and numpy on small arrays (the exact determinants). The same code
+    everywhere: it tells how fast this machine is in this hour, to read the rows against (the speed of a shared
+    machine drifts by 10-30 % within an hour, every row with it)."""
+    import numpy as np
+    import scipy.linalg as sla
+
+    rng = np.random.default_rng(0)
+    A, b, x = rng.standard_normal((396, 396)), rng.standard_normal(396), np.linspace(0.0, 1.0, 64)
+
+    def once() -> None:
+        for _ in range(20):
+            lu = sla.lu_factor(A, check_finite=False)
+            for _ in range(10):
+                sla.lu_solve(lu, b, check_finite=False)
+        for _ in range(3000):
+            np.sin(x) * x + 1.0
+
+    best = math.inf
+    for _ in range(5):
+        t0 = time.perf_counter()
+        once()
+        best = min(best, time.perf_counter() - t0)
+    return 1e3 * best
+
+
 def headline(quick: bool) -> None:
     _compile_bytecode()
     print(f"{len(os.sched_getaffinity(0))} cores, load average {os.getloadavg()[0]:.1f} at the start "
           "(times are wall times: on a busy machine they are longer); etcheck's bytecode compiled first")
+    print(f"this machine now: reference workload {_reference_workload():.1f} ms (fixed work, best of 5; lower is "
+          "faster: compare it between runs before comparing their rows)")
     print(f"{'issue 10, row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8}  note")
     for row in ROWS:
         if quick and row.slow:
