@@ -177,8 +177,15 @@ print(json.dumps({"wall": time.perf_counter() - t0,
 
 
 def _draft_check():
-    wall, out = _child(DRAFT, [], 0.05)
-    return (wall, None, out) if isinstance(out, str) else (out["wall"], out["error"], "first check in a fresh process")
+    """The first check of a fresh process, best of 3 processes (like the cold CLI rows: one sample of 30-50 ms
+    moves with whatever else the machine did in that instant)."""
+    best = None
+    for _ in range(3):
+        wall, out = _child(DRAFT, [], 0.05)
+        if isinstance(out, str):
+            return wall, None, out
+        best = out if best is None or out["wall"] < best["wall"] else best
+    return best["wall"], best["error"], "first check in a fresh process, best of 3"
 
 
 def _damped_root(axis: str):
