@@ -16,7 +16,17 @@ def pytest_configure(config):
 
 
 def pytest_sessionstart(session):
-    """Every test process reuses freed matrices as the CLI's does (etcheck.numerics.heap): the same numbers, sooner."""
+    """Every test process reuses freed matrices as the CLI's does (etcheck.numerics.heap): the same numbers, sooner.
+
+    The xdist workers are a pool that keeps every core busy: like a sweep's workers they fork no helpers
+    (etcheck.numerics.parallel.serial_here; the results are the same bytes either way). A helper forked from a
+    worker of several hundred MB only oversubscribed the cores and copied pages: the suite took 176 s with
+    them, 155 s without (measured back to back, fresh clone). The helpers are tested where they are the subject:
+    tests/numerics/test_parallel.py and the comparisons that switch them on (monkeypatch parallel._SERIAL)."""
     from etcheck.numerics.heap import keep_freed_memory
 
     keep_freed_memory()
+    if hasattr(session.config, "workerinput"):
+        from etcheck.numerics.parallel import serial_here
+
+        serial_here()

@@ -80,8 +80,10 @@ def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch
     cores a forked helper takes half of them; the same rows, in order, as one by one."""
     import etcheck.checks.straight as straight
     from etcheck.checks.straight import _exact_rows
+    from etcheck.numerics import parallel
     from etcheck.numerics.parallel import serial, split_map
 
+    monkeypatch.setattr(parallel, "_SERIAL", False)  # forks allowed (the suite's workers turn them off)
     shared_out = []
 
     def counted(fn, items):

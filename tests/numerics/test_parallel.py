@@ -8,7 +8,24 @@ import pytest
 from etcheck.numerics import parallel
 from etcheck.numerics.parallel import can_split, split_map
 
-forks = pytest.mark.skipif(not can_split(), reason="needs fork, two cores and a single thread")
+
+def _forkable() -> bool:
+    """can_split() with forking allowed (the suite's xdist workers turn it off: tests/conftest.py)."""
+    before = parallel._SERIAL
+    parallel._SERIAL = False
+    try:
+        return can_split()
+    finally:
+        parallel._SERIAL = before
+
+
+forks = pytest.mark.skipif(not _forkable(), reason="needs fork, two cores and a single thread")
+
+
+@pytest.fixture(autouse=True)
+def _forking_allowed(monkeypatch):
+    """These tests are about the forks: allowed here whatever the test process says."""
+    monkeypatch.setattr(parallel, "_SERIAL", False)
 
 
 def _square_and_pid(x):
