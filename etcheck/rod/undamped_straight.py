@@ -970,6 +970,10 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
 def _spin_end(p: RodParameters, windows: bool) -> float:
     """End of the spin line at the operating load (R < 1): just past the first static spin, or with ``windows``
     as far as :func:`_spin_hi` unless that would cost more than :data:`MAX_GRID` samples per point."""
+    if windows:  # most lines end at 2: then the line's own scan of its static spins tells (memoised for it)
+        near = _static_roots(p, "omega", 2.0)
+        if near.size >= 2 and 1.25 * near[1] <= 2.0 and _Line(p, "omega", 0.0, 2.0).mu.size <= MAX_GRID:
+            return 2.0
     first = _static_roots(p, "omega", max(8.0 * _ex._root_scale(p, "omega", 1.0), 4.0))
     short = max(1.02 * first[0] if first.size else 2.0, 1e-3)  # stable at rest: unstable past the first static spin
     if not windows:
