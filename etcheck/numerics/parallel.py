@@ -80,20 +80,16 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
             os.close(fd)
         queue.close()
         return [fn(x) for x in items]
-    if pid == 0:  # the helper: compute what it takes, send it, leave without any clean-up of the parent's state
-        code = 1
-        try:
-            os.close(read)
-            serial_here()
+    if pid == 0:  # the helper: compute what it takes and send it
+
+        def taken() -> dict:
             queue.forget()  # what this process took before the fork is its own
             out = {}
             while (i := queue.take()) is not None:
                 out[i] = fn(items[i])
-            with os.fdopen(write, "wb") as fh:
-                pickle.dump(out, fh, protocol=pickle.HIGHEST_PROTOCOL)
-            code = 0
-        finally:
-            os._exit(code)
+            return out
+
+        _be_the_helper(read, write, taken)
     os.close(write)
     mine = {}
     try:
@@ -135,17 +131,8 @@ def ahead(fn: Callable[[], Any]) -> Iterator[Callable[[], Any]]:
             os.close(fd)
         yield fn
         return
-    if pid == 0:  # the helper: compute, send, leave without any clean-up of the parent's state
-        code = 1
-        try:
-            os.close(read)
-            serial_here()
-            out = fn()
-            with os.fdopen(write, "wb") as fh:
-                pickle.dump(out, fh, protocol=pickle.HIGHEST_PROTOCOL)
-            code = 0
-        finally:
-            os._exit(code)
+    if pid == 0:
+        _be_the_helper(read, write, fn)
     os.close(write)
     got: list = []
     reaped = [False]
@@ -169,6 +156,21 @@ def ahead(fn: Callable[[], Any]) -> Iterator[Callable[[], Any]]:
             os.kill(pid, signal.SIGKILL)
             os.waitpid(pid, 0)
         os.close(read)
+
+
+def _be_the_helper(read: int, write: int, compute: Callable[[], Any]) -> None:
+    """In a forked helper: compute (without forking again), send the result through the pipe and leave without any
+    clean-up of the parent's state; exit status 1 where anything failed (the parent then computes it itself)."""
+    code = 1
+    try:
+        os.close(read)
+        serial_here()
+        out = compute()
+        with os.fdopen(write, "wb") as fh:
+            pickle.dump(out, fh, protocol=pickle.HIGHEST_PROTOCOL)
+        code = 0
+    finally:
+        os._exit(code)
 
 
 class _Queue:
