@@ -207,7 +207,8 @@ def stability_map_plot(results: dict) -> str:
     ax.legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.92)
     ax.set_xlabel("magnetic load I·B0 [N/m]")
     ax.set_ylabel("spin rate [rpm]")
-    ax.set_xlim(load[0], load[-1])
+    ax.ticklabel_format(style="sci", scilimits=(-3, 4), useMathText=True)  # a tape's 1e-4 N/m: "×10⁻⁴", not
+    ax.set_xlim(load[0], load[-1])  # eight-digit tick labels running into each other
     ax.set_ylim(rpm[0], rpm[-1])
     ax.set_title(f"Safe operating region of the straight tether (T = {results['scene']['tension_N']:.3g} N, "
                  f"γ = {results['scaled']['gamma']:.3g})", fontsize=9)
