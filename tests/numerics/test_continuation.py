@@ -71,3 +71,52 @@ def test_branch_point_off_the_fold_is_located_in_full(monkeypatch):
     bp = [q for q in res.special if q.kind == "bp"]
     assert len(bp) == 1 and bp[0].converged
     assert abs(bp[0].p - 0.09) < 1e-9  # p = u_1^2
+
+
+class _Circle:
+    """F(u, p) = |u|^2 + p^2 - 1 and u_2 = sin(u_1) p on R^2: a regular branch on which Newton converges
+    quadratically from any nearby predictor."""
+
+    def residual(self, u, p):
+        return np.array([u @ u + p * p - 1.0, u[1] - np.sin(u[0]) * p])
+
+    def jacobian(self, u, p):
+        return (np.array([[2 * u[0], 2 * u[1]], [-np.cos(u[0]) * p, 1.0]]),
+                np.array([2 * p, -np.sin(u[0])]))
+
+    def retract(self, u, du):
+        return u + du
+
+
+@pytest.mark.parametrize("ds", [0.02, 0.1, 0.3])
+def test_corrector_stops_when_quadratic_convergence_makes_the_next_update_negligible(ds, monkeypatch):
+    """The corrector's result lies within the tolerance of the point on the branch it converges to (reached with
+    the tolerance 1e-15), with the residual below the tolerance, after one Newton solve fewer than the plain
+    test (update below the tolerance) needs, and it reports the plain test's count to the step control."""
+    problem, tol = _Circle(), 1e-10
+    u0, p0 = np.array([0.6, np.sin(0.6) * 0.5]), 0.5
+    for _ in range(50):  # a point on the branch: p fixed, Newton in u
+        Ju, _ = problem.jacobian(u0, p0)
+        u0 = u0 - np.linalg.solve(Ju, problem.residual(u0, p0))
+    Ju, Jp = problem.jacobian(u0, p0)
+    tau = np.linalg.solve(np.vstack([np.c_[Ju, Jp], [0.0, 0.0, 1.0]]), [0.0, 0.0, 1.0])
+    tau /= np.linalg.norm(tau)
+    W = np.ones(3)
+    solves = []
+    solve = np.linalg.solve
+
+    def counted(A, b):
+        solves.append(1)
+        return solve(A, b)
+
+    monkeypatch.setattr(cont.np.linalg, "solve", counted)
+    u, p, rn, it, ok = cont.correct(problem, u0, p0, tau, ds, W, tol, 40)
+    quick = len(solves)
+    monkeypatch.setattr(cont, "_QUADRATIC", 0.0)  # the plain test only
+    u_ref, p_ref, _, _, ok_ref = cont.correct(problem, u0, p0, tau, ds, W, 1e-15, 40)
+    solves.clear()
+    _, _, _, it_plain, _ = cont.correct(problem, u0, p0, tau, ds, W, tol, 40)
+    plain = len(solves)
+    assert ok and ok_ref and rn < tol
+    assert np.max(np.abs(np.r_[u - u_ref, p - p_ref])) < tol
+    assert quick == plain - 1 and it == it_plain == plain
