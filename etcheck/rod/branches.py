@@ -179,18 +179,20 @@ def _components(A: np.ndarray) -> list[np.ndarray]:
 
 def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sparse.csc_array:
     """Orthonormal basis (columns) of ker(A - sign I) for A block diagonal on ``blocks``:
-    one small SVD per block (as scipy.linalg.null_space, rcond 1e-9; the blocks of one size gathered in one
-    indexing step), so the basis is as sparse as A's blocks (most are 1 x 1 or 2 x 2: the signed permutation
-    s -> 1 - s)."""
+    per block its kernel as scipy.linalg.null_space finds it (rcond 1e-9), so the basis is as sparse as A's
+    blocks. Most blocks are 2 x 2 (the signed permutation s -> 1 - s pairs the collocation points): their
+    kernels are written out, all at once (:func:`_kernels_2x2`); the few others by one small SVD each."""
     kernels: list = [None] * len(blocks)
     for size in sorted({b.size for b in blocks}):
         which = [i for i, b in enumerate(blocks) if b.size == size]
         idx = np.stack([blocks[i] for i in which])
-        # one block at a time (what scipy's batched svd does inside, where it has one: scipy >= 1.16)
-        for i, M in zip(which, A[idx[:, :, None], idx[:, None, :]] - sign * np.eye(size)):
-            _, sv, vh = sla.svd(M, lapack_driver="gesvd", check_finite=False)
-            rank = int(np.sum(sv > 1e-9 * sv.max(initial=0.0)))
-            kernels[i] = vh[rank:].T.conj()
+        Ms = A[idx[:, :, None], idx[:, None, :]] - sign * np.eye(size)
+        if size == 2:
+            for i, Z in zip(which, _kernels_2x2(Ms)):
+                kernels[i] = Z
+            continue
+        for i, M in zip(which, Ms):
+            kernels[i] = _kernel(M)
     rows, cols, vals, k = [], [], [], 0
     for idx, Z in zip(blocks, kernels):
         Z[np.abs(Z) < 1e-15] = 0.0
@@ -200,6 +202,38 @@ def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sparse.
         vals.append(Z[r, c])
         k += Z.shape[1]
     return sparse.csc_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(A.shape[0], k))
+
+
+def _kernel(M: np.ndarray) -> np.ndarray:
+    """Orthonormal basis (columns) of ker M: the right singular vectors of singular values at or below 1e-9 of
+    the largest (as scipy.linalg.null_space)."""
+    _, sv, vh = sla.svd(M, lapack_driver="gesvd", check_finite=False)
+    rank = int(np.sum(sv > 1e-9 * sv.max(initial=0.0)))
+    return vh[rank:].T.conj()
+
+
+def _kernels_2x2(Ms: np.ndarray) -> list[np.ndarray]:
+    """:func:`_kernel` of each 2 x 2 matrix of the stack Ms (m, 2, 2) at once: the singular values from the
+    Frobenius norm and the determinant (s_max^2 + s_min^2 = |M|_F^2, s_max s_min = |det M|); a matrix of rank 1
+    has the unit vector orthogonal to its larger row as its kernel, one of rank 2 none; the zero matrix (kernel:
+    the plane) by the SVD."""
+    fro2 = np.einsum("mij,mij->m", Ms, Ms)
+    det = Ms[:, 0, 0] * Ms[:, 1, 1] - Ms[:, 0, 1] * Ms[:, 1, 0]
+    s_max = np.sqrt(0.5 * (fro2 + np.sqrt(np.maximum(fro2**2 - 4.0 * det**2, 0.0))))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s_min = np.abs(det) / s_max
+    rows = np.where((np.abs(Ms[:, 0]).sum(axis=1) >= np.abs(Ms[:, 1]).sum(axis=1))[:, None], Ms[:, 0], Ms[:, 1])
+    v = np.stack([-rows[:, 1], rows[:, 0]], axis=1)
+    v /= np.linalg.norm(v, axis=1, keepdims=True).clip(min=1e-300)
+    out = []
+    for M, smax, smin, vk in zip(Ms, s_max, s_min, v):
+        if smax == 0.0:
+            out.append(_kernel(M))
+        elif smin > 1e-9 * smax:
+            out.append(np.zeros((2, 0)))
+        else:
+            out.append(vk[:, None])
+    return out
 
 
 @lru_cache(maxsize=16)

@@ -205,6 +205,30 @@ def test_involutions_and_equivariance(b1):
     assert np.max(np.abs(J @ bases.S - bases.S_row @ J)) < 1e-10 * np.max(np.abs(J))
 
 
+def test_symmetry_bases_are_orthonormal_eigenbases_and_the_2x2_kernels_are_the_svds():
+    for which in ("S1", "S2"):
+        b = br.symmetry_bases(SET, 16, which)
+        n = b.S.shape[0]
+        for V, L, sign in ((b.V_plus, b.L_plus, 1.0), (b.V_minus, b.L_minus, -1.0)):
+            V, L = V.toarray(), L.toarray()
+            assert np.allclose(V.T @ V, np.eye(V.shape[1]), atol=1e-14)
+            assert np.allclose(L @ L.T, np.eye(L.shape[0]), atol=1e-14)
+            assert np.max(np.abs(b.S @ V - sign * V)) < 1e-14
+            assert np.max(np.abs(L @ b.S_row - sign * L)) < 1e-12
+        assert b.V_plus.shape[1] + b.V_minus.shape[1] == n
+    # the written-out kernels of 2 x 2 blocks against the SVD's (up to sign): rank 1, rank 2, zero, near rank 1
+    rng = np.random.default_rng(3)
+    u, v = rng.normal(size=(40, 2)), rng.normal(size=(40, 2))
+    Ms = np.concatenate([np.einsum("mi,mj->mij", u, v), rng.normal(size=(40, 2, 2)), np.zeros((1, 2, 2)),
+                         np.einsum("mi,mj->mij", u, v) + 1e-12 * rng.normal(size=(40, 2, 2)),
+                         np.array([[[-1.0, 1.0], [1.0, -1.0]], [[1.0, 1.0], [1.0, 1.0]]])])
+    for M, Z in zip(Ms, br._kernels_2x2(Ms)):
+        ref = br._kernel(M)
+        assert Z.shape == ref.shape
+        if Z.shape[1] == 1:
+            assert abs(abs(float(Z[:, 0] @ ref[:, 0])) - 1.0) < 1e-12 and np.max(np.abs(M @ Z)) < 1e-9 * np.abs(M).max()
+
+
 # --- pitchforks of the straight rod --------------------------------------------------------
 
 
