@@ -216,9 +216,17 @@ def tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray,
 #: residuals 1e-14 - 1e-13 while the parameter wanders by 1e-7 - 1e-6 from one iteration to the next, up to the
 #: 40-iteration limit)
 _CALM = 4
-#: the quadratic-convergence exit of :func:`correct` is taken only for updates below this times sqrt(tol)
+#: the quadratic-convergence exit of :func:`correct` and :func:`correct_at` (:func:`_settled`) is taken only for updates below this times sqrt(tol)
 #: (the asymptotic regime; larger updates are followed to the plain test)
 _QUADRATIC = 10.0
+
+
+def _settled(step: float, last: float, tol: float) -> bool:
+    """Whether Newton converges quadratically enough that the update of size ``step`` just made (after one of
+    size ``last``) is the last one the plain test (an update below ``tol``) needs: the next update, ~ step^2 /
+    last^2 * step, below a tenth of the tolerance, and the update itself below _QUADRATIC sqrt(tol) (the
+    asymptotic regime)."""
+    return step < _QUADRATIC * math.sqrt(tol) and step < last and step**3 / last**2 < 0.1 * tol
 
 
 def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, tol: float, max_newton: int):
@@ -252,11 +260,9 @@ def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, 
         if step < tol and rn < 1e2 * tol:
             rn = float(np.max(np.abs(problem.residual(u, p))))
             return u, p, rn, it, rn < tol
-        if step < _QUADRATIC * math.sqrt(tol) and step < last and step**3 / last**2 < 0.1 * tol:
-            # converging quadratically (the next update ~ step^2 / last^2 * step, below a tenth of the tolerance):
-            # the update just made is the last one needed, and the residual at the result decides. The count
-            # returned is the one the plain test (update < tol) would have reached, one more: the step control
-            # (_next_step) reads the same numbers as before
+        if _settled(step, last, tol):
+            # the residual at the result decides; the count returned is the one the plain test (update < tol)
+            # would have reached, one more: the step control (_next_step) reads the same numbers as before
             rn = float(np.max(np.abs(problem.residual(u, p))))
             if rn < tol:
                 return u, p, rn, it + 1, True
@@ -271,7 +277,9 @@ def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, 
 
 
 def correct_at(problem, u, p: float, tol: float, max_newton: int):
-    """Newton at fixed parameter p (needs a regular Ju); returns like :func:`correct`."""
+    """Newton at fixed parameter p (needs a regular Ju); returns like :func:`correct` (with its quadratic exit,
+    :func:`_settled`)."""
+    last = math.inf
     for it in range(1, max_newton + 1):
         r = problem.residual(u, p)
         Ju, _ = problem.jacobian(u, p)
@@ -280,9 +288,15 @@ def correct_at(problem, u, p: float, tol: float, max_newton: int):
         except (np.linalg.LinAlgError, ValueError):
             return u, p, math.inf, it, False
         u = problem.retract(u, d)
-        if float(np.max(np.abs(d))) < tol:
+        step = float(np.max(np.abs(d)))
+        if step < tol:
             rn = float(np.max(np.abs(problem.residual(u, p))))
             return u, p, rn, it, rn < tol
+        if _settled(step, last, tol):
+            rn = float(np.max(np.abs(problem.residual(u, p))))
+            if rn < tol:
+                return u, p, rn, it + 1, True
+        last = step
     rn = float(np.max(np.abs(problem.residual(u, p))))
     return u, p, rn, max_newton, rn < tol
 

@@ -120,3 +120,24 @@ def test_corrector_stops_when_quadratic_convergence_makes_the_next_update_neglig
     assert ok and ok_ref and rn < tol
     assert np.max(np.abs(np.r_[u - u_ref, p - p_ref])) < tol
     assert quick == plain - 1 and it == it_plain == plain
+
+
+def test_newton_at_a_fixed_parameter_has_the_same_quadratic_exit(monkeypatch):
+    problem, tol, p = _Circle(), 1e-10, 0.5
+    solves = []
+    solve = np.linalg.solve
+
+    def counted(A, b):
+        solves.append(1)
+        return solve(A, b)
+
+    monkeypatch.setattr(cont.np.linalg, "solve", counted)
+    start = np.array([0.75, 0.2])
+    u, _, rn, it, ok = cont.correct_at(problem, start, p, tol, 20)
+    quick = len(solves)
+    u_ref, _, _, _, _ = cont.correct_at(problem, start, p, 1e-15, 20)
+    monkeypatch.setattr(cont, "_QUADRATIC", 0.0)
+    solves.clear()
+    _, _, _, it_plain, _ = cont.correct_at(problem, start, p, tol, 20)
+    assert ok and rn < tol and np.max(np.abs(u - u_ref)) < tol
+    assert quick == len(solves) - 1 and it == it_plain
