@@ -225,8 +225,8 @@ def _settled(step: float, last: float, tol: float) -> bool:
     """Whether Newton converges quadratically enough that the update of size ``step`` just made (after one of
     size ``last``) is the last one the plain test (an update below ``tol``) needs: the next update, ~ step^2 /
     last^2 * step, below a tenth of the tolerance, and the update itself below _QUADRATIC sqrt(tol) (the
-    asymptotic regime)."""
-    return step < _QUADRATIC * math.sqrt(tol) and step < last and step**3 / last**2 < 0.1 * tol
+    asymptotic regime). Never after the first update (``last`` infinite: no rate to go by)."""
+    return math.isfinite(last) and step < _QUADRATIC * math.sqrt(tol) and step < last and step**3 / last**2 < 0.1 * tol
 
 
 def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, tol: float, max_newton: int):
