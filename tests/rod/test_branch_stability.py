@@ -296,3 +296,27 @@ def test_measure1_estimate_bounds_its_error():
     B, st = br.locate(b, lambda s: s.params.B, 1.5)
     fine = eq.solve_equilibrium(st.params, eq.resample_state(st, 40))
     assert abs(eq.measure1(fine) - eq.measure1(st)) <= chk.measure1_error
+
+
+def test_a_buckled_states_spectrum_climbs_from_the_states_own_resolution(b1_static, monkeypatch):
+    """The stability of a state of b1 (known at N = 24) is solved at N = 24 and above, never below (an operator
+    sampled from the state's interpolant on fewer points cannot agree with the finer one); its growth rate agrees
+    with another pair of resolutions within both error estimates."""
+    from etcheck.checks import coil
+    from etcheck.rod import spectrum as sp_module
+
+    st = b1_static.states[len(b1_static.states) // 2]
+    solved = []
+    lowest = sp_module.lowest_eigenvalues
+
+    def recorded(params, base, n, nev, vectors=False, operator=None):
+        solved.append(n)
+        return lowest(params, base, n, nev, vectors, operator)
+
+    monkeypatch.setattr(sp_module, "lowest_eigenvalues", recorded)
+    stable, growth, error = coil.state_stability(st, GAMMA_SET)
+    assert solved[:2] == [N, 32] and min(solved) == st.N == N  # the ladder (16, 24, 32, ...) from 24 on
+    fixed = spectrum(st.params.with_(gamma=GAMMA_SET), base=st, k=6, tol=1e-6, N=N)  # the pair (24, 36)
+    other = float(np.max(fixed.eigenvalues.real))
+    assert fixed.converged and abs(growth - other) <= error + float(np.max(fixed.errors))
+    assert stable is (growth <= 1e-9) is (other <= 1e-9)
