@@ -426,7 +426,7 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: 
     B = st.params.B
     check = resolution_check(branch)
     ms = eq.measures(st)
-    sp = spectrum(st.params, base=st, k=8, tol=1e-6, N_min=st.N)
+    sp = spectrum(st.params, base=st, k=8, tol=1e-6)
     lam = sp.eigenvalues
     i = int(np.argmax(lam.real)) if lam.size else None
     L, force, moment, wc = scales.length, scales.force, scales.force * scales.length, scales.frequency

@@ -43,7 +43,7 @@ from etcheck.scaling import RPM, Scales
 
 def state_stability(state: eq.Equilibrium, gamma: float, k: int = 6):
     """(stable or None when not converged, max Re lambda, its two-resolution error) of one state (rung 3)."""
-    sp = spectrum(state.params.with_(gamma=gamma), base=state, k=k, tol=1e-6, N_min=state.N)
+    sp = spectrum(state.params.with_(gamma=gamma), base=state, k=k, tol=1e-6)
     g = float(np.max(sp.eigenvalues.real)) if sp.eigenvalues.size else math.nan
     err = float(np.max(sp.errors)) if sp.errors.size else None
     return (bool(g <= THRESHOLD) if sp.converged and math.isfinite(g) else None), g, err

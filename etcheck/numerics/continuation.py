@@ -216,8 +216,8 @@ def tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray,
 #: residuals 1e-14 - 1e-13 while the parameter wanders by 1e-7 - 1e-6 from one iteration to the next, up to the
 #: 40-iteration limit)
 _CALM = 4
-#: the quadratic-convergence exit of :func:`correct` and :func:`correct_at` (:func:`_settled`) is taken only for updates below this times sqrt(tol)
-#: (the asymptotic regime; larger updates are followed to the plain test)
+#: the quadratic-convergence exit of :func:`correct` and :func:`correct_at` (:func:`_settled`) is taken only for
+#: updates below this times sqrt(tol) (the asymptotic regime; larger updates are followed to the plain test)
 _QUADRATIC = 10.0
 
 

@@ -293,7 +293,7 @@ def _normalise_modes(Y: np.ndarray, N: int, s_plot: np.ndarray) -> np.ndarray:
 @single_blas_thread
 def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, N: int | None = None,
              tol: float = 1e-8, with_modes: bool = False, n_mode_points: int = 101,
-             N_max: int = 128, N_min: int = 0) -> Spectrum:
+             N_max: int = 128) -> Spectrum:
     """The k least-|lambda| eigenvalue pairs with two-resolution error estimates.
 
     Dimensionless eigenvalues lambda of eqs. (82)-(85) (growth rate
@@ -303,9 +303,9 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
     wanted eigenvalue agrees between N and its check resolution to ``tol``;
     with N given, N and check_resolution(N) are used and ``converged`` says
     whether ``tol`` was met. Each error estimate is the distance to the partner at the check resolution,
-    at least :func:`roundoff_floor` of the finer resolution. ``N_min``: the ladder starts at the first
-    resolution at or above it (a buckled base state is known at its own resolution only: below it the
-    operator samples an interpolant of the state, and the climb spends solves that cannot agree).
+    at least :func:`roundoff_floor` of the finer resolution. A base state known at a resolution of its own (a
+    buckled state, ``base.N``) starts the ladder there: below it the operator samples the state's interpolant,
+    and the solves of the climb cannot agree with the finer ones.
     """
     if base is None:
         base = straight(params)
@@ -313,6 +313,7 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
     if N is not None:
         pairs = [(int(N), check_resolution(int(N)))]
     else:
+        N_min = int(getattr(base, "N", 0))  # the resolution the base state is known at (none: analytic)
         ladder = [n for n in LADDER if N_min <= n <= N_max] or [max(N_min, min(N_max, LADDER[-1]))]
         pairs = list(zip(ladder[:-1], ladder[1:])) or [(ladder[0], check_resolution(ladder[0]))]
     cache: dict[int, tuple] = {}

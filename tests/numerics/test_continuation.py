@@ -88,8 +88,22 @@ class _Circle:
         return u + du
 
 
+@pytest.fixture
+def solves(monkeypatch) -> list:
+    """The Newton solves of the continuation module, one entry each (cleared by the test as it goes)."""
+    done = []
+    solve = np.linalg.solve
+
+    def counted(A, b):
+        done.append(1)
+        return solve(A, b)
+
+    monkeypatch.setattr(cont.np.linalg, "solve", counted)
+    return done
+
+
 @pytest.mark.parametrize("ds", [0.02, 0.1, 0.3])
-def test_corrector_stops_when_quadratic_convergence_makes_the_next_update_negligible(ds, monkeypatch):
+def test_corrector_stops_when_quadratic_convergence_makes_the_next_update_negligible(ds, solves, monkeypatch):
     """The corrector's result lies within the tolerance of the point on the branch it converges to (reached with
     the tolerance 1e-15), with the residual below the tolerance, after one Newton solve fewer than the plain
     test (update below the tolerance) needs, and it reports the plain test's count to the step control."""
@@ -102,14 +116,7 @@ def test_corrector_stops_when_quadratic_convergence_makes_the_next_update_neglig
     tau = np.linalg.solve(np.vstack([np.c_[Ju, Jp], [0.0, 0.0, 1.0]]), [0.0, 0.0, 1.0])
     tau /= np.linalg.norm(tau)
     W = np.ones(3)
-    solves = []
-    solve = np.linalg.solve
-
-    def counted(A, b):
-        solves.append(1)
-        return solve(A, b)
-
-    monkeypatch.setattr(cont.np.linalg, "solve", counted)
+    solves.clear()
     u, p, rn, it, ok = cont.correct(problem, u0, p0, tau, ds, W, tol, 40)
     quick = len(solves)
     monkeypatch.setattr(cont, "_QUADRATIC", 0.0)  # the plain test only
@@ -122,16 +129,8 @@ def test_corrector_stops_when_quadratic_convergence_makes_the_next_update_neglig
     assert quick == plain - 1 and it == it_plain == plain
 
 
-def test_newton_at_a_fixed_parameter_has_the_same_quadratic_exit(monkeypatch):
+def test_newton_at_a_fixed_parameter_has_the_same_quadratic_exit(solves, monkeypatch):
     problem, tol, p = _Circle(), 1e-10, 0.5
-    solves = []
-    solve = np.linalg.solve
-
-    def counted(A, b):
-        solves.append(1)
-        return solve(A, b)
-
-    monkeypatch.setattr(cont.np.linalg, "solve", counted)
     start = np.array([0.75, 0.2])
     u, _, rn, it, ok = cont.correct_at(problem, start, p, tol, 20)
     quick = len(solves)
