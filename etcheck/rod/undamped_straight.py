@@ -71,7 +71,7 @@ from ..numerics.parallel import can_split, split_map
 from . import exact_straight as _ex
 from .exact_straight import _assemble, _log_vandermonde, _schur, _smoothing
 from .mode_band import cut, mode_count
-from .parameters import RodParameters
+from .parameters import F_CLAMPED, RodParameters
 from .stability import CriticalKind, CriticalPoint, stable_windows
 from .undamped_isotropic import _characteristic_plus
 
@@ -322,7 +322,10 @@ def _characteristic(params: RodParameters, mu, B=None, omega=None, T=None, route
 
 def _uncoupled(params: RodParameters, mu: np.ndarray, T: np.ndarray, factor: float, shift: int) -> np.ndarray:
     """E at B = omega = 0 up to a positive factor: the product of the determinants of the two clamped
-    Rayleigh beams (c4 w^(4) - (T - pc mu) w'' - mu w = 0 for u and v), NaN where their basis does not apply."""
+    Rayleigh beams (c4 w^(4) - (T - pc mu) w'' - mu w = 0 for u and v). Where a beam's exponential basis does not
+    apply (mu = 0: the double exponent 0) its own Schur route, in the same scaled state, so that the positive
+    factor stays continuous along mu (the coupled Schur route there has another: a jump of two decades at
+    mu = 0 looked like two dips of |E| on a line under compression and was taken for a double root)."""
     out = np.ones(mu.size, dtype=complex)
     for c4, pc in ((params.R / params.f, params.P * params.R), (1.0 / params.f, params.P)):
         c2 = T - pc * mu
@@ -333,6 +336,9 @@ def _uncoupled(params: RodParameters, mu: np.ndarray, T: np.ndarray, factor: flo
                 v, _, m = _ex._isotropic_batch(c4, c2[group] + 0j, mu[group] + 0j, np.zeros(int(group.sum())),
                                                kap[group], shift, small=False)
                 value[group] = v * _smoothing(m)
+        for i in np.nonzero(~np.isfinite(value))[0]:
+            A = _ex._isotropic_companion(c4, c2[i], mu[i], 0.0, kap[i])
+            value[i] = _ex._isotropic_schur(c4, c2[i], mu[i], 0.0, kap[i], shift).value * _smoothing(np.linalg.eigvals(A))
         out *= value
     return out
 
@@ -354,6 +360,34 @@ def _rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min
     m_u = -t**2 * f / (4 * R)
     bound = -omega_max**2 + m_u + m_v + max(T_min, 0.0) * math.pi**2
     return 0.0 if bound > 0 else 1.1 * bound - 1e-6  # 0: no real root below 0, no real pair of eigenvalues
+
+
+#: A lower bound of int w''^2 / int w^2 over clamped w (w = w' = 0 at both ends): beta^4 of the first clamped beam
+#: mode (cos(beta) cosh(beta) = 1), rounded down.
+_CLAMPED_BENDING = F_CLAMPED * (1.0 - 1e-12)
+
+
+def _unloaded_stiffness_positive(params: RodParameters) -> bool:
+    """A proof that the stiffness K of the unloaded rod (B = 0) is positive definite; False where none is found.
+
+    At B = 0, K splits into u and v: q^T K q = sum c4 |w''|^2 + a |w'|^2 - omega^2 |w|^2 over (w, c4, a) =
+    (u, R/f, T + P R omega^2) and (v, 1/f, T + P omega^2). With x = |w''| / |w| >= beta^2
+    (:data:`_CLAMPED_BENDING` = beta^4), |w'|^2 >= pi^2 |w|^2 (w = 0 at both ends) and |w'|^2 = -(w, w'') <= x |w|^2,
+    each term is at least (min over x >= beta^2 of c4 x^2 + a x for a < 0, c4 beta^4 + a pi^2 for a >= 0) - omega^2
+    times |w|^2. K > 0 with M > 0 and G skew: every eigenvalue lies on the imaginary axis (Lagrange), so every root
+    mu of E is real and positive (no real pair, no complex pair)."""
+    if params.B != 0.0:
+        return False
+    w2 = params.omega**2
+    for c4, a in ((params.R / params.f, params.T + params.P * params.R * w2), (1.0 / params.f, params.T + params.P * w2)):
+        if a >= 0.0:
+            low = c4 * _CLAMPED_BENDING + a * math.pi**2
+        else:
+            x = max(math.sqrt(_CLAMPED_BENDING), -a / (2.0 * c4))
+            low = c4 * x * x + a * x
+        if not low > w2:
+            return False
+    return True
 
 
 @dataclass(frozen=True)
@@ -1072,7 +1106,10 @@ def _complex_pairs(params: RodParameters) -> tuple[int, bool, int]:
     """(complex pairs of roots mu at params, whether it has a real pair (a root mu < 0), evaluations spent):
     the spin line from omega = 0 (self-adjoint: every root real) without locating anything on it, only the
     real roots at both ends and the roots that pass its cut in between (E at the cut on as many points as a
-    line of 25 samples has)."""
+    line of 25 samples has). None of it where the unloaded stiffness is positive
+    (:func:`_unloaded_stiffness_positive`: every root real and positive)."""
+    if _unloaded_stiffness_positive(params):
+        return 0, False, 0
     return _complex_pairs_of(params.with_(gamma=0.0))
 
 
@@ -1155,9 +1192,11 @@ def _without_spin(p: RodParameters, tol: float, why: str) -> UndampedCritical:
 
 def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     """True when E has a real root mu < 0 at params (a real pair of eigenvalues: unstable), from sign
-    changes on n points between the Rayleigh floor and 0; False when none shows (not a proof). For R = 1
-    (short of the clamped Euler compression) below the static load at rest: False (a proof,
-    :mod:`etcheck.rod.undamped_isotropic`)."""
+    changes on n points between the Rayleigh floor and 0; False when none shows (not a proof). False by a proof
+    where the unloaded stiffness is positive (:func:`_unloaded_stiffness_positive`) and, for R = 1 (short of the
+    clamped Euler compression), below the static load at rest (:mod:`etcheck.rod.undamped_isotropic`)."""
+    if _unloaded_stiffness_positive(params):
+        return False
     if params.R == 1.0 and params.T > -4 * math.pi**2 / params.f and params.B < _at_rest(params).value:
         return False
     mu_lo = _rayleigh_floor(params, params.B, params.omega, params.T)
