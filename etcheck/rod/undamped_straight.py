@@ -349,14 +349,19 @@ def _uncoupled(params: RodParameters, mu: np.ndarray, T: np.ndarray, factor: flo
 def _rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min: float) -> float:
     """A lower bound of K / M over the line (no real root mu lies below it).
 
-    K >= (R/f) |u''|^2 + (1/f) |v''|^2 - t (|u'|^2 + |v'|^2) - omega^2 - |B| |u| |v'|
-    for |u|^2 + |v|^2 = 1 (M >= 1 there), t = max(-T, 0), |v'|^2 <= |v| |v''|:
+    For |u|^2 + |v|^2 = 1 (M >= 1 there), t = max(-T, 0) and the load's term B int (v u' - u v') = -2 B int u v':
+    K >= (R/f) |u''|^2 + (1/f) |v''|^2 - t (|u'|^2 + |v'|^2) - omega^2 - 2 |B| |u| |v'|, and with
+    |v'|^2 <= |v| |v''| the last term is at least -2 |B| |u| |v|^(1/2) |v''|^(1/2) >= -c |B| |v''|^(1/2),
+    c = 2 max (1 - s)^(1/2) s^(1/4) = 2 (2/3)^(1/2) (1/3)^(1/4) = 1.2408 (at |v|^2 = s = 1/3):
     minimised over X = |v''| and Y = |u''| in closed form or on a grid. Under tension T > 0 the
-    term T (|u'|^2 + |v'|^2) >= T pi^2 (|u|^2 + |v|^2) (u, v vanish at both ends) is added."""
+    term T (|u'|^2 + |v'|^2) >= T pi^2 (|u|^2 + |v|^2) (u, v vanish at both ends) is added. (The load's term was
+    once taken as |B| |u| |v'|: for R = 0.01 at ten times the static load the lowest real root, -73.1, lay
+    below that floor, -64.6, and outside the line.)"""
     R, f = params.R, params.f
     t = max(-T_min, 0.0)
+    c = 2.0 * math.sqrt(2.0 / 3.0) * (1.0 / 3.0) ** 0.25
     X = np.geomspace(1e-6, 1e6, 2001) * (1.0 + f * (abs(B_max) + t)) ** (2.0 / 3.0)
-    m_v = float(np.min(X**2 / f - t * X - abs(B_max) * np.sqrt(X)))
+    m_v = float(np.min(X**2 / f - t * X - c * abs(B_max) * np.sqrt(X)))
     m_u = -t**2 * f / (4 * R)
     bound = -omega_max**2 + m_u + m_v + max(T_min, 0.0) * math.pi**2
     return 0.0 if bound > 0 else 1.1 * bound - 1e-6  # 0: no real root below 0, no real pair of eigenvalues
@@ -410,6 +415,56 @@ def _positive_grid(params: RodParameters, ends: list[RodParameters], density: fl
     count = mode_count(params, fine, params.T)
     n = max(int(math.ceil(density * count[-1])), 16)
     return mu_cut, np.interp(np.linspace(0.0, count[-1], n + 1), count, fine)[1:]
+
+
+def _dips(i: int, mu: np.ndarray, E: np.ndarray) -> list[tuple]:
+    """The candidates of :func:`_close_pairs` in row i: the samples of E on the grid mu where |E| has a local
+    minimum without a change of sign."""
+    s = np.sign(E)
+    aE = np.abs(E)
+    j = np.nonzero((s[:-2] == s[1:-1]) & (s[1:-1] == s[2:]) & (aE[1:-1] < aE[:-2]) & (aE[1:-1] < aE[2:]))[0] + 1
+    return [(i, mu[k - 1], mu[k + 1], s[k], max(aE[k - 1], aE[k + 1]), 1.0, E[k - 1], E[k + 1]) for k in j]
+
+
+def _close_pairs(evaluate, ps: np.ndarray, cand: list) -> list[tuple[int, list[float]]]:
+    """Close pairs of roots of E = evaluate(p, mu) at the dips of |E| between grid points: each dip is zoomed in
+    (9 points, 8 levels, all dips in one evaluation per level) until E changes sign (two
+    roots), the dip clearly stays off zero (parabola through its three lowest points), or it
+    touches zero (a double root). ``cand``: (row, ends of the dip, sign of E there, scale of E, last
+    parabola's minimum over the lowest sample, E at the ends): E is evaluated only inside."""
+    found = []
+    t = np.linspace(0.0, 1.0, 9)
+    for level in range(8):
+        if not cand:
+            break
+        a = np.array([c[1] for c in cand])
+        b = np.array([c[2] for c in cand])
+        x = a[:, None] + (b - a)[:, None] * t[None, :]
+        x[:, -1] = b
+        inner = evaluate(np.array([ps[c[0]] for c in cand])[:, None], x[:, 1:-1])
+        E = np.column_stack([[c[6] for c in cand], inner, [c[7] for c in cand]])
+        nxt = []
+        for c, xi, Ei in zip(cand, x, E):
+            i, sg, size = c[0], c[3], c[4]
+            flips = np.nonzero(np.sign(Ei[:-1]) != np.sign(Ei[1:]))[0]
+            if flips.size >= 2:  # each root where the secant crosses zero (a midpoint could put a root
+                # just above mu = 0 below it, and count it with the real pairs, when E is tiny at a node)
+                j = flips[[0, -1]]
+                found.append((i, (xi[j] + (xi[j + 1] - xi[j]) * Ei[j] / (Ei[j] - Ei[j + 1])).tolist()))
+                continue
+            m = int(np.argmin(np.abs(Ei[1:-1]))) + 1
+            e0, e1, e2 = sg * Ei[m - 1], sg * Ei[m], sg * Ei[m + 1]
+            curv = e0 - 2 * e1 + e2
+            low = e1 - (e2 - e0) ** 2 / (8 * curv) if curv > 0 else e1
+            if abs(Ei[m]) <= 1e3 * _EPS * size:
+                found.append((i, [xi[m], xi[m]]))  # touching to rounding: a double root
+            elif low < 0.5 * e1 or level < 2:  # the parabola is rough on the first levels
+                nxt.append((i, xi[m - 1], xi[m + 1], sg, size, low / e1, Ei[m - 1], Ei[m + 1]))
+        cand = nxt
+    # after 8 levels (4^8 finer) the parabola through the lowest samples still has its minimum at zero
+    # or below it: E falls like the square of the distance, a double root or a pair closer than the
+    # samples (R = 1 at omega = 0: E is a square; R near 1 under tension: the u and v string modes)
+    return found + [(c[0], [0.5 * (c[1] + c[2])] * 2) for c in cand if c[5] <= 1e-3]
 
 
 class _Line:
@@ -475,11 +530,8 @@ class _Line:
             j = np.nonzero(si[:-1] * si[1:] < 0)[0]
             roots.append((mu[j] + (mu[j + 1] - mu[j]) * E[j] / (E[j] - E[j + 1])).tolist()
                          + mu[si == 0].tolist())
-            aE = np.abs(E)
-            dips = np.nonzero((si[:-2] == si[1:-1]) & (si[1:-1] == si[2:]) & (aE[1:-1] < aE[:-2])
-                              & (aE[1:-1] < aE[2:]))[0] + 1
-            cand += [(i, mu[j - 1], mu[j + 1], si[j], max(aE[j - 1], aE[j + 1]), 1.0, E[j - 1], E[j + 1]) for j in dips]
-        for i, pair in self._close_pairs(ps, cand):
+            cand += _dips(i, mu, E)
+        for i, pair in _close_pairs(self.E, ps, cand):
             roots[i] += pair
         out = []
         for p, r, E in zip(ps, roots, rows):
@@ -489,46 +541,6 @@ class _Line:
             out.append(_Sample(float(p), tuple(r.tolist()), neg, r.size - neg,
                                tuple(float(E[i]) for i, _ in self.cuts)))
         return out
-
-    def _close_pairs(self, ps: np.ndarray, cand: list) -> list[tuple[int, list[float]]]:
-        """Close pairs of roots at the dips of |E| between grid points: each dip is zoomed in
-        (9 points, 8 levels, all dips in one evaluation per level) until E changes sign (two
-        roots), the dip clearly stays off zero (parabola through its three lowest points), or it
-        touches zero (a double root). ``cand``: (row, ends of the dip, sign of E there, scale of E, last
-        parabola's minimum over the lowest sample, E at the ends): E is evaluated only inside."""
-        found = []
-        t = np.linspace(0.0, 1.0, 9)
-        for level in range(8):
-            if not cand:
-                break
-            a = np.array([c[1] for c in cand])
-            b = np.array([c[2] for c in cand])
-            x = a[:, None] + (b - a)[:, None] * t[None, :]
-            x[:, -1] = b
-            inner = self.E(np.array([ps[c[0]] for c in cand])[:, None], x[:, 1:-1])
-            E = np.column_stack([[c[6] for c in cand], inner, [c[7] for c in cand]])
-            nxt = []
-            for c, xi, Ei in zip(cand, x, E):
-                i, sg, size = c[0], c[3], c[4]
-                flips = np.nonzero(np.sign(Ei[:-1]) != np.sign(Ei[1:]))[0]
-                if flips.size >= 2:  # each root where the secant crosses zero (a midpoint could put a root
-                    # just above mu = 0 below it, and count it with the real pairs, when E is tiny at a node)
-                    j = flips[[0, -1]]
-                    found.append((i, (xi[j] + (xi[j + 1] - xi[j]) * Ei[j] / (Ei[j] - Ei[j + 1])).tolist()))
-                    continue
-                m = int(np.argmin(np.abs(Ei[1:-1]))) + 1
-                e0, e1, e2 = sg * Ei[m - 1], sg * Ei[m], sg * Ei[m + 1]
-                curv = e0 - 2 * e1 + e2
-                low = e1 - (e2 - e0) ** 2 / (8 * curv) if curv > 0 else e1
-                if abs(Ei[m]) <= 1e3 * _EPS * size:
-                    found.append((i, [xi[m], xi[m]]))  # touching to rounding: a double root
-                elif low < 0.5 * e1 or level < 2:  # the parabola is rough on the first levels
-                    nxt.append((i, xi[m - 1], xi[m + 1], sg, size, low / e1, Ei[m - 1], Ei[m + 1]))
-            cand = nxt
-        # after 8 levels (4^8 finer) the parabola through the lowest samples still has its minimum at zero
-        # or below it: E falls like the square of the distance, a double root or a pair closer than the
-        # samples (R = 1 at omega = 0: E is a square; R near 1 under tension: the u and v string modes)
-        return found + [(c[0], [0.5 * (c[1] + c[2])] * 2) for c in cand if c[5] <= 1e-3]
 
     # --- bookkeeping along the line ----------------------------------------------------------
 
@@ -1192,7 +1204,8 @@ def _without_spin(p: RodParameters, tol: float, why: str) -> UndampedCritical:
 
 def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     """True when E has a real root mu < 0 at params (a real pair of eigenvalues: unstable), from sign
-    changes on n points between the Rayleigh floor and 0; False when none shows (not a proof). False by a proof
+    changes on n points between the Rayleigh floor and 0 and close pairs at the dips of |E| between them (as a
+    line's samples); False when none shows (not a proof). False by a proof
     where the unloaded stiffness is positive (:func:`_unloaded_stiffness_positive`) and, for R = 1 (short of the
     clamped Euler compression), below the static load at rest (:mod:`etcheck.rod.undamped_isotropic`)."""
     if _unloaded_stiffness_positive(params):
@@ -1205,4 +1218,8 @@ def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     if np.sign(ends[0]) * np.sign(ends[1]) < 0:  # an odd number of roots between: the scan would see a change
         return True
     E = np.concatenate([ends[:1], characteristic_mu(params, mu[1:-1]), ends[1:]])
-    return bool(np.any(np.sign(E[:-1]) * np.sign(E[1:]) < 0))
+    if np.any(np.sign(E[:-1]) * np.sign(E[1:]) < 0):
+        return True
+    # a close pair between two samples (R near 1 past its first static load: the u and v modes) shows as a dip
+    found = _close_pairs(lambda _, x: characteristic_mu(params, x), np.zeros(1), _dips(0, mu, E))
+    return any(r[0] < 0 for _, r in found)

@@ -333,3 +333,21 @@ def test_a_compressed_spinning_rod_has_a_critical_load(omega):
     assert u.critical_load.kind == "divergence" and u.converged and u.stable
     Bc = u.critical_load.value
     assert _growth(p.with_(B=0.98 * Bc)) < 1e-8 < _growth(p.with_(B=1.02 * Bc))
+
+
+@pytest.mark.parametrize("R,load", [(0.01, 10.0), (0.01, 100.0), (0.1, 30.0), (21 / 38, 100.0)])
+def test_no_real_root_below_the_rayleigh_floor(R, load):
+    """The lines sample mu from the Rayleigh floor up: a real root below it is never counted. Heavily loaded weak
+    rods (the load's term bounded with its factor 2 and the best split of |u|, |v|): E keeps its sign on a fine
+    grid from three times the floor down to it, and has its lowest root between the floor and 0. With the factor
+    1 the floor of R = 0.01 at ten times its static load was -64.6 and the lowest root -73.1."""
+    from etcheck.rod.exact_straight import exact_root
+    from etcheck.rod.undamped_straight import _rayleigh_floor
+
+    p = RodParameters(P=0.0, R=R, Gamma=0.77)
+    q = p.with_(B=load * exact_root(p, "B").value)
+    floor = _rayleigh_floor(q, q.B, 0.0, 0.0)
+    below = characteristic_mu(q, np.linspace(3.0 * floor, floor, 6001))
+    assert np.all(np.sign(below) == np.sign(below[0]))
+    above = characteristic_mu(q, np.linspace(floor, 0.0, 6001))
+    assert np.any(np.sign(above[:-1]) != np.sign(above[1:]))
