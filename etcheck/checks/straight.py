@@ -27,8 +27,8 @@ from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
 from etcheck.rod.analytic import critical_loads
 from etcheck.rod.convergence import accuracy_table, reference_resolution
-from etcheck.rod.damped_critical import DRAFT_LADDER, LADDER, damped_critical
-from etcheck.rod.exact_straight import exact_critical, first_exact_root
+from etcheck.rod.damped_critical import DRAFT_LADDER, LADDER
+from etcheck.rod.exact_straight import exact_critical, first_exact_root, pencil_or_exact
 from etcheck.rod.spectrum import spectrum
 from etcheck.rod.stability import THRESHOLD, CriticalKind, campbell, critical_load, scan_line, stability_map
 from etcheck.rod.stability import CriticalPoint as StabilityPoint
@@ -133,12 +133,13 @@ def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
 
 def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoint, CriticalPoint, bool, float]:
     """Critical load at the operating spin and critical spin at the operating load of a damped
-    tether from the static pencils or the exact determinant (milliseconds), and whether the
-    operating point is stable, and the spin that destabilises the unloaded tether (dimensionless)."""
+    tether from the static pencils or the exact determinant (milliseconds; the determinant also where a pencil
+    root next to the end of its line missed the tolerance: :func:`~etcheck.rod.exact_straight.pencil_or_exact`),
+    whether the operating point is stable, and the spin that destabilises the unloaded tether (dimensionless)."""
     if route == EXACT:  # root located to round-off; its estimate (two formulations) is judged by the mission's tolerance
         dc = exact_critical(p, tol=max(options.tol, options.eig_tol))
     else:
-        dc = damped_critical(p, tol=options.tol, ladder=DRAFT_LADDER if options.draft else LADDER)
+        dc = pencil_or_exact(p, tol=options.tol, ladder=DRAFT_LADDER if options.draft else LADDER)
     B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)
     w_hi = 1.6 * max(p.omega, math.sqrt(p.R))
     load = _pencil_critical(dc.critical_load, "critical load at the operating spin", B_hi)

@@ -35,7 +35,7 @@ import numpy as np
 from ..numerics.blas import single_blas_thread
 from .analytic import characteristic_roots, critical_loads
 from .parameters import RodParameters
-from .spectrum import check_resolution
+from .spectrum import check_resolution, roundoff_floor
 from .stability import DOUBLE, _family
 
 __all__ = ["LADDER", "DRAFT_LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical", "critical_from_roots"]
@@ -213,8 +213,9 @@ def critical_from_roots(params: RodParameters, tol: float, spin: bool, root) -> 
     return DampedCritical(load, crit, rest, bool(stable), converged, msg)
 
 
-#: Relative round-off of the static operator's roots (QZ of the pencil, and the exact determinant), as
-#: measured against independent solvers on the scenes of the tests: 1e-14 .. 1e-13.
+#: Relative round-off of the exact determinant's roots, and the least of the static pencil's, as measured
+#: against independent solvers on the scenes of the tests: 1e-14 .. 1e-13. A pencil's grows with its resolution
+#: as an eigenvalue's does (:func:`~etcheck.rod.spectrum.roundoff_floor`, 32 N^2 eps: 1.6e-11 at N = 48).
 _ROUND_OFF = 1e-13
 
 
@@ -225,12 +226,15 @@ def _near_end(r: PencilRoot, end: float, at: float, floor: float, tol: float) ->
     The load root at spin omega falls like sqrt(omega_c0^2 - omega^2) as omega nears the unloaded rod's
     critical spin omega_c0 (the static points are symmetric in B), and the spin root at load B like
     sqrt(B_c0 - B): a relative round-off eta of the operator moves the root by eta end / (2 (end - at))
-    relative, which two resolutions, each at round-off, need not show. ``end``, ``at``: omega_c0^2 and
-    omega^2, or B_c0 and B; the error stays relative to max(value, floor) (see :func:`first_root`).
+    relative, which two resolutions, each at round-off, need not show. eta is that of the resolution the value
+    came from (the pair's finer one; the exact determinant's for N = 0): SET 8e-6 below its static load, the
+    spin root at N = 48 was 2.8e-7 off, against 1.1e-7 stated with eta = 1e-13 there. ``end``, ``at``:
+    omega_c0^2 and omega^2, or B_c0 and B; the error stays relative to max(value, floor) (see :func:`first_root`).
     """
     if not (0 < r.value < math.inf) or end <= at:
         return r
-    rounding = _ROUND_OFF * end / (2.0 * (end - at)) * r.value / max(r.value, floor)
+    eta = max(_ROUND_OFF, roundoff_floor(check_resolution(r.N))) if r.N else _ROUND_OFF
+    rounding = eta * end / (2.0 * (end - at)) * r.value / max(r.value, floor)
     if rounding <= r.error:
         return r
     return PencilRoot(r.axis, r.value, rounding, r.N, r.converged and rounding <= tol, r.model)

@@ -52,8 +52,9 @@ from etcheck.jsonable import finite_or_none
 from etcheck.numerics.blas import one_blas_thread
 from etcheck.numerics.optimize import brentq
 from etcheck.numerics.parallel import serial
-from etcheck.rod.damped_critical import damped_critical, first_root
-from etcheck.rod.exact_straight import exact_critical, first_exact_root
+from etcheck.rod.damped_critical import first_root
+from etcheck.rod.exact_straight import MODEL as EXACT_ROOTS
+from etcheck.rod.exact_straight import exact_critical, first_exact_root, pencil_or_exact
 from etcheck.rod.parameters import RodParameters
 from etcheck.rod.stability import CriticalKind
 from etcheck.rod.undamped_straight import MODEL as UNDAMPED_MODEL
@@ -157,7 +158,8 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
 def _damped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
     """With damping, static pencils or the exact determinant (Kelvin-Tait-Chetaev)."""
     exact = straight_route(params) == EXACT  # boundary layers too thin for collocation
-    d = (exact_critical if exact else damped_critical)(params, tol, spin=spin)
+    d = exact_critical(params, tol, spin=spin) if exact else pencil_or_exact(params, tol, spin=spin)
+    exact = exact or d.critical_load.model == EXACT_ROOTS  # a pencil root next to the end of its line
     pencil = "rung 1 (exact determinant)" if exact else "rung 1 (static pencil)"
     out = {"model": d.critical_load.model if params.omega == 0 and params.T == 0 else pencil,
            "B_c": d.critical_load.value, "B_c_error": d.critical_load.error,

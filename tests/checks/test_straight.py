@@ -134,7 +134,7 @@ def test_unconverged_critical_value_carries_its_error_or_is_not_located(monkeypa
     import etcheck.checks.straight as whirl
     from etcheck.rod.damped_critical import PencilRoot
 
-    real = whirl.damped_critical
+    real = whirl.pencil_or_exact
 
     def rough(*args, **kwargs):
         dc = real(*args, **kwargs)
@@ -142,7 +142,7 @@ def test_unconverged_critical_value_carries_its_error_or_is_not_located(monkeypa
         bad = PencilRoot(load.axis, load.value, error, 128, False, load.model)
         return type(dc)(**{**dc.__dict__, "critical_load": bad, "converged": False})
 
-    monkeypatch.setattr(whirl, "damped_critical", rough)
+    monkeypatch.setattr(whirl, "pencil_or_exact", rough)
     # 0.2 A at 0.6 rpm: the load margin alone decides the verdict once the spin margin passes
     results = check(mission(spin="0.06 rpm", damping="1 s", current="0.2 A"), LIGHT).results
     load = results["margins"][0]

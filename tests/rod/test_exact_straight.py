@@ -315,3 +315,21 @@ def test_second_formulation_where_the_exponential_basis_stops_applying():
     assert not math.isnan(c.critical_spin.error)
     assert math.isinf(c.spin_at_rest.value)
     assert c.critical_load.error < 1e-8
+
+
+def test_a_root_next_to_the_end_of_its_line_comes_from_the_determinant():
+    """SET 8e-6 below its static load: the critical spin falls like a square root, and the pencil's round-off
+    (N = 48: 2.8e-7 off) is amplified past the tolerance; the pencil says so (not converged, an estimate that
+    bounds its error) and the determinant answers within its own estimate of the reference."""
+    from etcheck.rod.exact_straight import first_exact_root, pencil_or_exact
+
+    p = RodParameters(P=1e-3, R=21 / 38, Gamma=0.76923, gamma=0.1, B=0.58539)
+    ref = first_exact_root(p, "omega", 1e-12)
+    pencil = damped_critical(p, tol=1e-8).critical_spin
+    assert not pencil.converged
+    assert abs(pencil.value - ref.value) / ref.value <= pencil.error
+    both = pencil_or_exact(p, tol=1e-8)
+    assert both.converged and both.critical_spin.model == "rung 1x (exact determinant)"
+    assert abs(both.critical_spin.value - ref.value) / ref.value <= both.critical_spin.error + ref.error
+    away = pencil_or_exact(p.with_(B=0.3), tol=1e-8)  # far from the end: the pencils alone
+    assert away.converged and away.critical_spin.model == "rung 1 (static pencil)"
