@@ -297,28 +297,48 @@ def test_the_load_line_followed_by_a_helper_gives_the_same_answer(monkeypatch, o
     assert undamped_critical(p, 1e-8, windows=True) == serial
 
 
+def _edge(proof, lo: float = 0.0, hi: float = 10.0) -> float:
+    """The largest x in (lo, hi) where proof(x) still holds (bisection; proof(lo) holds)."""
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if proof(mid) else (lo, mid)
+    return lo
+
+
 @pytest.mark.parametrize("R,T,P", [(21 / 38, 0.0, 1e-12), (1.0, 0.0, 1e-12), (0.3, -0.01, 1e-12), (0.5, 4.0, 2e-3)])
-def test_the_unloaded_stiffness_proof_holds_to_its_edge_and_no_further(R, T, P):
+def test_the_stiffness_proof_holds_to_its_edge_and_no_further(R, T, P):
     """The proof that the unloaded stiffness is positive (no real and no complex pair: the load line's anchor
     and the real-pair test take no samples then) against the counted spin line from omega = 0: just inside its
     edge every root is real and positive; just outside it, without rotary inertia and tension, the weak beam's
     first clamped mode has gone soft (its edge is sharp there: beta^4 R / f) and, for R < 1 (one negative
     direction: Kelvin-Tait-Chetaev), a real pair appears (R = 1 loses two at once: gyroscopic stabilisation).
     Under compression (T < 0) the proof is looser than the rod: its edge is only checked from inside."""
-    from etcheck.rod.undamped_straight import _complex_pairs_of, _unloaded_stiffness_positive
+    from etcheck.rod.undamped_straight import _complex_pairs_of, _definite
 
     p = RodParameters(P=P, R=R, Gamma=0.76923, T=T)
-    lo, hi = 0.0, 10.0
-    for _ in range(60):  # the proof's edge in omega
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if _unloaded_stiffness_positive(p.with_(omega=mid)) else (lo, mid)
+    lo = _edge(lambda w: _definite(p.with_(omega=w)))
     assert lo > 0.1
     assert _complex_pairs_of(p.with_(omega=0.999 * lo))[:2] == (0, False)
-    assert not _unloaded_stiffness_positive(p.with_(omega=1.001 * lo))
-    assert not _unloaded_stiffness_positive(p.with_(omega=0.5 * lo, B=1e-9))  # a proof at B = 0 only
     if T == 0.0:
-        assert lo**2 == pytest.approx(R * 4.730040744862704**4 / p.f, rel=1e-9)
+        assert lo**2 == pytest.approx(R * 4.730040744862704**4 / p.f, rel=1e-8)  # the proof keeps a margin of 1e-9
         assert R == 1.0 or _complex_pairs_of(p.with_(omega=1.001 * lo))[1]  # the weak mode's real pair
+
+
+@pytest.mark.parametrize("R,T,omega", [(21 / 38, 0.0, 0.0), (0.05, 0.0, 0.0), (0.9, 2.0, 0.0), (0.3, -0.01, 0.0),
+                                       (21 / 38, 0.0, 0.4), (0.1, 1.0, 0.2)])
+def test_the_stiffness_proof_under_load_stops_short_of_the_static_load(R, T, omega):
+    """With load the proof bounds the load's term (2 B int u' v) by the clamped beams' bending: along B it must stop
+    short of the first static load (where K is singular: a proof past it would be wrong), and where it holds the
+    counted line has no real and no complex pair."""
+    from etcheck.rod.exact_straight import exact_root
+    from etcheck.rod.undamped_straight import _complex_pairs_of, _definite
+
+    p = RodParameters(P=1e-3, R=R, Gamma=0.76923, T=T, omega=omega)
+    static = exact_root(p, "B").value
+    edge = _edge(lambda B: _definite(p.with_(B=B)), 0.0, 10.0 * static)
+    assert 0.05 * static < edge < static
+    if omega:
+        assert _complex_pairs_of(p.with_(B=0.999 * edge))[:2] == (0, False)
 
 
 @pytest.mark.parametrize("omega", [0.2, 0.3])
@@ -326,7 +346,7 @@ def test_a_compressed_spinning_rod_has_a_critical_load(omega):
     """Under compression (below the Euler load) the unloaded rod's spin line starts at omega = 0, B = 0, where E is
     the product of two beam determinants; at mu = 0 it came from another formulation, two decades larger, and the
     dips next to it were taken for a double root: a complex pair at B = 0, so a critical load of 0 (found by the
-    proof of :func:`test_the_unloaded_stiffness_proof_holds_to_its_edge_and_no_further`; at omega = 0.3 the proof
+    proof of :func:`test_the_stiffness_proof_holds_to_its_edge_and_no_further`; at omega = 0.3 the proof
     does not apply and the line decides). The critical load against the collocation spectrum either side."""
     p = RodParameters(P=1e-3, R=0.3, Gamma=0.76923, T=-0.01, omega=omega, B=0.05)
     u = undamped_critical(p, windows=False)
