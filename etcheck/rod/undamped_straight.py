@@ -963,8 +963,23 @@ def _static_roots_of(params: RodParameters, axis: str, upto: float, n: int) -> n
     x = np.linspace(0.0, upto, n + 1)[1:]
     g = fn(x)
     i = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
+    lo, hi, touching = list(x[i]), list(x[i + 1]), []
+    # a close pair between two samples (R near 1: the u and v modes' static points, 0.43 apart at B = 318 of a taut
+    # tether, its 400 samples 0.8 apart) shows as a dip of |D|: split as the lines split theirs, each root then
+    # bracketed by the dip's ends and the pair's middle, where D has the other sign
+    dips = _dips(0, x, g)
+    for _, (r1, r2) in _close_pairs(lambda _, t: fn(t.ravel()).reshape(t.shape), np.zeros(1), dips):
+        a, b = next(((c[1], c[2]) for c in dips if c[1] <= r1 and r2 <= c[2]), (r1, r2))
+        if r1 == r2:
+            touching.append(r1)
+        elif a < r1 < r2 < b:
+            m = 0.5 * (r1 + r2)
+            lo += [a, m]
+            hi += [m, b]
     # all brackets at once (Chandrupatla, one evaluation of fn per step on the unfinished ones)
-    out = find_root(fn, (x[i], x[i + 1]), tolerances={"xrtol": 1e-9}).x if i.size else np.zeros(0)
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    out = find_root(fn, (lo, hi), tolerances={"xrtol": 1e-9}).x if lo.size else np.zeros(0)
+    out = np.sort(np.concatenate([out, touching]))
     out.setflags(write=False)
     return out
 

@@ -248,14 +248,18 @@ NEARLY_ISOTROPIC = RodParameters(P=0.00014843474801984845, R=0.999, Gamma=0.7692
 def test_nearly_isotropic_pair_closer_than_the_samples_is_counted():
     """Regression (random taut undamped scene, R = 0.999): under tension the u and v string modes split by far less
     than the zoom's finest samples; the parabola through them dips below zero but was taken as no root because
-    the ratio's sign was dropped ("inconsistent root count ... 2 roots in all, 4 real"). Now counted as a pair."""
+    the ratio's sign was dropped ("inconsistent root count ... 2 roots in all, 4 real"). Now counted as a pair.
+    Its first instability is a divergence interval 0.004 wide at B = 1251.98, between two static loads closer than
+    the line's scan of static points (400 samples to B = 1300): once reported as the flutter at 1252.56; the
+    collocation spectrum grows at 1 + 1e-6 of it and not at 1 + 1e-4 (the slow test below)."""
     u = undamped_critical(NEARLY_ISOTROPIC, windows=False)
-    assert u.critical_load.converged and u.critical_load.kind == "flutter" and u.stable
+    assert u.critical_load.converged and u.critical_load.kind == "divergence" and u.stable
+    assert u.critical_load.value == pytest.approx(1251.9832019, rel=1e-9)
 
 
 @pytest.mark.slow
 def test_nearly_isotropic_flutter_load_against_the_collocation_spectrum():
-    """The scene above: its flutter load is bracketed by the whole collocation spectrum (N = 48 for the layers at
+    """The scene above: its critical load is bracketed by the whole collocation spectrum (N = 48 for the layers at
     T-bar = 198)."""
     from test_undamped_isotropic import _growth
 
@@ -371,3 +375,20 @@ def test_no_real_root_below_the_rayleigh_floor(R, load):
     assert np.all(np.sign(below) == np.sign(below[0]))
     above = characteristic_mu(q, np.linspace(floor, 0.0, 6001))
     assert np.any(np.sign(above[:-1]) != np.sign(above[1:]))
+
+
+def test_a_close_pair_of_static_loads_bounds_an_unstable_interval():
+    """A taut tether (R = 0.8, T-bar = 50) past its string load: two static loads 0.43 apart at B = 318, between two
+    of the 400 samples of the line's scan of static points; the rod is unstable between them (a real pair), which
+    the 25 samples of the load line never saw: the first instability was reported as the flutter at 318.49. Now the
+    scan splits the pair at its dip and the line samples either side of both; the collocation spectrum grows
+    between them."""
+    from etcheck.rod.undamped_straight import _static_roots
+
+    p = RodParameters(P=7.56939008700586e-05, R=0.8, Gamma=0.77, B=0.6070943507877418, omega=0.748300882787012,
+                      T=50.0)
+    roots = _static_roots(p, "B", 325.0)
+    assert roots.size == 2 and 0.4 < roots[1] - roots[0] < 0.5
+    u = undamped_critical(p, windows=False)
+    assert u.critical_load.kind == "divergence" and u.critical_load.value == pytest.approx(roots[0], rel=1e-9)
+    assert _growth(p.with_(B=0.5 * (roots[0] + roots[1]))) > 1e-3
