@@ -61,7 +61,7 @@ from ..numerics.chebyshev import (
     lobatto_weights,
     resample_matrix,
 )
-from .base_state import BaseState
+from .base_state import BaseState, StraightBaseState
 from .parameters import RodParameters
 
 __all__ = [
@@ -167,6 +167,8 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
     """
     s = np.atleast_1d(np.asarray(s, dtype=float))
     n = s.size
+    if n > 1 and isinstance(base, StraightBaseState):  # the same at every point: made at one, repeated
+        return tuple(np.repeat(block, n, axis=0) for block in coefficient_blocks(params, base, s[:1]))
     D0 = base.D0(s)
     F0 = base.F0(s)
     M0 = base.M0(s)
@@ -260,13 +262,21 @@ def static_operator(params: RodParameters, base: BaseState, N: int) -> np.ndarra
     return A0
 
 
-def static_difference(params: RodParameters, base: BaseState, ref: RodParameters, ref_base: BaseState,
-                      N: int) -> np.ndarray:
-    """``static_operator(params, base, N) - static_operator(ref, ref_base, N)``, assembled from the difference of
-    the coefficients (A0 is linear in them): only the entries that differ are written, without cancellation."""
+def static_differences(ref: RodParameters, ref_base: BaseState, others, N: int) -> tuple[np.ndarray, list]:
+    """``static_operator(ref, ref_base, N)`` and, for each (params, base) of ``others``,
+    ``static_operator(params, base, N)`` minus it, assembled from the difference of the coefficients (A0 is linear
+    in them): only the entries that differ are written, without cancellation; the reference's coefficients are
+    made once."""
     col = collocation(int(N))
-    E0, _, G0, _, _ = coefficient_blocks(params, base, col.t)
     E0r, _, G0r, _, _ = coefficient_blocks(ref, ref_base, col.t)
-    A0 = _assemble(E0 - E0r, G0 - G0r, col)
-    A0[NFIELDS * col.N:] = boundary_rows(base, col.N) - boundary_rows(ref_base, col.N)
-    return A0
+    rows = NFIELDS * col.N
+    bc = boundary_rows(ref_base, col.N)
+    A0 = _assemble(E0r, G0r, col)
+    A0[rows:] = bc
+    out = []
+    for params, base in others:
+        E0, _, G0, _, _ = coefficient_blocks(params, base, col.t)
+        D = _assemble(E0 - E0r, G0 - G0r, col)
+        D[rows:] = boundary_rows(base, col.N) - bc
+        out.append(D)
+    return A0, out

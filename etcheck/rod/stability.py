@@ -45,7 +45,7 @@ from ..numerics.blas import single_blas_thread
 from ..numerics.eigen import factor_static, match_spectra, pencil_eigenvalues, qep_dense
 from ..numerics.parallel import split_map
 from .base_state import straight
-from .linear import NFIELDS, linear_operator, static_difference, static_operator
+from .linear import NFIELDS, linear_operator, static_differences
 from .mode_band import band_modes
 from .parameters import RodParameters
 from .spectrum import (
@@ -174,9 +174,9 @@ class StraightFamily:
         self.params = params
         self.N = int(N)
         self._p0 = p0 = params.with_(B=0.0, omega=0.0, T=0.0)
-        self.A00 = A00 = static_operator(p0, straight(p0), self.N)
-        self.AB, self.AT, self.Aw = (static_difference(q, straight(q), p0, straight(p0), self.N)
-                                     for q in (p0.with_(B=1.0), p0.with_(T=1.0), p0.with_(omega=1.0)))
+        variants = [(q, straight(q)) for q in (p0.with_(B=1.0), p0.with_(T=1.0), p0.with_(omega=1.0))]
+        A00, (self.AB, self.AT, self.Aw) = static_differences(p0, straight(p0), variants, self.N)
+        self.A00 = A00
         n = self.N + 1
         self.static_cols = np.arange(6 * n, NFIELDS * n)
         self._factor = factor_static(A00, self.static_cols)

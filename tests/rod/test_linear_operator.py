@@ -7,7 +7,7 @@ import scipy.linalg as sla
 from etcheck.numerics.chebyshev import diff_matrix, lobatto_nodes, lobatto_weights
 from etcheck.numerics.eigen import match_spectra, qep_dense
 from etcheck.rod.base_state import CallableBaseState, rotated, straight
-from etcheck.rod.linear import NFIELDS, collocation, field_slice, linear_operator, stiffness_diag
+from etcheck.rod.linear import NFIELDS, coefficient_blocks, collocation, field_slice, linear_operator, stiffness_diag
 from etcheck.rod.parameters import RodParameters
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
@@ -216,3 +216,15 @@ def test_rotated_base_state_gives_the_same_spectrum():
     # spin are along e3; the linearised welds are a = 0 whatever D0(0), D0(1))
     e = qep_dense(*linear_operator(params, rotated(straight(params), Qz), 24))
     _same(a, e)
+
+
+def test_straight_coefficients_made_once_are_those_of_every_point():
+    """The straight state's coefficients are made at one point and repeated: the same as a general base state
+    with the same fields, point by point, for load, spin, tension and damping."""
+    p = RodParameters(P=1e-3, R=0.55, Gamma=0.77, B=0.3, omega=0.25, T=2.0, gamma=0.04)
+    s = np.linspace(0.0, 1.0, 9)
+    fast = coefficient_blocks(p, straight(p), s)
+    general = coefficient_blocks(p, rotated(straight(p), np.eye(3)), s)
+    for a, b in zip(fast, general):
+        assert a.shape == b.shape == (9, 12, 12)
+        assert np.array_equal(a, b)
