@@ -392,3 +392,17 @@ def test_a_close_pair_of_static_loads_bounds_an_unstable_interval():
     u = undamped_critical(p, windows=False)
     assert u.critical_load.kind == "divergence" and u.critical_load.value == pytest.approx(roots[0], rel=1e-9)
     assert _growth(p.with_(B=0.5 * (roots[0] + roots[1]))) > 1e-3
+
+
+def test_two_roots_through_the_cut_between_two_of_its_points_are_counted():
+    """A taut tether with large rotary inertia spun fast (R = 0.8, P = 0.027, T-bar = 50: about 200 roots below the
+    spin line's cut near omega = 17): two roots passed the cut between two of the 33 points between samples, the
+    count missed them, and the bisection met a change of stability with no root on the move ("could not isolate").
+    The pair shows as a dip of |E| at the cut and is split; the critical spin then located is the collocation
+    spectrum's (stable just below, growing just past it)."""
+    p = RodParameters(P=0.02656164711598646, R=0.8, Gamma=0.77, B=0.16325064945998125, omega=0.2535642542278924,
+                      T=50.0)
+    u = undamped_critical(p, windows=False)
+    spin = u.critical_spin
+    assert spin.kind == "divergence" and spin.converged and u.stable
+    assert _growth(p.with_(omega=0.999 * spin.value)) < 1e-8 < 1e-3 < _growth(p.with_(omega=1.00001 * spin.value))
