@@ -406,3 +406,14 @@ def test_two_roots_through_the_cut_between_two_of_its_points_are_counted():
     spin = u.critical_spin
     assert spin.kind == "divergence" and spin.converged and u.stable
     assert _growth(p.with_(omega=0.999 * spin.value)) < 1e-8 < 1e-3 < _growth(p.with_(omega=1.00001 * spin.value))
+
+
+def test_a_nearly_round_wire_pair_between_two_samples_is_not_a_collision():
+    """R = 0.97 spun at 2.6: its u and v roots come in pairs closer than the lines' samples. A pair between two
+    samples, with no dip of |E| at either, looked like two real roots that had met and left the real axis: flutter
+    reported at B = 0.772, where the collocation spectrum is still stable (it first grows at 0.7764). The pair is
+    looked for again by a fine scan at the sample that lacks it; the flutter load is the spectrum's."""
+    p = RodParameters(P=0.001017571917077209, R=0.97, Gamma=0.77, B=0.978133116954041, omega=2.612414557492265)
+    load = undamped_critical(p, windows=False).critical_load
+    assert load.kind == "flutter" and load.converged
+    assert _growth(p.with_(B=(1 - 1e-6) * load.value)) < 1e-8 < 1e-4 < _growth(p.with_(B=(1 + 1e-6) * load.value))
