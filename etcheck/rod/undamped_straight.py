@@ -430,6 +430,13 @@ def _positive_grid(params: RodParameters, ends: list[RodParameters], density: fl
     return mu_cut, np.interp(np.linspace(0.0, count[-1], n + 1), count, fine)[1:]
 
 
+def _sign_roots(mu: np.ndarray, E: np.ndarray) -> list[float]:
+    """The roots of E on the grid mu where it changes sign (secant between the two samples) or is zero."""
+    s = np.sign(E)
+    j = np.nonzero(s[:-1] * s[1:] < 0)[0]
+    return (mu[j] + (mu[j + 1] - mu[j]) * E[j] / (E[j] - E[j + 1])).tolist() + mu[s == 0].tolist()
+
+
 def _dips(i: int, mu: np.ndarray, E: np.ndarray) -> list[tuple]:
     """The candidates of :func:`_close_pairs` in row i: the samples of E on the grid mu where |E| has a local
     minimum without a change of sign."""
@@ -553,10 +560,7 @@ class _Line:
         cand = []
         for i, (row, k) in enumerate(zip(rows, start)):
             E, mu = row[k:], self.mu[k:]
-            si = np.sign(E)
-            j = np.nonzero(si[:-1] * si[1:] < 0)[0]
-            roots.append((mu[j] + (mu[j + 1] - mu[j]) * E[j] / (E[j] - E[j + 1])).tolist()
-                         + mu[si == 0].tolist())
+            roots.append(_sign_roots(mu, E))
             cand += _dips(i, mu, E)
         for i, pair in _close_pairs(self.E, ps, cand):
             roots[i] += pair
@@ -589,9 +593,7 @@ class _Line:
             lo, hi = (max(lo, 0.0), hi) if r[j] > 0 else (lo, min(hi, 0.0))
         x = np.union1d(np.linspace(lo, hi, 257), mu[(mu >= lo) & (mu <= hi)])
         E = self.E(np.full(x.size, poor.p), x)
-        si = np.sign(E)
-        k = np.nonzero(si[:-1] * si[1:] < 0)[0]
-        found = list(x[k] + (x[k + 1] - x[k]) * E[k] / (E[k] - E[k + 1]))
+        found = _sign_roots(x, E)
         for _, pair in _close_pairs(self.E, np.array([poor.p]), _dips(0, x, E)):
             found += pair
         old = [v for v in poor.roots if lo <= v <= hi]
