@@ -912,7 +912,8 @@ def _least_damped(lam: np.ndarray, lam_M: np.ndarray, gamma: float):
 
 @single_blas_thread
 def damping_map(params: RodParameters, B_grid, omega_grid, gammas=HOPF_GAMMAS, N: int = 24, k: int = 6,
-                B_ref: float = 1.2, margin: float = 1e-3, B_above: float = 1.0) -> DampingMap:
+                B_ref: float = 1.2, margin: float = 1e-3, B_above: float = 1.0,
+                liftoff: float | None = None) -> DampingMap:
     """Decay rate, damping ratio and logarithmic decrement of the least-damped
     mode of b1 over the grid B_grid x omega_grid, for each gamma (Sec. VII B,
     Fig. 19; dimensionless, rates in units of omega_c).
@@ -926,6 +927,8 @@ def damping_map(params: RodParameters, B_grid, omega_grid, gammas=HOPF_GAMMAS, N
     there). The equilibria and operators are built once and reused
     for every gamma (A1 is affine in gamma); eigenvalues at N and
     M = check_resolution(N) (only modes agreeing to ``MAP_ACCEPT`` count).
+    ``liftoff``: b1's lift-off spin at N (:func:`~etcheck.rod.branches.liftoff_spin`) when already known
+    (a map computed spin by spin).
     """
     B_grid = np.asarray(B_grid, dtype=float)
     omega_grid = np.asarray(omega_grid, dtype=float)
@@ -941,7 +944,7 @@ def damping_map(params: RodParameters, B_grid, omega_grid, gammas=HOPF_GAMMAS, N
     curve = np.full(omega_grid.size, np.nan)
     primary = np.full(omega_grid.size, np.nan)
     t0 = time.perf_counter()
-    lift = br.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N=N)
+    lift = br.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N=N) if liftoff is None else liftoff
     t_eq = time.perf_counter() - t0
     t_sp = 0.0
     for iw, w in enumerate(omega_grid):

@@ -21,6 +21,7 @@ from etcheck.checks.results import results_header
 from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
+from etcheck.numerics.parallel import split_map
 from etcheck.rod import branches as br
 from etcheck.rod.branch_stability import HOPF_GAMMAS, DampingMap, b1_spin_branch, damping_map
 from etcheck.rod.parameters import RodParameters
@@ -37,7 +38,8 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     B from 0 to ``B_max`` (default 5 times b1's pitchfork at rest) and omega
     from 0 to ``omega_max`` (dimensionless, grid ``n_B`` x ``n_omega``); the
     equilibria are computed once and reused for every gamma. The curve B*(omega)
-    is located at N and at the check resolution (its error). Returns JSON-able
+    is located at N and at the check resolution (its error). Spin by spin on two
+    cores (each spin's curve point and map column in one process). Returns JSON-able
     arrays of shape (gamma, omega, B) (None outside b1's stable region) and
     their SI counterparts.
     """
@@ -47,19 +49,26 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     B_max = B_max or 5.0 * pf0
     B = np.linspace(0.0, B_max, n_B + 1)[1:]
     w = np.linspace(0.0, omega_max, n_omega)
-    # the curve first: its continuations of b1 up to B* at N are cached and serve the map's grid
+    # b1 followed in spin at N and the check resolution (its states start every spin's continuation in load) and
+    # b1's lift-off spin, once, before the spins are shared between two cores
     t_curve = time.perf_counter()
-    curve = []
     spin_branch_failed = None
     for n in (N, check_resolution(N)):
-        try:  # one continuation in spin serves every point of the curve
+        try:
             b1_spin_branch(params, B_ref, omega_max, n)
         except _UNANSWERED as exc:
             spin_branch_failed = f"b1 at B = {B_ref:.4g} was not followed in spin to {omega_max:g} at N = {n} ({exc})"
-    for wi in w:
-        curve.append(_curve_point(params, float(wi), N, B_ref, spin_branch_failed))
+    try:
+        lift = br.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N=N)
+    except _UNANSWERED:
+        lift = None  # each spin's column finds it again and says why it failed
     t_curve = time.perf_counter() - t_curve
-    m, spin_reasons = _map(params, B, w, gammas, N, B_ref)
+    columns = split_map(lambda wi: _spin_column(params, B, float(wi), gammas, N, B_ref, lift, spin_branch_failed),
+                        list(w))
+    curve = [c[0] for c in columns]
+    t_curve += sum(c[1] for c in columns)  # seconds of work (the spins' share summed over both cores)
+    m = _joined(B, w, gammas, N, [c[2] for c in columns])
+    spin_reasons = [c[3] for c in columns]
     wc = scales.frequency
     zeta = m.zeta
     # unstable as the stability module defines it (max Re lambda above its threshold, not merely > 0), and
@@ -122,22 +131,24 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
 _UNANSWERED = (ValueError, SolverError, np.linalg.LinAlgError, ArithmeticError)
 
 
-def _map(params: RodParameters, B: np.ndarray, w: np.ndarray, gammas, N: int,
-         B_ref: float) -> tuple[DampingMap, list[str | None]]:
-    """The damping map over the whole grid; if a continuation fails, spin by spin, each spin that cannot be
-    answered left blank (NaN: "not answered") with its reason. Reasons per spin (None: answered)."""
+def _spin_column(params: RodParameters, B: np.ndarray, omega: float, gammas, N: int, B_ref: float,
+                 liftoff: float | None, failed: str | None) -> tuple[dict[str, Any], float, DampingMap | None, str | None]:
+    """One spin of the study: B*(omega) (:func:`_curve_point`) and the seconds it took, then the map's column at
+    that spin (None, with the reason, when b1 was not followed over the map's loads). In that order and in one
+    process: the continuations of b1 up to B* at N that the curve makes (cached) serve the column."""
+    t0 = time.perf_counter()
+    point = _curve_point(params, omega, N, B_ref, failed)
+    spent = time.perf_counter() - t0
     try:
-        return damping_map(params, B, w, gammas=gammas, N=N, B_ref=B_ref), [None] * len(w)
-    except _UNANSWERED:
-        pass
-    columns, reasons = [], []
-    for wi in w:
-        try:
-            columns.append(damping_map(params, B, np.array([wi]), gammas=gammas, N=N, B_ref=B_ref))
-            reasons.append(None)
-        except _UNANSWERED as exc:
-            columns.append(None)
-            reasons.append(f"b1 was not followed over the map's loads at this spin ({type(exc).__name__}: {exc})")
+        return point, spent, damping_map(params, B, np.array([omega]), gammas=gammas, N=N, B_ref=B_ref,
+                                         liftoff=liftoff), None
+    except _UNANSWERED as exc:
+        return point, spent, None, f"b1 was not followed over the map's loads at this spin ({type(exc).__name__}: {exc})"
+
+
+def _joined(B: np.ndarray, w: np.ndarray, gammas, N: int, columns: list[DampingMap | None]) -> DampingMap:
+    """The damping map over the whole grid from its columns (one per spin; None: that spin not answered, left
+    blank: NaN)."""
     done = [c for c in columns if c is not None]
     if not done:  # nothing answered: every point blank, every spin with its reason
         blank = np.full((len(tuple(gammas)), 1, B.size), np.nan)
@@ -154,7 +165,7 @@ def _map(params: RodParameters, B: np.ndarray, w: np.ndarray, gammas, N: int,
     per_gamma = {k: join(k, 1) for k in ("max_real", "decay", "zeta", "log_decrement", "frequency", "error")}
     per_spin = {k: join(k, 0) for k in ("inside", "measure1", "curve_B", "primary_B")}
     timing = {k: sum(c.timing[k] for c in columns if c is not None) for k in ref.timing}
-    return replace(ref, omega=np.asarray(w, dtype=float), timing=timing, **per_gamma, **per_spin), reasons
+    return replace(ref, omega=np.asarray(w, dtype=float), timing=timing, **per_gamma, **per_spin)
 
 
 def _curve_point(params: RodParameters, omega: float, N: int, B_ref: float, failed: str | None) -> dict[str, Any]:
