@@ -23,6 +23,7 @@ import json
 import math
 import os
 import signal
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -298,11 +299,11 @@ ROWS = (
 )
 
 
-def _reference_workload() -> float:
-    """Milliseconds of a fixed mix of the rows' kinds of work, best of 5: dense LU factors and solves at n = 396
-    (a branch state's operator at N = 32) and numpy on small arrays (the exact determinants). The same code
-    everywhere: it tells how fast this machine is in this hour, to read the rows against (the speed of a shared
-    machine drifts by 10-30 % within an hour, every row with it)."""
+def _reference_workload(repeat: int = 5, pick=min) -> float:
+    """Milliseconds of a fixed mix of the rows' kinds of work, best of 5 (``pick`` of ``repeat`` runs): dense LU
+    factors and solves at n = 396 (a branch state's operator at N = 32) and numpy on small arrays (the exact
+    determinants). The same code everywhere: it tells how fast this machine is in this hour, to read the rows
+    against (the speed of a shared machine drifts by 10-30 % within an hour, every row with it)."""
     import numpy as np
     import scipy.linalg as sla
 
@@ -317,12 +318,17 @@ def _reference_workload() -> float:
         for _ in range(3000):
             np.sin(x) * x + 1.0
 
-    best = math.inf
-    for _ in range(5):
+    times = []
+    for _ in range(repeat):
         t0 = time.perf_counter()
         once()
-        best = min(best, time.perf_counter() - t0)
-    return 1e3 * best
+        times.append(time.perf_counter() - t0)
+    return 1e3 * pick(times)
+
+
+def _machine_now() -> float:
+    """The reference workload now, the median of 3 (a best-of hides a slow stretch), in milliseconds."""
+    return _reference_workload(3, statistics.median)
 
 
 def headline(quick: bool) -> None:
@@ -331,21 +337,26 @@ def headline(quick: bool) -> None:
           "(times are wall times: on a busy machine they are longer); etcheck's bytecode compiled first")
     print(f"this machine now: reference workload {_reference_workload():.1f} ms (fixed work, best of 5; lower is "
           "faster: compare it between runs before comparing their rows)")
-    print(f"{'issue 10, row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8}  note")
+    print("machine: the reference workload (median of 3) just before and after the row, against its median now "
+          "(1.00: as fast as at the start; 1.30: the row ran on a machine 30 % slower)")
+    start = _machine_now()
+    print(f"{'issue 10, row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8} {'machine':>8}  note")
     for row in ROWS:
         if quick and row.slow:
-            print(f"{row.what:<62} {'skipped':>9} {row.target:>7.3g} {'':>6} {'':>8}  --quick")
+            print(f"{row.what:<62} {'skipped':>9} {row.target:>7.3g} {'':>6} {'':>8} {'':>8}  --quick")
             continue
+        before = _machine_now()
         try:
             wall, err, note = row.measure()
         except NotImplementedError as exc:
-            print(f"{row.what:<62} {'n/a':>9} {row.target:>7.3g} {'':>6} {'':>8}  not available: {exc}")
+            print(f"{row.what:<62} {'n/a':>9} {row.target:>7.3g} {'':>6} {'':>8} {'':>8}  not available: {exc}")
             continue
         except Exception as exc:  # a failing row must not hide the others
-            print(f"{row.what:<62} {'failed':>9} {row.target:>7.3g} {'':>6} {'':>8}  {type(exc).__name__}: {exc}")
+            print(f"{row.what:<62} {'failed':>9} {row.target:>7.3g} {'':>6} {'':>8} {'':>8}  {type(exc).__name__}: {exc}")
             continue
         e = "n/a" if err is None else f"{err:.1e}"
-        print(f"{row.what:<62} {wall:>9.3f} {row.target:>7.3g} {wall / row.target:>6.2f} {e:>8}  {note}",
+        slow = max(before, _machine_now()) / start
+        print(f"{row.what:<62} {wall:>9.3f} {row.target:>7.3g} {wall / row.target:>6.2f} {e:>8} {slow:>8.2f}  {note}",
               flush=True)
 
 
