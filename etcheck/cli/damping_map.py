@@ -83,7 +83,8 @@ def _summary(results: dict, paths: list) -> None:
     s = results["study"]
     print(f"etcheck damping-map: {results['mission']['name']}: {len(s['omega'])} spins x {len(s['B'])} loads, "
           f"{len(s['gammas'])} dampings, N = {s['N']}/{s['N_check']}: {s['time_s']:.1f} s "
-          f"(equilibria {s['timing']['equilibria_s']:.1f} s, spectra {s['timing']['spectra_s']:.1f} s)")
+          f"(work summed over the cores: equilibria {s['timing']['equilibria_s']:.1f} s, spectra "
+          f"{s['timing']['spectra_s']:.1f} s)")
     largest = "not answered" if s["largest_error"] is None else f"{s['largest_error']:.1e}"
     print(f"  largest estimated error of max Re lambda: {largest}; unstable points (max Re lambda > "
           f"{s['unstable_threshold']:g} by more than its error) under the secondary pitchfork: {s['unstable_points']}")
@@ -94,7 +95,7 @@ def _summary(results: dict, paths: list) -> None:
         print(f"  note: {s['note']}")
     errs = [e for e in s["secondary_pitchfork_error"] if e is not None]
     print(f"  secondary pitchfork curve B*(omega): {len(errs)} points located at N = {s['N']} and {s['N_check']}, "
-          f"largest difference {_e(max(errs, default=None))}, {s['curve_time_s']:.1f} s")
+          f"largest difference {_e(max(errs, default=None))}, {s['curve_time_s']:.1f} s of work")
     for w, why in zip(s["omega"], s["spin_not_answered"]):
         if why:
             print(f"  spin omega = {w:.4g}: map not answered: {why}")
