@@ -6,8 +6,8 @@ least 1.5 N), and times the automatic
 two-resolution solve the check runs (:func:`etcheck.rod.spectrum.spectrum`). Property (issue 11,
 item 4): the automatic solve's error estimate bounds its true error, measured against the study's
 reference resolution, eigenvalue by eigenvalue (those it reports: a pair it drops as unresolved, such as
-a member of the Kelvin-Voigt cluster near -1/gamma, carries no stated error), over the scene space. The command itself (exit codes, finite output) is
-exercised in tests/cli/test_subcommand_properties.py.
+a member of the Kelvin-Voigt cluster near -1/gamma, carries no stated error), over the scene space. The
+command itself (exit codes, finite output) is exercised in tests/cli/test_subcommand_properties.py.
 """
 
 from __future__ import annotations
@@ -49,7 +49,7 @@ def test_the_automatic_solve_states_an_error_that_bounds_its_true_error(s, load)
     _estimate_bounds_true_error(s, load)
 
 
-@pytest.mark.slow  # 30 s: dense spectra at N = 96, 112 and 128
+@pytest.mark.slow  # 30-40 s: dense spectra at N = 96, 112 and 128
 def test_the_reference_carries_its_own_round_off():
     """Found by the thorough profile above: at a fast spin with heavy damping (R = 0.5526, gamma = 0.5, omega =
     7.43, load 3) the automatic solve (N = 48 against 32) states 1.6e-11 and differs from the reference N = 96 by
