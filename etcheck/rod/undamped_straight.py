@@ -492,6 +492,20 @@ def _close_pairs(evaluate, ps: np.ndarray, cand: list) -> list[tuple[int, list[f
     return found + [(c[0], [0.5 * (c[1] + c[2])] * 2) for c in cand if c[5] <= 1e-3]
 
 
+def _pair_brackets(evaluate, ps: np.ndarray, dips: list) -> tuple[list[tuple[int, float, float]], list[tuple[int, float]]]:
+    """The close pairs at ``dips`` (:func:`_close_pairs`) as brackets of single roots: (row, lo, hi) from each
+    dip's end to the pair's middle, where E has the other sign; and the pairs that touch (a double root), (row, mu)."""
+    split, touching = [], []
+    for row, (r1, r2) in _close_pairs(evaluate, ps, dips):
+        a, b = next(((c[1], c[2]) for c in dips if c[0] == row and c[1] <= r1 and r2 <= c[2]), (r1, r2))
+        if r1 == r2:
+            touching.append((row, r1))
+        elif a < r1 < r2 < b:
+            m = 0.5 * (r1 + r2)
+            split += [(row, a, m), (row, m, b)]
+    return split, touching
+
+
 class _Line:
     """E along one axis ("B" or "omega"; T, P, R, f from params) on a fixed mu grid.
 
@@ -629,12 +643,9 @@ class _Line:
             # with no root on the move could not be isolated): a dip of |E|, each root of the pair bracketed by
             # the dip's ends and the pair's middle
             dips = [c for row in range(ps.shape[0]) for c in _dips(row, ps[row], top[row])]
-            found = _close_pairs(lambda _, t, x=x: self.E(t, np.full(t.shape, x)), np.zeros(ps.shape[0]), dips)
-            for row, (r1, r2) in found:
-                a, b = next(((c[1], c[2]) for c in dips if c[0] == row and c[1] <= r1 and r2 <= c[2]), (r1, r2))
-                if a < r1 < r2 < b:  # a touching pair (r1 = r2) passes nothing
-                    m = 0.5 * (r1 + r2)
-                    lo, hi, rows = lo + [a, m], hi + [m, b], rows + [row, row]
+            split, _ = _pair_brackets(lambda _, t, x=x: self.E(t, np.full(t.shape, x)), np.zeros(ps.shape[0]), dips)
+            for row, a, b in split:  # a touching pair passes nothing
+                lo, hi, rows = lo + [a], hi + [b], rows + [row]
             np.add.at(out, np.asarray(rows, dtype=int),
                       self._through_cut(np.asarray(lo, dtype=float), np.asarray(hi, dtype=float), x, side))
         return out
@@ -1007,23 +1018,17 @@ def _static_roots_of(params: RodParameters, axis: str, upto: float, n: int) -> n
     x = np.linspace(0.0, upto, n + 1)[1:]
     g = fn(x)
     i = np.nonzero(np.sign(g[:-1]) * np.sign(g[1:]) < 0)[0]
-    lo, hi, touching = list(x[i]), list(x[i + 1]), []
+    lo, hi = list(x[i]), list(x[i + 1])
     # a close pair between two samples (R near 1: the u and v modes' static points, 0.43 apart at B = 318 of a taut
     # tether, its 400 samples 0.8 apart) shows as a dip of |D|: split as the lines split theirs, each root then
     # bracketed by the dip's ends and the pair's middle, where D has the other sign
-    dips = _dips(0, x, g)
-    for _, (r1, r2) in _close_pairs(lambda _, t: fn(t.ravel()).reshape(t.shape), np.zeros(1), dips):
-        a, b = next(((c[1], c[2]) for c in dips if c[1] <= r1 and r2 <= c[2]), (r1, r2))
-        if r1 == r2:
-            touching.append(r1)
-        elif a < r1 < r2 < b:
-            m = 0.5 * (r1 + r2)
-            lo += [a, m]
-            hi += [m, b]
+    split, touching = _pair_brackets(lambda _, t: fn(t.ravel()).reshape(t.shape), np.zeros(1), _dips(0, x, g))
+    lo += [a for _, a, _ in split]
+    hi += [b for _, _, b in split]
     # all brackets at once (Chandrupatla, one evaluation of fn per step on the unfinished ones)
     lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
     out = find_root(fn, (lo, hi), tolerances={"xrtol": 1e-9}).x if lo.size else np.zeros(0)
-    out = np.sort(np.concatenate([out, touching]))
+    out = np.sort(np.concatenate([out, [r for _, r in touching]]))
     out.setflags(write=False)
     return out
 
