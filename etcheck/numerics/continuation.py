@@ -201,14 +201,36 @@ def _bordered(Ju: np.ndarray, Jp: np.ndarray, row: np.ndarray) -> np.ndarray:
     return A
 
 
-def tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Unit tangent (in the W-norm) at (u, p) oriented like tau0; returns (tau, Ju, Jp)."""
+def _lu(A: np.ndarray) -> tuple[tuple, float]:
+    """LU factors of A and the sign of det A."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)
+        lu, piv = sla.lu_factor(A, check_finite=False)
+    return (lu, piv), float(np.prod(np.sign(np.diag(lu))) * (-1.0) ** int(np.sum(piv != np.arange(piv.size))))
+
+
+def _tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """:func:`tangent`, and the branch-point test at (u, p): :func:`signed_smallness` of [[Ju, Jp], [tau]], from
+    the LU of the tangent's bordered matrix A = [[Ju, Jp], [W tau0]] (the two differ in their last row only: the
+    determinant changes by the factor 1 + (tau - W tau0) . t, t = A^{-1} e_last, the solve by Sherman-Morrison)."""
     Ju, Jp = problem.jacobian(u, p)
     A = _bordered(Ju, Jp, W * tau0)
+    lu, sign = _lu(A)
     e = np.zeros(A.shape[0])
     e[-1] = 1.0
-    t = np.linalg.solve(A, e)
-    return t / math.sqrt(float(np.sum(W * t * t))), Ju, Jp
+    t = sla.lu_solve(lu, e, check_finite=False)
+    if not np.all(np.isfinite(t)):
+        raise np.linalg.LinAlgError("singular bordered matrix: no tangent")
+    tau = t / math.sqrt(float(np.sum(W * t * t)))
+    dr = tau - A[-1]
+    grow = 1.0 + float(dr @ t)
+    y = sla.lu_solve(lu, _probe(e.size), check_finite=False)
+    return tau, Ju, Jp, _smallness(sign * float(np.sign(grow)), y - t * (float(dr @ y) / grow))
+
+
+def tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Unit tangent (in the W-norm) at (u, p) oriented like tau0; returns (tau, Ju, Jp)."""
+    return _tangent(problem, u, p, tau0, W)[:3]
 
 
 #: Newton iterations with the residual below a tenth of the tolerance after which the corrector stops even
@@ -301,6 +323,16 @@ def correct_at(problem, u, p: float, tol: float, max_newton: int):
     return u, p, rn, max_newton, rn < tol
 
 
+def _probe(n: int) -> np.ndarray:
+    """The fixed vector e of :func:`signed_smallness`."""
+    return np.cos(np.arange(n) * 0.7 + 0.3)
+
+
+def _smallness(sign: float, y: np.ndarray) -> float:
+    big = float(np.max(np.abs(y)))
+    return float(sign / big) if np.isfinite(big) and big > 0 else 0.0
+
+
 def signed_smallness(A: np.ndarray) -> float:
     """sign(det A) / max|A^{-1} e| for a fixed vector e (one LU).
 
@@ -308,26 +340,15 @@ def signed_smallness(A: np.ndarray) -> float:
     order of the smallest singular value near it, and it changes sign at a
     simple zero of det A (so the secant method locates it fast).
     """
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", sla.LinAlgWarning)
-        lu, piv = sla.lu_factor(A, check_finite=False)
-        d = np.diag(lu)
-        sign = np.prod(np.sign(d)) * (-1.0) ** int(np.sum(piv != np.arange(piv.size)))
-        e = np.cos(np.arange(A.shape[0]) * 0.7 + 0.3)
-        y = sla.lu_solve((lu, piv), e, check_finite=False)
-    big = float(np.max(np.abs(y)))
-    return float(sign / big) if np.isfinite(big) and big > 0 else 0.0
-
-
-def _det_sign(Ju, Jp, tau) -> float:
-    return signed_smallness(_bordered(Ju, Jp, tau))
+    lu, sign = _lu(A)
+    return _smallness(sign, sla.lu_solve(lu, _probe(A.shape[0]), check_finite=False))
 
 
 def _make_point(problem, u, p, tau_prev, W, s, residual, newton, opts) -> Point:
-    tau, Ju, Jp = tangent(problem, u, p, tau_prev, W)
+    tau, Ju, Jp, bp = _tangent(problem, u, p, tau_prev, W)
     tests = {}
     if opts.detect_bp:
-        tests["bp"] = _det_sign(Ju, Jp, tau)
+        tests["bp"] = bp
     if opts.detect_folds:
         tests["fold"] = float(tau[-1])
     extra = getattr(problem, "tests", None)

@@ -140,3 +140,26 @@ def test_newton_at_a_fixed_parameter_has_the_same_quadratic_exit(solves, monkeyp
     _, _, _, it_plain, _ = cont.correct_at(problem, start, p, tol, 20)
     assert ok and rn < tol and np.max(np.abs(u - u_ref)) < tol
     assert quick == len(solves) - 1 and it == it_plain
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_branch_point_test_from_the_tangents_factors_is_the_bordered_determinant_test(seed):
+    """The branch-point test of an accepted point, made from the LU of the tangent's bordered matrix (last row
+    W tau0) by a rank-one update, is :func:`signed_smallness` of [[Ju, Jp], [tau]] factored on its own: same sign,
+    same value to round-off."""
+    rng = np.random.default_rng(seed)
+    m = 12
+    Ju, Jp = rng.standard_normal((m, m)), rng.standard_normal(m)
+
+    class Linear:
+        def jacobian(self, u, p):
+            return Ju, Jp
+
+    W = rng.uniform(0.5, 2.0, m + 1) / (m + 1)
+    tau0 = rng.standard_normal(m + 1)
+    tau, _, _, bp = cont._tangent(Linear(), None, 0.0, tau0, W)
+    direct = cont.signed_smallness(cont._bordered(Ju, Jp, tau))
+    assert np.sign(bp) == np.sign(direct) and bp == pytest.approx(direct, rel=1e-9)
+    # the tangent itself: in the kernel of [Ju, Jp], unit in the W-norm, oriented like tau0
+    assert np.max(np.abs(np.c_[Ju, Jp] @ tau)) < 1e-12 and np.sum(W * tau * tau) == pytest.approx(1.0)
+    assert np.sum(W * tau * tau0) > 0
