@@ -32,7 +32,14 @@ from etcheck.checks.coil import (
     spin_limit,
     state_stability,
 )
-from etcheck.checks.sections import BifurcationDiagram, BranchRecord, BuckledOperatingPoint, PostbucklingSection, Shape
+from etcheck.checks.sections import (
+    BifurcationDiagram,
+    BranchRecord,
+    BuckledOperatingPoint,
+    PostbucklingSection,
+    Shape,
+    SpecialPoint,
+)
 from etcheck.errors import SolverError
 from etcheck.numerics.parallel import split_map
 from etcheck.rod import equilibria as eq
@@ -266,11 +273,7 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
         "measure1_error": check.measure1_error,
         "deflection_error": check.deflection_error,
         "N_check": check.N_check,
-        "special": [
-            {"kind": q.kind, "B": q.value, "IB0_N_per_m": q.value * scales.load, "measure1": q.measure1,
-             "bracket": list(q.bracket)}
-            for q in branch.special
-        ],
+        "special": [_special_point(q, scales) for q in branch.special],
     }
     if options.stability:
         if stability:
@@ -288,6 +291,14 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     out["shapes"] = shapes
     out["check_time"] = time.perf_counter() - t0
     return out
+
+
+def _special_point(q, scales: Scales) -> SpecialPoint:
+    """A located special point of a branch with the measures of its state (the nearer end of its final bracket,
+    within the located width of the point: where the figures mark it)."""
+    ms = eq.measures(q.state)
+    return {"kind": q.kind, "B": q.value, "IB0_N_per_m": q.value * scales.load, "measure1": q.measure1,
+            "measure2": ms.measure2, "max_deflection_m": ms.max_deflection * scales.length, "bracket": list(q.bracket)}
 
 
 def _second_step(attached: list[_Primary], options: DiagramOptions) -> list[tuple[str, str]]:

@@ -280,12 +280,14 @@ class AccuracyRow(TypedDict):
 
 
 class SpecialPoint(TypedDict):
-    """A branch point, secondary pitchfork or fold on a branch."""
+    """A branch point, secondary pitchfork or fold on a branch, with the measures of the state there."""
 
     kind: str
     B: float
     IB0_N_per_m: float
     measure1: float
+    measure2: float
+    max_deflection_m: float
     bracket: list[float]
 
 

@@ -111,3 +111,23 @@ def test_campbell_shades_the_unstable_spins_the_report_states(lin, shaded):
 
     _shade_unstable_spin(Axes(), lin, np.linspace(0.0, 0.5, 11))
     assert spans == shaded
+
+
+@pytest.mark.parametrize(("ykey", "own"), [("measure1", 0.123), ("measure2", -0.004), ("max_deflection_m", 7.5)])
+def test_a_special_point_is_marked_where_it_was_located_not_on_the_nearest_state(ykey, own):
+    """A fold between two computed states far apart is marked at its own measure (the located state's); results
+    without that measure (written before it was recorded) fall back to the nearest computed state."""
+    from etcheck.report.figures.diagram import _draw_special_points
+
+    b = {"values": [0.5, 0.9], "IB0_N_per_m": [1.0, 1.8], ykey: [0.0, 1.0],
+         "special": [{"kind": "fold", "B": 0.6, "IB0_N_per_m": 1.2, ykey: own}]}
+    plt = pyplot()
+    for key in ("values", "IB0_N_per_m"):
+        fig, ax = plt.subplots()
+        assert _draw_special_points(ax, b, key, ykey, set()) == {"fold"}
+        assert list(ax.lines[-1].get_xdata()) == [b["special"][0][{"values": "B"}.get(key, key)]]
+        assert list(ax.lines[-1].get_ydata()) == [own]
+        old = {**b, "special": [{k: v for k, v in b["special"][0].items() if k != ykey}]}
+        _draw_special_points(ax, old, key, ykey, set())
+        assert list(ax.lines[-1].get_ydata()) == [0.0]  # the nearest state's
+        plt.close(fig)

@@ -78,8 +78,9 @@ _SPECIAL_X = {"values": "B", "IB0_N_per_m": "IB0_N_per_m"}
 
 
 def _draw_special_points(ax, b: dict, xkey: str, ykey: str, seen: set[str]) -> set[str]:
-    """The branch's special points (pitchforks, folds, branch points) on the nearest branch point; each kind
-    labelled once over the figure (``seen``: kinds labelled before). Returns the kinds drawn."""
+    """The branch's special points (pitchforks, folds, branch points) where they were located (results without
+    the point's own ``ykey`` measure: on the nearest computed state); each kind labelled once over the figure
+    (``seen``: kinds labelled before). Returns the kinds drawn."""
     drawn = set()
     if xkey not in _SPECIAL_X:
         return drawn
@@ -87,8 +88,8 @@ def _draw_special_points(ax, b: dict, xkey: str, ykey: str, seen: set[str]) -> s
     for q in b["special"]:
         marker, name = MARKERS.get(q["kind"], ("o", q["kind"]))
         xv = q[_SPECIAL_X[xkey]]
-        i = int(np.argmin(np.abs(x - xv)))
-        ax.plot([xv], [b[ykey][i]], marker=marker, color="k", ms=5, ls="none",
+        yv = q[ykey] if q.get(ykey) is not None else b[ykey][int(np.argmin(np.abs(x - xv)))]
+        ax.plot([xv], [yv], marker=marker, color="k", ms=5, ls="none",
                 label=name if name not in seen | drawn else None)
         drawn.add(name)
     return drawn
