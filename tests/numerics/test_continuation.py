@@ -163,3 +163,34 @@ def test_branch_point_test_from_the_tangents_factors_is_the_bordered_determinant
     # the tangent itself: in the kernel of [Ju, Jp], unit in the W-norm, oriented like tau0
     assert np.max(np.abs(np.c_[Ju, Jp] @ tau)) < 1e-12 and np.sum(W * tau * tau) == pytest.approx(1.0)
     assert np.sum(W * tau * tau0) > 0
+
+
+def test_step_control_grows_on_nearly_straight_branches_and_rejects_slow_steps(monkeypatch):
+    """The step grows after three Newton solves, after four only where the tangent turned by less than a sixth of
+    the largest accepted turn, is kept after five, halved after six; a step that took seven is rejected (it may
+    have landed on a neighbouring branch: the SET b34 at rest did, tests/rod/test_equilibria.py)."""
+    opts = cont.ContinuationOptions(ds=0.1, ds_max=0.5, max_angle=0.3)
+    grown, kept, halved = 0.15, 0.1, 0.05
+    assert cont._next_step(0.1, 3, 0.29, opts) == pytest.approx(grown)
+    assert cont._next_step(0.1, 4, 0.049, opts) == pytest.approx(grown)
+    assert cont._next_step(0.1, 4, 0.051, opts) == kept
+    assert cont._next_step(0.1, 5, 0.0, opts) == kept
+    assert cont._next_step(0.1, 6, 0.0, opts) == pytest.approx(halved)
+    assert cont._next_step(0.4, 3, 0.0, opts) == 0.5  # at most ds_max
+
+    problem = _Circle()
+    u0, p0 = np.array([0.6, np.sin(0.6) * 0.5]), 0.5
+    for _ in range(50):
+        Ju, _ = problem.jacobian(u0, p0)
+        u0 = u0 - np.linalg.solve(Ju, problem.residual(u0, p0))
+    W = cont.weights(2, opts)
+    a = cont._make_point(problem, u0, p0, np.array([1.0, 0.0, 0.0]), W, 0.0, 0.0, 0, opts)
+    correct = cont.correct
+    for solves, accepted in ((6, True), (7, False)):
+        def slow(*args, _n=solves, **kw):
+            u, p, rn, _, ok = correct(*args, **kw)
+            return u, p, rn, _n, ok
+
+        monkeypatch.setattr(cont, "correct", slow)
+        b, it, _ = cont._advance(problem, a, 0.05, W, opts)
+        assert it == solves and (b is not None) is accepted
