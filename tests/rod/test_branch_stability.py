@@ -230,10 +230,11 @@ def test_branch_spectra_tracks_paths_continuously(b1_spun):
     states = [s for s in b1_spun.states if s.params.omega <= 2.5]
     sp = bs.branch_spectra(states, 0.01, k=3, state_stride=0)
     assert sp.crossings == ()
-    # each path moves in proportion to the spin step (a swap of two paths would jump by their gap): measured
-    # |d lambda / d omega| <= 0.80 with the continuation's steps of 0.07-0.35 (and 0.07-0.24)
-    step = np.abs(np.diff(sp.eigenvalues, axis=0)) / np.diff([s.params.omega for s in states])[:, None]
-    assert np.max(step) < 1.0
+    # from each state to the next, every path continues to the eigenvalue nearest to it (a swap of two paths would
+    # continue to a farther one): measured steps up to 0.27 against distances of 0.37 or more to the other paths
+    lam = sp.eigenvalues
+    dist = np.abs(lam[1:, None, :] - lam[:-1, :, None])  # [state, path, path at the next state]
+    assert np.all(np.argmin(dist, axis=2) == np.arange(lam.shape[1]))
     json.dumps(sp.as_dict())
     # without the stiffness index (damped): the same paths, the index left out (-1)
     paths_only = bs.branch_spectra(states[:6], 0.01, k=3, state_stride=0, stiffness=False)
