@@ -23,7 +23,8 @@ Numerical Continuation Methods*, ch. 2-3, 8):
   four Newton solves where the tangent has turned by less than a sixth of the
   largest accepted turn: the branch is nearly straight), halve after slow
   convergence; reject and halve a step that failed, turned too far, or needed
-  seven or more Newton solves (it may have landed on a neighbouring branch);
+  seven or more Newton solves (it may have landed on a neighbouring branch;
+  its retry at half the length is accepted however many it needs);
 * folds: sign change of tau_p; simple branch points: sign change of
   det([[Ju, Jp], [tau]]) (a fold does not change it); user tests: sign
   change of the test function. Every special point is a bracketed root: the
@@ -519,9 +520,10 @@ def _place_on_bound(problem, a: Point, b: Point, step: float, W, opts) -> Point 
     return _make_point(problem, u, p, a.tau, W, a.s + frac * step, rn, it, opts) if ok else None
 
 
-def _advance(problem, a: Point, ds: float, W, opts) -> tuple[Point | None, int, bool]:
+def _advance(problem, a: Point, ds: float, W, opts, slow_ok: bool = False) -> tuple[Point | None, int, bool]:
     """One accepted step from a: (new point or None when rejected, Newton iterations,
-    whether it lies on a parameter bound)."""
+    whether it lies on a parameter bound). ``slow_ok``: accept a step that took _SLOW or more Newton solves (the
+    retry of one rejected for that: next to a branch point every step may be slow, and halving again would stall)."""
     step, clipped = _clip_to_bounds(a, ds, opts)
     try:
         u, p, rn, it, ok = correct(problem, a.u, a.p, a.tau, step, W, opts.tol, opts.max_newton)
@@ -531,7 +533,7 @@ def _advance(problem, a: Point, ds: float, W, opts) -> tuple[Point | None, int, 
             clipped = None
     except ValueError:  # parameter left its admissible range
         return None, 0, False
-    if not ok or (it >= _SLOW and ds > opts.ds_min):
+    if not ok or (it >= _SLOW and not slow_ok and ds > opts.ds_min):
         return None, it, False
     b = _make_point(problem, u, p, a.tau, W, a.s + step, rn, it, opts)
     if _turn(a, b, W) > opts.max_angle and ds > opts.ds_min:
@@ -637,15 +639,18 @@ def continuation(problem, u0, p0: float, tau0: np.ndarray, opts: ContinuationOpt
     special: list[SpecialPoint] = []
     ds = abs(opts.ds)
     reason, kind = StopReason.MAX_POINTS, ""
+    slow_ok = False  # the step is the retry of one rejected as slow
     while len(pts) < opts.max_points:
         a = pts[-1]
-        b, it, on_bound = _advance(problem, a, ds, W, opts)
+        b, it, on_bound = _advance(problem, a, ds, W, opts, slow_ok)
         if b is None:
+            slow_ok = it >= _SLOW
             ds *= 0.5
             if ds < opts.ds_min:
                 reason = StopReason.STEP_UNDERFLOW
                 break
             continue
+        slow_ok = False
         found, kind = _special_between(problem, a, b, len(pts) - 1, W, opts)
         special.extend(found)
         pts.append(b)
