@@ -308,15 +308,12 @@ def test_stable_coil_without_pitchfork_passes_on_its_lower_bound():
 def test_special_points_carry_the_measures_of_their_located_state(set_scaled):
     """The figures mark a special point at its own measures: those of the located state (the nearer end of its final
     bracket), in the units of the branch's own arrays."""
-    from etcheck.rod import equilibria as eq
-    from etcheck.rod.branches import continue_branch, primary_branches
+    from etcheck.checks import buckled
 
-    d = _diagram(set_scaled, 0.25, branches=1, B_max=2.2, stability=False, connect=False)
-    b1 = d["branches"][0]
-    (brk,) = [q for q in b1["special"] if q["kind"] == "break"]
-    params = set_scaled.params.with_(omega=0.25)
-    branch = continue_branch(params, primary_branches(params, 1, 32)[0], stop=(0.0, 2.2), N=32)
-    (q,) = [q for q in branch.special if q.kind == "break"]
+    d, kept = buckled._diagram(set_scaled.params.with_(omega=0.25), set_scaled.scales,
+                               DiagramOptions(branches=1, B_max=2.2, stability=False, connect=False))
+    (brk,) = [q for q in d["branches"][0]["special"] if q["kind"] == "break"]
+    (q,) = [q for q in kept["b1"].special if q.kind == "break"]
     ms = eq.measures(q.state)
     L = set_scaled.scales.length
     assert brk["B"] == q.value and brk["measure1"] == ms.measure1 == q.measure1
