@@ -195,3 +195,19 @@ def test_step_control_grows_on_nearly_straight_branches_and_rejects_slow_steps(m
         monkeypatch.setattr(cont, "correct", slow)
         b, it, _ = cont._advance(problem, a, 0.05, W, opts, slow_ok=retry)
         assert it == solves and (b is not None) is accepted
+
+
+@pytest.mark.parametrize("offset", [1e-6, -1e-6])
+def test_branch_point_next_to_a_fold_is_bracketed_from_the_fold(offset, monkeypatch):
+    """A branch-point test that changes sign 1e-6 from a located fold (beyond the fold's final bracket) is bracketed
+    by points stepped out from the fold: the same point as from the whole step's bracket, in fewer trials."""
+    with monkeypatch.context() as m:
+        near, near_trials = _run(offset, True, m)
+    with monkeypatch.context() as m:
+        m.setattr(cont, "_beside_fold", lambda problem, a, b, folds, W, opts: (a, b))
+        whole, whole_trials = _run(offset, True, m)
+    (bp,) = [q for q in near.special if q.kind == "bp"]
+    (ref,) = [q for q in whole.special if q.kind == "bp"]
+    assert bp.converged and ref.converged
+    assert bp.p == pytest.approx(ref.p, abs=1e-13) and bp.p == pytest.approx(offset**2, abs=2e-12)  # p = u_1^2
+    assert near_trials < whole_trials

@@ -131,3 +131,23 @@ def test_a_special_point_is_marked_where_it_was_located_not_on_the_nearest_state
         _draw_special_points(ax, old, key, ykey, set())
         assert list(ax.lines[-1].get_ydata()) == [0.0]  # the nearest state's
         plt.close(fig)
+
+
+def test_a_branch_is_drawn_through_its_computed_states_without_overshoot():
+    """The drawn curve passes through every computed state, and between two states it stays within their range
+    (monotone cubic: no bumps the branch does not have), here a quarter circle sampled at five points."""
+    from etcheck.report.figures.diagram import SMOOTH, _smooth
+
+    a = np.linspace(0.0, np.pi / 2, 5)
+    x, y = np.cos(a), np.sin(a)
+    xs, ys = _smooth(x, y, (1.0, 1.0))
+    assert xs.size == SMOOTH * 4 + 1
+    np.testing.assert_allclose(xs[::SMOOTH], x, atol=1e-15)
+    np.testing.assert_allclose(ys[::SMOOTH], y, atol=1e-15)
+    for k in range(4):
+        seg = slice(k * SMOOTH, (k + 1) * SMOOTH + 1)
+        assert np.all(np.diff(xs[seg]) <= 1e-15) and np.all(np.diff(ys[seg]) >= -1e-15)
+    # closer to the circle than the polyline through the same states
+    assert np.max(np.abs(np.hypot(xs, ys) - 1.0)) < 0.5 * (1.0 - np.cos(np.pi / 16))  # measured: 0.26 of it
+    two = _smooth(np.array([0.0, 1.0]), np.array([0.0, 2.0]), (1.0, 2.0))
+    assert [list(v) for v in two] == [[0.0, 1.0], [0.0, 2.0]]

@@ -27,9 +27,10 @@ GAMMA_SET = 0.04375  # Sec. 7.2: damping of a real tether
 
 @pytest.fixture(scope="module")
 def b1_static():
-    """b1 at omega = 0 from BP1 to B = 2.3 (past its secondary pitchfork)."""
+    """b1 at omega = 0 from BP1 to B = 2.3 (past its secondary pitchfork), with steps of at most 0.1 (its stability
+    is checked state by state: ten or more of them below B*)."""
     start = br.primary_branches(SET, 1, N)[0]
-    return br.continue_branch(SET, start, stop=(0.0, 2.3))
+    return br.continue_branch(SET, start, stop=(0.0, 2.3), ds_max=0.1)
 
 
 @pytest.fixture(scope="module")

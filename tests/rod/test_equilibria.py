@@ -143,7 +143,9 @@ def test_newton_converges_quadratically(b1):
 
 
 def test_equilibrium_is_a_base_state_for_the_stability_code(b1):
-    st = b1[N_LO].states[5]
+    # a state a fifth of the way up b1 (B = 0.66 against the pitchfork's 0.586): its interpolated frames are
+    # orthogonal to the discretisation error at N = 24, which grows with the deformation (3.8e-7 there, 1.0e-6 at 0.75)
+    st = next(s for s in b1[N_LO].states if s.params.B >= 0.66)
     assert isinstance(st, BaseState)
     s = np.linspace(0, 1, 7)
     D = st.D0(s)

@@ -2,8 +2,12 @@
 
 Stable parts of a branch are thick and solid, unstable parts thin and dashed
 (when stability was computed); branch labels sit at the branch ends; special
-points are marked (BP: branch point on the straight tether, ■: secondary
-pitchfork, ▲: fold).
+points are marked where they were located (BP: branch point on the straight
+tether, ■: secondary pitchfork, ▲: fold). A branch is drawn through its
+computed states by the monotone cubic (PCHIP) in the chord length of the
+figure's coordinates: the continuation's steps grow where the branch is
+nearly straight in the space of states, where the figure's measures may still
+bend (a polyline showed corners there).
 """
 
 from __future__ import annotations
@@ -60,11 +64,34 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     return _image(fig)
 
 
+#: points drawn per step between two computed states of a branch
+SMOOTH = 12
+
+
+def _smooth(x: np.ndarray, y: np.ndarray, span: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+    """(x, y) through the points in order, by the monotone cubic (PCHIP) of each coordinate in the chord length of
+    the points scaled by ``span`` (the branch's ranges in x and y: the figure's proportions), SMOOTH points per
+    step; repeated points are dropped, and fewer than three (or any not finite) are joined by straight lines."""
+    from scipy.interpolate import PchipInterpolator
+
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
+        return x, y
+    t = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x) / span[0], np.diff(y) / span[1]))])
+    keep = np.concatenate([[True], np.diff(t) > 0])
+    if keep.sum() < 3:
+        return x, y
+    t, x, y = t[keep], x[keep], y[keep]
+    fine = np.concatenate([np.linspace(a, b, SMOOTH, endpoint=False) for a, b in zip(t[:-1], t[1:])] + [t[-1:]])
+    return PchipInterpolator(t, x)(fine), PchipInterpolator(t, y)(fine)
+
+
 def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str) -> None:
     """One branch, solid where stable (or unknown) and dashed where unstable, labelled at its end."""
-    x, y = b[xkey], b[ykey]
+    x, y = np.asarray(b[xkey], dtype=float), np.asarray(b[ykey], dtype=float)
+    span = (float(np.ptp(x)) or 1.0, float(np.ptp(y)) or 1.0)
     mirror = ykey == "measure2" and b.get("symmetry") is None  # connecting branches come in mirror pairs
     for xs, ys, st in _segments(x, y, b.get("stable")):
+        xs, ys = _smooth(xs, ys, span)
         style = {"lw": 2.2, "ls": "-"} if st in (True, None) else {"lw": 0.9, "ls": "--"}
         ax.plot(xs, ys, color=colour, **style)
         if mirror:
