@@ -66,7 +66,6 @@ __all__ = [
     "switch_branch",
     "correct",
     "correct_at",
-    "tangent",
     "signed_smallness",
 ]
 
@@ -216,9 +215,10 @@ def _lu(A: np.ndarray) -> tuple[tuple, float]:
 
 
 def _tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-    """:func:`tangent`, and the branch-point test at (u, p): :func:`signed_smallness` of [[Ju, Jp], [tau]], from
-    the LU of the tangent's bordered matrix A = [[Ju, Jp], [W tau0]] (the two differ in their last row only: the
-    determinant changes by the factor 1 + (tau - W tau0) . t, t = A^{-1} e_last, the solve by Sherman-Morrison)."""
+    """(tau, Ju, Jp, bp) at (u, p): the unit tangent tau (in the W-norm) oriented like tau0, the Jacobians, and the
+    branch-point test bp, :func:`signed_smallness` of [[Ju, Jp], [tau]], from the LU of the tangent's bordered
+    matrix A = [[Ju, Jp], [W tau0]] (the two differ in their last row only: the determinant changes by the factor
+    1 + (tau - W tau0) . t, t = A^{-1} e_last, and the solve by Sherman-Morrison)."""
     Ju, Jp = problem.jacobian(u, p)
     A = _bordered(Ju, Jp, W * tau0)
     lu, sign = _lu(A)
@@ -232,11 +232,6 @@ def _tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray
     grow = 1.0 + float(dr @ t)
     y = sla.lu_solve(lu, _probe(e.size), check_finite=False)
     return tau, Ju, Jp, _smallness(sign * float(np.sign(grow)), y - t * (float(dr @ y) / grow))
-
-
-def tangent(problem, u, p, tau0: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Unit tangent (in the W-norm) at (u, p) oriented like tau0; returns (tau, Ju, Jp)."""
-    return _tangent(problem, u, p, tau0, W)[:3]
 
 
 #: Newton iterations with the residual below a tenth of the tolerance after which the corrector stops even
