@@ -151,3 +151,16 @@ def test_a_branch_is_drawn_through_its_computed_states_without_overshoot():
     assert np.max(np.abs(np.hypot(xs, ys) - 1.0)) < 0.5 * (1.0 - np.cos(np.pi / 16))  # measured: 0.26 of it
     two = _smooth(np.array([0.0, 1.0]), np.array([0.0, 2.0]), (1.0, 2.0))
     assert [list(v) for v in two] == [[0.0, 1.0], [0.0, 2.0]]
+
+
+def test_stable_and_unstable_parts_meet_at_the_located_special_point():
+    """Stability changes at a located special point (a secondary pitchfork): the solid and dashed parts of a branch
+    meet there, not at the first computed state past it; without one they meet at that state."""
+    from etcheck.report.figures.diagram import _segments
+
+    x, y, st = [0.0, 1.0, 2.0, 3.0], [0.0, 1.0, 2.0, 3.0], [True, True, False, False]
+    (xa, ya, sa), (xb, yb, sb) = _segments(x, y, st, [(1.4, 1.5)])
+    assert (sa, sb) == (True, False) and list(xa) == [0.0, 1.0, 1.4] and list(xb) == [1.4, 2.0, 3.0]
+    assert ya[-1] == yb[0] == 1.5
+    (xa, _, _), (xb, _, _) = _segments(x, y, st)
+    assert list(xa) == [0.0, 1.0, 2.0] and list(xb) == [2.0, 3.0]

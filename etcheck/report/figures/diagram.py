@@ -24,17 +24,27 @@ COLOURS = ["#1f4e79", "#c0392b", "#27ae60", "#8e44ad", "#d35400", "#16a085", "#7
 MARKERS = {"break": ("s", "secondary pitchfork"), "fold": ("^", "fold"), "bp": ("D", "branch point")}
 
 
-def _segments(x, y, stable):
-    """Split a polyline where the stability flag changes (flags None: unknown)."""
+def _segments(x, y, stable, cuts=()):
+    """Split a polyline where the stability flag changes (flags None: unknown): at a special point located between
+    the two states (``cuts``: the (x, y) of each), where stability changes (Kelvin-Tait-Chetaev), else at the first
+    state with the new flag; the pieces share that point, so the curve is continuous."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
     if stable is None:
-        yield np.asarray(x), np.asarray(y), None
+        yield x, y, None
         return
-    start = 0
-    for i in range(1, len(x) + 1):
-        if i == len(x) or stable[i] != stable[start]:
-            j = min(i + 1, len(x))  # overlap one point so the curve is continuous
-            yield np.asarray(x[start:j]), np.asarray(y[start:j]), stable[start]
-            start = i
+    start, head, n = 0, None, len(x)
+    for i in range(1, n + 1):
+        if i < n and stable[i] == stable[start]:
+            continue
+        xs, ys, cut = x[start:i], y[start:i], None
+        if i < n:
+            lo, hi = sorted((x[i - 1], x[i]))
+            cut = next(((xc, yc) for xc, yc in cuts if lo <= xc <= hi), None)
+            xs, ys = np.append(xs, x[i] if cut is None else cut[0]), np.append(ys, y[i] if cut is None else cut[1])
+        if head is not None:
+            xs, ys = np.insert(xs, 0, head[0]), np.insert(ys, 0, head[1])
+        yield xs, ys, stable[start]
+        head, start = cut, i
 
 
 def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: str,
@@ -90,7 +100,9 @@ def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str) -> None:
     x, y = np.asarray(b[xkey], dtype=float), np.asarray(b[ykey], dtype=float)
     span = (float(np.ptp(x)) or 1.0, float(np.ptp(y)) or 1.0)
     mirror = ykey == "measure2" and b.get("symmetry") is None  # connecting branches come in mirror pairs
-    for xs, ys, st in _segments(x, y, b.get("stable")):
+    cuts = [(q[_SPECIAL_X[xkey]], q[ykey]) for q in b.get("special", ())
+            if xkey in _SPECIAL_X and q.get(ykey) is not None]
+    for xs, ys, st in _segments(x, y, b.get("stable"), cuts):
         xs, ys = _smooth(xs, ys, span)
         style = {"lw": 2.2, "ls": "-"} if st in (True, None) else {"lw": 0.9, "ls": "--"}
         ax.plot(xs, ys, color=colour, **style)
