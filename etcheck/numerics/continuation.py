@@ -422,13 +422,21 @@ def _trial_point(problem, br: _Bracket, s_a: float, sig: float, name: str, W, op
     # predictor-corrector from the nearer converged bracket end along its own tangent: a short step
     # keeps the trial in the basin of this branch next to a branch point
     base, step = (br.plo, sig - br.lo) if sig - br.lo <= br.hi - sig else (br.phi, sig - br.hi)
+    return _stepped(problem, base, step, name, float(np.sum(W * br.plo.tau * br.phi.tau)), W, opts)
+
+
+def _stepped(problem, base: Point, step: float, name: str, cos_end: float, W, opts) -> Point | None:
+    """The point of the branch a short pseudo-arclength step from the converged point ``base`` along its tangent
+    (up to 40 Newton solves: next to a branch point the bordered matrix is nearly singular), or None when the
+    corrector failed or the point left the branch: its tangent turned from base's by more than the larger of
+    ``max_angle`` and the turn ``cos_end`` (a cosine) allows, plus slack, or it has no test ``name`` (it landed on
+    a crossing branch)."""
     u, p, rn, it, ok = correct(problem, base.u, base.p, base.tau, step, W, opts.tol, max(40, opts.max_newton + 4))
     if not ok:
         return None
-    q = _make_point(problem, u, p, base.tau, W, s_a + sig, rn, it, opts)
-    cos_end = float(np.sum(W * br.plo.tau * br.phi.tau))
+    q = _make_point(problem, u, p, base.tau, W, base.s + step, rn, it, opts)
     if float(np.sum(W * base.tau * q.tau)) < min(cos_end, math.cos(opts.max_angle)) - 0.2 or name not in q.tests:
-        return None  # left the branch (landed on a crossing one)
+        return None
     return q
 
 
@@ -594,13 +602,8 @@ def _beside_fold(problem, a: Point, b: Point, folds: list, W, opts) -> tuple[Poi
         side = -1.0 if below else 1.0
         width = LOCATE_WIDTH
         while abs(far.s - near.s) > 4.0 * width:
-            step = side * width
-            u, p, rn, it, ok = correct(problem, near.u, near.p, near.tau, step, W, opts.tol,
-                                       max(40, opts.max_newton + 4))
-            if not ok:
-                break
-            q = _make_point(problem, u, p, near.tau, W, near.s + step, rn, it, opts)
-            if float(np.sum(W * near.tau * q.tau)) < math.cos(opts.max_angle) or "bp" not in q.tests:
+            q = _stepped(problem, near, side * width, "bp", 1.0, W, opts)
+            if q is None:
                 break
             if (q.tests["bp"] > 0) != (near.tests["bp"] > 0):
                 return (q, near) if below else (near, q)
@@ -643,7 +646,7 @@ def _fold_twin(folds: list, name: str, located: SpecialPoint | None = None) -> S
 #: the tangent turned by less than ``max_angle`` / _STRAIGHT over the step; from _SHRINK on the next step is halved,
 #: from _SLOW on the step is rejected (:func:`_advance`). Measured on the SET connecting branch b12 at omega = 0.25:
 #: four solves at every step of 0.0225 while the tangent turned by 0.007 rad (59 states; 29 with the straight
-#: rule, the same special points to 1e-9); b34 at omega = 0 (N = 28) jumped to a neighbouring branch (measure1
+#: rule, 21 with the second-order predictor as well, the same special points to 1e-9); b34 at omega = 0 (N = 28) jumped to a neighbouring branch (measure1
 #: 0.044 -> 0.069) in a step that took eight solves, after one that took seven.
 _FAST, _STRAIGHT, _SHRINK, _SLOW = 3, 6.0, 6, 7
 
