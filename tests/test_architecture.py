@@ -87,7 +87,7 @@ LAYERS = {
     "scaling": {"input", "rod"},
     "checks": {"input", "scaling", "rod", "numerics", "orbit"},
     "studies": {"input", "scaling", "checks", "rod", "numerics", "orbit"},
-    "report": {"input", "scaling", "checks", "studies", "orbit"},
+    "report": {"input", "scaling", "checks", "studies", "orbit", "numerics"},  # numerics: its numpy-only PCHIP
     "cli": {"input", "scaling", "checks", "studies", "report", "rod", "numerics", "orbit"},
 }
 SHARED = {"__init__", "errors", "jsonable", "__main__"}

@@ -25,6 +25,7 @@ import numpy as np
 from etcheck.checks.sections import CoilRegion, DampingSensitivity
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
+from etcheck.numerics.pchip import Pchip
 from etcheck.rod import branches as br
 from etcheck.rod import equilibria as eq
 from etcheck.rod.branch_stability import (
@@ -192,13 +193,11 @@ def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff
 
 
 def _pchip(rows: list[dict]):
-    from scipy.interpolate import PchipInterpolator
-
     pts = [(r["omega"], r["secondary_B"]) for r in rows if r["secondary_B"] is not None]
     if len(pts) < 2:
         return None, pts
     w, b = np.array(pts).T
-    return PchipInterpolator(w, b), pts
+    return Pchip.through(w, b), pts
 
 
 def secondary_curve(rows: list[dict], n: int = 41) -> tuple[tuple[list, list], float | None]:
@@ -210,10 +209,8 @@ def secondary_curve(rows: list[dict], n: int = 41) -> tuple[tuple[list, list], f
     w = np.linspace(pts[0][0], pts[-1][0], n)
     err = None
     if len(pts) >= 4:
-        from scipy.interpolate import PchipInterpolator
-
         wa, ba = np.array(pts).T
-        err = max(abs(float(PchipInterpolator(np.delete(wa, i), np.delete(ba, i))(wa[i])) - ba[i])
+        err = max(abs(float(Pchip.through(np.delete(wa, i), np.delete(ba, i))(wa[i])) - ba[i])
                   for i in range(1, len(pts) - 1))
     return (w.tolist(), [float(v) for v in f(w)]), err
 

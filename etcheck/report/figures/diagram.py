@@ -16,6 +16,7 @@ import functools
 
 import numpy as np
 
+from etcheck.numerics.pchip import Pchip
 from etcheck.report.figures.common import draw
 from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
@@ -82,8 +83,6 @@ def _smooth(x: np.ndarray, y: np.ndarray, span: tuple[float, float]) -> tuple[np
     """(x, y) through the points in order, by the monotone cubic (PCHIP) of each coordinate in the chord length of
     the points scaled by ``span`` (the branch's ranges in x and y: the figure's proportions), SMOOTH points per
     step; repeated points are dropped, and fewer than three (or any not finite) are joined by straight lines."""
-    from scipy.interpolate import PchipInterpolator
-
     if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
         return x, y
     t = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x) / span[0], np.diff(y) / span[1]))])
@@ -92,7 +91,7 @@ def _smooth(x: np.ndarray, y: np.ndarray, span: tuple[float, float]) -> tuple[np
         return x, y
     t, x, y = t[keep], x[keep], y[keep]
     fine = np.concatenate([np.linspace(a, b, SMOOTH, endpoint=False) for a, b in zip(t[:-1], t[1:])] + [t[-1:]])
-    return PchipInterpolator(t, x)(fine), PchipInterpolator(t, y)(fine)
+    return Pchip.through(t, x)(fine), Pchip.through(t, y)(fine)
 
 
 def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str) -> None:
