@@ -29,6 +29,7 @@ from etcheck.checks.coil import (
     coil_region,
     damping_sensitivity,
     eigenvalue_paths,
+    path_spectra,
     spin_limit,
     state_stability,
 )
@@ -43,7 +44,7 @@ from etcheck.checks.sections import (
 from etcheck.errors import SolverError
 from etcheck.numerics.parallel import split_map
 from etcheck.rod import equilibria as eq
-from etcheck.rod.branch_stability import secondary_pitchfork
+from etcheck.rod.branch_stability import BranchSpectra, secondary_pitchfork
 from etcheck.rod.branches import (
     Branch,
     LiftoffSpin,
@@ -67,9 +68,9 @@ from etcheck.scaling import Scales
 #: arc-length samples of a drawn shape
 SHAPE_POINTS = 121
 #: relative cost per state of a primary branch (SET at omega = 0.25, one core): its record with the eigenvalue
-#: paths (0.11 s), without them (0.008 s), its stability (0.015 s), and the continuation of the connecting branch
-#: that leaves it (about twice its points at 0.055 s each, and the branch point where it ends: 0.14 s)
-COST = {"paths": 1.0, "record": 0.07, "stability": 0.13, "connect": 1.3}
+#: paths and its stability from them (0.12 s), without them (0.008 s), its stability then (0.015 s), and the
+#: continuation of the connecting branch that leaves it (about twice its points at 0.055 s each, and the branch point where it ends: 0.14 s)
+COST = {"paths": 1.1, "record": 0.07, "stability": 0.13, "connect": 1.3}
 #: seconds, SET at omega = 0.25, one core: a lift-off spin, a class's restricted pencil and loads, and the
 #: start and continuation of one primary branch
 COST_START = {"liftoff": 0.6, "class": 0.3, "primary": 0.6}
@@ -261,7 +262,8 @@ def _shape(state: eq.Equilibrium, L: float) -> Shape:
 def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float,
                  check: ResolutionCheck | None = None, stability: bool = True) -> BranchRecord:
     """The record of a branch (``check``: its resolution check, when already made; ``stability=False``: without
-    its stability, which :func:`_with_stability` adds)."""
+    its stability, which :func:`_with_stability` adds, unless its eigenvalue paths are computed: their spectra give
+    it)."""
     L = scales.length
     t0 = time.perf_counter()
     check = resolution_check(branch) if check is None else check
@@ -276,10 +278,11 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
         "special": [_special_point(q, scales) for q in branch.special],
     }
     if options.stability:
-        if stability:
-            out |= _stability(branch, gamma)[0]
-        if options.with_paths(label):
-            out["eigenvalue_paths"] = eigenvalue_paths(branch, gamma)
+        paths = path_spectra(branch, gamma) if options.with_paths(label) else None
+        if stability or paths is not None:  # a branch's paths decide its probed states' stability as well
+            out |= _stability(branch, gamma, paths)[0]
+        if paths is not None:
+            out["eigenvalue_paths"] = eigenvalue_paths(paths)
     shapes = {}
     try:
         B, st = locate(branch, eq.measure1, options.shape_measure)
@@ -303,23 +306,24 @@ def _special_point(q, scales: Scales) -> SpecialPoint:
 
 def _second_step(attached: list[_Primary], options: DiagramOptions) -> list[tuple[str, str]]:
     """The items of a diagram's second step, in the order of its records: per primary branch its record ("paths"
-    when its eigenvalue paths are drawn, else "record"), its "stability", and the "connect"ing branch that leaves
-    its secondary pitchfork (S1 branches)."""
+    when its eigenvalue paths are drawn, with its stability from their spectra; else "record" and its "stability"),
+    and the "connect"ing branch that leaves its secondary pitchfork (S1 branches)."""
     jobs = []
     for a in attached:
-        jobs.append((a.label, "paths" if options.with_paths(a.label) else "record"))
-        if options.stability:
+        paths = options.with_paths(a.label)
+        jobs.append((a.label, "paths" if paths else "record"))
+        if options.stability and not paths:
             jobs.append((a.label, "stability"))
         if options.connect and a.which == "S1" and any(q.kind == "break" for q in a.branch.special):
             jobs.append((a.label, "connect"))
     return jobs
 
 
-def _stability(branch: Branch, gamma: float) -> tuple[dict, float]:
-    """The stability entries of a branch's record (:func:`~etcheck.checks.coil.branch_stability`) and the seconds
-    they took."""
+def _stability(branch: Branch, gamma: float, paths: BranchSpectra | None = None) -> tuple[dict, float]:
+    """The stability entries of a branch's record (:func:`~etcheck.checks.coil.branch_stability`, from the spectra
+    of its eigenvalue ``paths`` where computed) and the seconds they took."""
     t0 = time.perf_counter()
-    stable, growth, errs = branch_stability(branch, gamma)
+    stable, growth, errs = branch_stability(branch, gamma, paths)
     return {"stable": stable, "max_growth": growth, "growth_error": errs}, time.perf_counter() - t0
 
 

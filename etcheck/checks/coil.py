@@ -29,6 +29,7 @@ from etcheck.numerics.pchip import Pchip
 from etcheck.rod import branches as br
 from etcheck.rod import equilibria as eq
 from etcheck.rod.branch_stability import (
+    BranchSpectra,
     b1_spin_branch,
     branch_spectra,
     damped_operator,
@@ -37,21 +38,32 @@ from etcheck.rod.branch_stability import (
 )
 from etcheck.rod.branches import Branch
 from etcheck.rod.parameters import RodParameters
-from etcheck.rod.spectrum import spectrum
+from etcheck.rod.spectrum import spectrum, spectrum_from
 from etcheck.rod.stability import THRESHOLD
 from etcheck.scaling import RPM, Scales
 
+#: least-|lambda| pairs whose eigenvalues decide a state's stability, and the two-resolution tolerance they meet
+STATE_K, STATE_TOL = 6, 1e-6
 
-def state_stability(state: eq.Equilibrium, gamma: float, k: int = 6):
-    """(stable or None when not converged, max Re lambda, its two-resolution error) of one state (rung 3)."""
-    sp = spectrum(state.params.with_(gamma=gamma), base=state, k=k, tol=1e-6)
+
+def state_stability(state: eq.Equilibrium, gamma: float, solved: tuple | None = None):
+    """(stable or None when not converged, max Re lambda, its two-resolution error) of one state (rung 3).
+
+    ``solved``: (eigenvalues at N, at N_check, N, N_check) of the state at damping gamma, the 2 STATE_K + 8
+    nearest the shift, already computed (a branch's eigenvalue paths): used where they settle it as
+    :func:`~etcheck.rod.spectrum.spectrum` would (its first two resolutions), else that is called."""
+    sp = spectrum_from(*solved, STATE_K, STATE_TOL) if solved is not None else None
+    if sp is None:
+        sp = spectrum(state.params.with_(gamma=gamma), base=state, k=STATE_K, tol=STATE_TOL)
     g = float(np.max(sp.eigenvalues.real)) if sp.eigenvalues.size else math.nan
     err = float(np.max(sp.errors)) if sp.errors.size else None
     return (bool(g <= THRESHOLD) if sp.converged and math.isfinite(g) else None), g, err
 
 
-def branch_stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
-    """Stable flag, max Re lambda and its error at the points of a branch (rung 3).
+def branch_stability(branch: Branch, gamma: float, spectra: BranchSpectra | None = None) -> tuple[list, list, list]:
+    """Stable flag, max Re lambda and its error at the points of a branch (rung 3); ``spectra``: the branch's
+    eigenvalue paths at the same damping, when computed (their spectra then decide the probed states as their
+    own solves would, :func:`state_stability`).
 
     With damping (gamma > 0) stability can change only where the static
     operator is singular (Kelvin-Tait-Chetaev): at the special points located
@@ -73,7 +85,11 @@ def branch_stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
         stretches = [(i, i + 1) for i in range(n)]
     probes = [sorted({(a + b) // 2, b - 1} - ({0} if b - a > 1 else set())) for a, b in stretches]
     wanted = sorted({i for probe in probes for i in probe})  # independent spectra: on two cores
-    solved = dict(zip(wanted, split_map(lambda i: state_stability(branch.states[i], gamma), wanted)))
+    known = {}
+    if (spectra is not None and spectra.k == STATE_K and spectra.gamma == gamma and len(spectra.states) == n
+            and all(a is b for a, b in zip(spectra.states, branch.states))):
+        known = {i: (*spectra.spectra[i], spectra.N, spectra.N_check) for i in wanted}
+    solved = dict(zip(wanted, split_map(lambda i: state_stability(branch.states[i], gamma, known.get(i)), wanted)))
     for (a, b), probe in zip(stretches, probes):
         flags = []
         for i in probe:
@@ -87,10 +103,16 @@ def branch_stability(branch: Branch, gamma: float) -> tuple[list, list, list]:
     return stable, growth, errors
 
 
-def eigenvalue_paths(branch, gamma: float, k: int = 6) -> dict:
-    """The k least-|lambda| eigenvalue paths along a branch (rung 3), tracked through crossings and
-    labelled by mode type (bending about d1 / d2, torsion); JSON-able (dimensionless)."""
-    bs = branch_spectra(branch, gamma, k=k, stiffness=False)  # no stiffness index: the paths do not show it
+def path_spectra(branch, gamma: float) -> BranchSpectra:
+    """The STATE_K least-|lambda| eigenvalue paths along a branch (rung 3), tracked through crossings (their spectra
+    also decide the branch's stability, :func:`branch_stability`)."""
+    return branch_spectra(branch, gamma, k=STATE_K, stiffness=False)  # no stiffness index: the paths do not show it
+
+
+def eigenvalue_paths(bs: BranchSpectra) -> dict:
+    """The eigenvalue paths of :func:`path_spectra`, labelled by mode type (bending about d1 / d2, torsion);
+    JSON-able (dimensionless)."""
+    gamma = bs.gamma
     lam = np.asarray(bs.eigenvalues)
     labels = [Counter(bs.labels[:, j].tolist()).most_common(1)[0][0] for j in range(lam.shape[1])]
     return {"parameter": bs.parameter, "values": np.asarray(bs.values).tolist(), "gamma": gamma,

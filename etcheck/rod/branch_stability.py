@@ -238,7 +238,8 @@ class BranchSpectra:
     gyroscopic terms) and decided, and one with index > 0 is decided only
     when |max_real| > 2 max_real_error;
     ``crossings``: (i, j_old, j_new) where path identity was ambiguous
-    (overlap < 0.5).
+    (overlap < 0.5); ``spectra`` (n,): per state the 2k + 8 eigenvalues nearest
+    the shift at N and at N_check that the paths were picked from.
     """
 
     name: str
@@ -261,6 +262,7 @@ class BranchSpectra:
     crossings: tuple
     time: float
     states: tuple = field(default=(), repr=False)
+    spectra: tuple = field(default=(), repr=False)
 
     @property
     def error(self) -> float:
@@ -403,7 +405,8 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
                         for j in range(k)] for i in range(n)])
     values = np.array([getattr(s.params, parameter) for s in states])
     return BranchSpectra(nm, parameter, float(gamma), k, N0, M, values, lam_paths, labels, energy, errs, serrs,
-                         maxre, maxre_err, stable, decided, index, tuple(crossings), time.perf_counter() - t0, states)
+                         maxre, maxre_err, stable, decided, index, tuple(crossings), time.perf_counter() - t0, states,
+                         tuple((lam, lam_M) for lam, _, lam_M, _, _ in solved))
 
 
 # --- b1 states and the secondary pitchfork curve -----------------------------------------

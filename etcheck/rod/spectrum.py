@@ -67,6 +67,7 @@ __all__ = [
     "prefers_dense",
     "damping_cluster",
     "spectrum",
+    "spectrum_from",
     "select_pairs",
     "check_resolution",
 ]
@@ -329,26 +330,54 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
     for n_c, n_f in pairs:
         lam_c, _ = solve(n_c, False)
         lam_f, V_f = solve(n_f, with_modes)
-        want = _with_unstable(lam_f, select_pairs(lam_f, k))
-        # Error estimate of every wanted value: distance to its partner.
-        m = match_spectra(lam_f, lam_c, accept=np.inf, floor=ERROR_FLOOR)
-        err_all = np.full(lam_f.size, np.inf)
-        err_all[m.index] = np.maximum(m.errors, roundoff_floor(n_f))
-        errs = err_all[want]
-        ok = errs <= ACCEPT
-        # Unmatched eigenvalues count as spurious only beyond every matched one
-        # (discretisation junk at large |lambda|); one inside the resolved range
-        # means the resolution is not yet enough.
-        size = np.abs(lam_f[want])
-        gap = bool(np.any(~ok & (size <= np.max(size[ok], initial=0.0))))
-        converged = bool(np.any(ok) and np.all(errs[ok] <= tol) and not gap)
-        result = (n_c, n_f, lam_f, V_f, want, errs, ok, converged)
+        result = (n_c, n_f, lam_f, V_f, *_judged(lam_c, lam_f, k, n_f, tol))
+        converged, ok = result[-1], result[-2]
         # done when every wanted value is resolved, or when the resolved set no
         # longer grows with N (the rest is discretisation junk, not modes)
         if converged and (np.all(ok) or np.count_nonzero(ok) == resolved_before):
             break
         resolved_before = int(np.count_nonzero(ok)) if converged else -1
-    n_c, n_f, lam_f, V_f, want, errs, ok, converged = result
+    return _spectrum(*result, tol, with_modes, n_mode_points)
+
+
+def spectrum_from(lam_c: np.ndarray, lam_f: np.ndarray, N: int, N_check: int, k: int, tol: float
+                  ) -> Spectrum | None:
+    """What :func:`spectrum` (no modes, N not given) returns for a base state known at resolution N, given the
+    nev = 2k + 8 eigenvalues nearest the shift at N (``lam_c``) and at N_check (``lam_f``), when that is the first
+    pair of its ladder (N on LADDER, N_check the next rung) and it would stop there (every wanted value resolved
+    to ``tol``); None where it would not (then call it). For spectra already computed, e.g. along a branch's
+    eigenvalue paths."""
+    rungs = [n for n in LADDER if n >= N]
+    if len(rungs) < 2 or rungs[:2] != [N, N_check]:
+        return None
+    judged = _judged(lam_c, lam_f, k, N_check, tol)
+    converged, ok = judged[-1], judged[-2]
+    if not (converged and np.all(ok)):
+        return None
+    return _spectrum(int(N), int(N_check), lam_f, None, *judged, tol, False, 0)
+
+
+def _judged(lam_c: np.ndarray, lam_f: np.ndarray, k: int, n_f: int, tol: float):
+    """(want, errs, ok, converged) of one pair of resolutions in :func:`spectrum`: the wanted eigenvalues at the
+    finer one, their errors, which of them are resolved, and whether the pair meets ``tol``."""
+    want = _with_unstable(lam_f, select_pairs(lam_f, k))
+    # Error estimate of every wanted value: distance to its partner.
+    m = match_spectra(lam_f, lam_c, accept=np.inf, floor=ERROR_FLOOR)
+    err_all = np.full(lam_f.size, np.inf)
+    err_all[m.index] = np.maximum(m.errors, roundoff_floor(n_f))
+    errs = err_all[want]
+    ok = errs <= ACCEPT
+    # Unmatched eigenvalues count as spurious only beyond every matched one
+    # (discretisation junk at large |lambda|); one inside the resolved range
+    # means the resolution is not yet enough.
+    size = np.abs(lam_f[want])
+    gap = bool(np.any(~ok & (size <= np.max(size[ok], initial=0.0))))
+    converged = bool(np.any(ok) and np.all(errs[ok] <= tol) and not gap)
+    return want, errs, ok, converged
+
+
+def _spectrum(n_c: int, n_f: int, lam_f: np.ndarray, V_f, want, errs, ok, converged: bool, tol: float,
+              with_modes: bool, n_mode_points: int) -> Spectrum:
     dropped = int(np.count_nonzero(~ok))
     idx = want[ok]
     msg_parts = []

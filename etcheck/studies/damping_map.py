@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from etcheck.checks.coil import eigenvalue_paths, secondary_pitchfork_at
+from etcheck.checks.coil import eigenvalue_paths, path_spectra, secondary_pitchfork_at
 from etcheck.checks.results import results_header
 from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
@@ -81,7 +81,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     # b1 at fixed load followed in spin: the paper's Hopf test (Sec. VII B, B = 1.2), at the smallest damping
     B_path = max(B_ref, min(1.2, 2.05 * pf0))  # the paper's B = 1.2 for SET
     try:
-        paths = eigenvalue_paths(b1_spin_branch(params, B_path, omega_max, N), min(m.gammas))
+        paths = eigenvalue_paths(path_spectra(b1_spin_branch(params, B_path, omega_max, N), min(m.gammas)))
     except _UNANSWERED as exc:
         paths = {"computed": False, "parameter": "omega", "values": [], "gamma": min(m.gammas), "re": [], "im": [],
                  "labels": [], "error": None, "N": N, "N_check": check_resolution(N), "max_re": None, "time_s": 0.0,

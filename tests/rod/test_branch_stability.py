@@ -325,3 +325,32 @@ def test_a_buckled_states_spectrum_climbs_from_the_states_own_resolution(b1_stat
     other = float(np.max(fixed.eigenvalues.real))
     assert fixed.converged and abs(growth - other) <= error + float(np.max(fixed.errors))
     assert stable is (growth <= 1e-9) is (other <= 1e-9)
+
+
+def test_a_branch_s_eigenvalue_paths_decide_its_stability_without_solves_of_their_own(monkeypatch):
+    """At the diagram's resolution (N = 32, checked at 48: the first pair of the stability ladder) the spectra of a
+    branch's eigenvalue paths give the stability of its probed states as their own solves do, to round-off, and
+    none is solved again; at N = 24 (checked at 36, the ladder's next rung is 32) they are solved as before."""
+    from etcheck.checks import coil
+    from etcheck.rod import spectrum as sp_module
+
+    for n, reused, B_end in ((32, True, 1.2), (24, False, 0.8)):
+        start = br.primary_branches(SET, 1, n)[0]
+        branch = br.continue_branch(SET, start, stop=(0.0, B_end), ds_max=0.25)
+        paths = coil.path_spectra(branch, GAMMA_SET)
+        calls = []
+        lowest = sp_module.lowest_eigenvalues
+
+        def counted(*a, calls=calls, lowest=lowest, **k):
+            calls.append(a[2])
+            return lowest(*a, **k)
+
+        monkeypatch.setattr(sp_module, "lowest_eigenvalues", counted)
+        stable, growth, error = coil.branch_stability(branch, GAMMA_SET, paths)
+        assert (calls == []) is reused
+        monkeypatch.setattr(sp_module, "lowest_eigenvalues", lowest)
+        own = coil.branch_stability(branch, GAMMA_SET)
+        assert stable == own[0] and [g is None for g in growth] == [g is None for g in own[1]]
+        for a, b, ea, eb in zip(growth, own[1], error, own[2]):
+            if a is not None:
+                assert abs(a - b) <= 1e-11 and abs(ea - eb) <= 1e-10
