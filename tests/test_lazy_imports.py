@@ -90,7 +90,7 @@ print(json.dumps(sorted(m for m in sys.modules if m == "scipy" or m.startswith("
 
 
 def test_a_diagram_s_branches_are_drawn_without_scipy():
-    # the report process never loads scipy: scipy.interpolate (for its PCHIP) took it 0.4-1.1 s after the study
+    # a diagram's report process loads no scipy: scipy.interpolate (for its PCHIP) took it 0.4-1.1 s after the study
     run = subprocess.run([sys.executable, "-c", DIAGRAM_PROBE], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr[-2000:]
     assert json.loads(run.stdout.strip().splitlines()[-1]) == []
