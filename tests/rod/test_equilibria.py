@@ -234,6 +234,23 @@ def test_symmetry_bases_are_orthonormal_eigenbases_and_the_2x2_kernels_are_the_s
 # --- pitchforks of the straight rod --------------------------------------------------------
 
 
+@pytest.mark.parametrize("which", ["S1", "S2"])
+def test_pitchfork_loads_are_the_restricted_pencils_roots(which):
+    """The pitchfork loads of a class (spun, under tension), solved through the columns the load reaches, are the
+    real roots of the whole restricted pencil A + B C as QZ finds them, to round-off."""
+    import scipy.linalg as sla
+
+    p = SET.with_(omega=0.25, T=0.5, B=0.0)
+    A, C, _ = br._straight_pencil(p, 32, which, "B")
+    alpha, beta = sla.eig(A, -C, right=False, homogeneous_eigvals=True)
+    finite = np.abs(beta) > 1e-12 * np.abs(alpha)
+    qz = br._real(alpha[finite] / beta[finite])
+    qz = qz[qz > 1e-12][:4]
+    loads = br.class_loads(p, which, 32, 4)
+    assert loads.size == 4
+    np.testing.assert_allclose(loads, qz, rtol=1e-11, atol=0)
+
+
 def test_primary_pitchforks_at_the_analytic_loads(starts):
     Bk = critical_loads(SET.R, SET.f, 2)
     for N in (N_LO, N_HI):
