@@ -447,9 +447,9 @@ def _straight_pencil(params: RodParameters, N: int, which: str, axis: str = "B")
 
 
 def _real_roots(A: np.ndarray, C: np.ndarray) -> np.ndarray:
-    """The real x with A + x C singular, sorted: through the columns C reaches (:func:`pencil_eigenvalues`; the load
-    reaches a sixth of them: 5-8x fewer seconds than QZ of the whole restricted pencil at N = 32 and 48, the same
-    roots to 1e-12 relative, SET at omega = 0 - 0.6, T = 0 - 0.5)."""
+    """The real x with A + x C singular, sorted, solved through the columns C reaches (:func:`pencil_eigenvalues`;
+    the Lorentz load reaches a sixth of them: 5-8x fewer seconds than QZ of the whole restricted pencil at N = 32
+    and 48, the same roots to 1e-12 relative, SET at omega = 0 - 0.6, T = 0 - 0.5)."""
     return _real(pencil_eigenvalues(A, C))
 
 
@@ -879,12 +879,12 @@ def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 
     base = params.with_(B=0.0, omega=0.0)
     # the restricted Jacobian of the straight rod is affine in B and in omega^2 (no cross term: the Lorentz
     # and centrifugal loads add), so the pencil at any spin is A + omega^2 W + B C, assembled once
-    # (the Lorentz load reaches a sixth of the columns: pencil_eigenvalues solves it through them)
+    # (solved through the columns the Lorentz load reaches: _real_roots)
     A, C, _ = _straight_pencil(base, N, which, "B")
     W = _straight_pencil(base, N, which, "omega")[1]
 
     def loads(w: float, n: int) -> np.ndarray:
-        r = _real(pencil_eigenvalues(A + w**2 * W, C))
+        r = _real_roots(A + w**2 * W, C)
         return r[r > 1e-12][:n]
 
     roots0 = loads(0.0, k)
