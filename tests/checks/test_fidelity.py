@@ -45,3 +45,16 @@ def test_draft_leaves_out_the_pictures_and_says_so():
     html = render(draft, ("html",))["html"].decode()
     assert "not for signature" in html and "Fidelity: draft" in html
     assert "located to a tolerance of 1×10<sup>-6</sup> (a draft)" in " ".join(html.split())  # not 1e-10
+
+
+def test_a_draft_report_is_marked_on_its_title_verdict_and_every_page():
+    """An engineer who finds a printed page of a draft sees that it is one: the title, the verdict box and every
+    page's footer say so; a sign-off report carries none of those marks."""
+    mission = load_mission(MISSIONS / "set-static.toml")
+    draft = " ".join(render(check(replace(mission, fidelity="draft")).results, ("html",))["html"].decode().split())
+    sign = " ".join(render(check(mission).results, ("html",))["html"].decode().split())
+    assert '<span class="draft-mark">DRAFT</span></h1>' in draft and "(DRAFT)</title>" in draft
+    assert "Draft verdict, not for signature" in draft
+    assert f' · {mission.name} · DRAFT, not for signature"; font-size' in draft  # the PDF's page footer
+    for mark in ("draft-mark\">", "(DRAFT)", "Draft verdict", "DRAFT, not for signature"):
+        assert mark not in sign
