@@ -191,7 +191,7 @@ def _draft_check():
 
 def _damped_root(axis: str):
     def measure():
-        from etcheck.rod.damped_critical import first_root
+        from etcheck.rod.straight.damped_critical import first_root
 
         wall, root = _best_cold(lambda p: first_root(p, axis, 1e-8), _operating_point())
         return wall, root.error, f"{axis} = {root.value:.12g}, N = {root.N}"
@@ -200,7 +200,7 @@ def _damped_root(axis: str):
 
 def _undamped_windows():
     try:
-        from etcheck.rod.undamped_straight import undamped_critical
+        from etcheck.rod.straight.undamped import undamped_critical
     except ImportError as exc:
         raise NotImplementedError(str(exc)) from None
     wall, c = _best_cold(lambda p: undamped_critical(p, 1e-8, windows=True), _operating_point().with_(gamma=0.0))
@@ -212,8 +212,8 @@ def _undamped_windows():
 def _b1_with_stability():
     import numpy as np
 
-    from etcheck.rod import branch_stability as bs
-    from etcheck.rod import branches as br
+    from etcheck.rod.buckled import branches as br
+    from etcheck.rod.buckled import stability as bs
 
     p = _operating_point()
     t0 = time.perf_counter()
@@ -230,7 +230,7 @@ def _b1_with_stability():
 def _pitchfork_curve():
     import numpy as np
 
-    from etcheck.rod import branch_stability as bs
+    from etcheck.rod.buckled import stability as bs
 
     p = _operating_point().with_(B=0.0, omega=0.0)
     t0 = time.perf_counter()

@@ -21,11 +21,11 @@ import time
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from etcheck.rod import branch_stability as bs
-from etcheck.rod import branches as br
-from etcheck.rod import equilibria as eq
-from etcheck.rod.analytic import critical_loads
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled import stability as bs
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.analytic import critical_loads
 
 RESOLUTIONS = (20, 24, 32, 40, 48)
 

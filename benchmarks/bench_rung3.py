@@ -26,10 +26,10 @@ from threadpoolctl import threadpool_limits
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from etcheck.rod import branch_stability as bs  # noqa: E402
-from etcheck.rod import branches as br  # noqa: E402
-from etcheck.rod import equilibria as eq  # noqa: E402
-from etcheck.rod.parameters import RodParameters  # noqa: E402
+from etcheck.rod.buckled import branches as br  # noqa: E402
+from etcheck.rod.buckled import equilibria as eq  # noqa: E402
+from etcheck.rod.buckled import stability as bs  # noqa: E402
+from etcheck.rod.core.parameters import RodParameters  # noqa: E402
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3)  # Gamma = 1/(1 + nu), nu = 0.3, as the missions
 #: B* of b1 at omega = 0 from an independent solver (README, docs/validation.md)

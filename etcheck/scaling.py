@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import astropy.units as u
 
 from etcheck.input.mission import DEFAULT_GAMMA, Mission
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.core.parameters import RodParameters
 
 #: rad/s -> revolutions per minute
 RPM = 60.0 / (2.0 * math.pi)

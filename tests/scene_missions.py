@@ -22,7 +22,7 @@ from typing import Any
 from hypothesis import HealthCheck, Phase, settings
 from hypothesis import strategies as st
 
-from etcheck.rod.parameters import F_CLAMPED
+from etcheck.rod.core.parameters import F_CLAMPED
 
 #: EI1 [N m2] and mass per length [kg/m] of every drawn tether (only the dimensionless scene matters)
 EI1, MASS = 38.0, 0.1

@@ -22,8 +22,8 @@ def core_modules() -> list[str]:
     names = []
     for sub in ("rod", "numerics"):
         names.append(f"etcheck.{sub}")
-        for info in pkgutil.iter_modules([str(PACKAGE / sub)]):
-            names.append(f"etcheck.{sub}.{info.name}")
+        for info in pkgutil.walk_packages([str(PACKAGE / sub)], prefix=f"etcheck.{sub}."):
+            names.append(info.name)
     return names
 
 
@@ -43,7 +43,7 @@ def loaded_after(code: str) -> list[str]:
 
 def test_core_modules_found():
     names = core_modules()
-    assert "etcheck.rod.analytic" in names
+    assert "etcheck.rod.straight.analytic" in names
     assert "etcheck.numerics.chebyshev" in names
 
 
@@ -61,7 +61,7 @@ def test_core_modules_alone_are_pure():
 
 
 def test_importing_core_does_not_load_units_or_plotting():
-    """`import etcheck.rod.analytic` etc. as a user writes it (parent package included)."""
+    """`import etcheck.rod.straight.analytic` etc. as a user writes it (parent package included)."""
     imports = "".join(f"import {name}\n" for name in core_modules())
     loaded = loaded_after(imports)
     assert loaded == [], (
@@ -93,24 +93,39 @@ LAYERS = {
 SHARED = {"__init__", "errors", "jsonable", "__main__"}
 
 
-def _import_graph() -> dict[str, set[str]]:
-    """etcheck module -> etcheck modules it imports (anywhere in the file), from the source."""
+def _absolute(node, name: str, is_package: bool) -> str | None:
+    """The absolute module an ``ImportFrom`` node names, relative imports resolved
+    (``from ..checks import plan`` in etcheck.rod.core.linear -> etcheck.rod.checks... per its level)."""
+    if node.level == 0:
+        return node.module
+    base = name.split(".") if is_package else name.split(".")[:-1]
+    if node.level > 1:
+        base = base[: len(base) - (node.level - 1)]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
+def _import_graph(root: Path = ROOT) -> dict[str, set[str]]:
+    """etcheck module -> etcheck modules it imports (anywhere in the file, absolute or
+    relative), from the source of the package under ``root``."""
     import ast
 
     graph: dict[str, set[str]] = {}
-    modules = {}
-    for path in PACKAGE.rglob("*.py"):
-        rel = path.relative_to(ROOT).with_suffix("")
-        parts = list(rel.parts)
+    modules, packages = {}, set()
+    for path in (root / "etcheck").rglob("*.py"):
+        parts = list(path.relative_to(root).with_suffix("").parts)
         if parts[-1] == "__init__":
             parts = parts[:-1]
+            packages.add(".".join(parts))
         modules[".".join(parts)] = path
     for name, path in modules.items():
         deps = set()
         for node in ast.walk(ast.parse(path.read_text())):
-            if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("etcheck"):
-                subs = {f"{node.module}.{a.name}" for a in node.names if f"{node.module}.{a.name}" in modules}
-                deps |= subs if len(subs) == len(node.names) else subs | {node.module}
+            if isinstance(node, ast.ImportFrom):
+                module = _absolute(node, name, name in packages)
+                if not module or not module.startswith("etcheck"):
+                    continue
+                subs = {f"{module}.{a.name}" for a in node.names if f"{module}.{a.name}" in modules}
+                deps |= subs if len(subs) == len(node.names) else subs | {module}
             elif isinstance(node, ast.Import):
                 deps |= {a.name for a in node.names if a.name.startswith("etcheck")}
         graph[name] = {d for d in deps if d in modules and d != name and d != "etcheck"}
@@ -138,9 +153,9 @@ def test_import_graph_has_no_cycle():
             visit(n)
 
 
-def test_layers_import_only_layers_below():
+def _layer_violations(root: Path = ROOT) -> list[str]:
     bad = []
-    for name, deps in _import_graph().items():
+    for name, deps in _import_graph(root).items():
         layer = name.split(".")[1] if "." in name else None
         if layer is None or layer in SHARED:
             continue
@@ -148,4 +163,33 @@ def test_layers_import_only_layers_below():
             other = d.split(".")[1]
             if other != layer and other not in SHARED and other not in LAYERS[layer]:
                 bad.append(f"{name} imports {d}")
-    assert not bad, "\n".join(sorted(bad))
+    return sorted(bad)
+
+
+def test_layers_import_only_layers_below():
+    bad = _layer_violations()
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("planted", [
+    "from ...checks import plan\n",            # relative, two packages up
+    "from ...checks.plan import plan\n",
+    "from etcheck.checks import plan\n",       # absolute
+    "import etcheck.report.html\n",
+])
+def test_a_planted_layer_violation_is_found(tmp_path, planted):
+    """The layer test sees through relative imports: a rod module (two packages deep)
+    importing checks/ or report/ in any spelling fails it."""
+    import shutil
+
+    shutil.copytree(PACKAGE, tmp_path / "etcheck", ignore=shutil.ignore_patterns("__pycache__"))
+    target = tmp_path / "etcheck" / "rod" / "core" / "parameters.py"
+    target.write_text(target.read_text() + "\n" + planted)
+    bad = _layer_violations(tmp_path)
+    assert bad and all(b.startswith("etcheck.rod.core.parameters imports etcheck.") for b in bad), bad
+
+
+def test_relative_imports_resolve():
+    """``from .. import x`` and ``from ..numerics.blas import y`` resolve to the modules they name."""
+    graph = _import_graph()
+    assert "etcheck.numerics.blas" in graph["etcheck.numerics.eigen"]

@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from etcheck import load_mission
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.core.parameters import RodParameters
 from etcheck.scaling import Scaled, Scales, Scene, scale, scene, unscale, with_length
 
 MISSIONS = Path(__file__).resolve().parent.parent / "missions"

@@ -1,7 +1,7 @@
 """Rungs 2 and 3 for a mission: the buckled tether, in the numbers an engineer reads.
 
-Everything is solved dimensionless in :mod:`etcheck.rod.branches` (whirling
-equilibria, continuation, branch switching) and :mod:`etcheck.rod.spectrum`
+Everything is solved dimensionless in :mod:`etcheck.rod.buckled.branches` (whirling
+equilibria, continuation, branch switching) and :mod:`etcheck.rod.core.spectrum`
 (the linearisation about a buckled state); this module chooses what to ask
 (which branches, how far, which shapes) and returns JSON-able data with the
 dimensionless values and their SI counterparts (lengths in m, loads in N/m,
@@ -43,9 +43,8 @@ from etcheck.checks.sections import (
 )
 from etcheck.errors import SolverError
 from etcheck.numerics.parallel import split_map
-from etcheck.rod import equilibria as eq
-from etcheck.rod.branch_stability import BranchSpectra, secondary_pitchfork
-from etcheck.rod.branches import (
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled.branches import (
     Branch,
     LiftoffSpin,
     ResolutionCheck,
@@ -60,9 +59,10 @@ from etcheck.rod.branches import (
     resolution_check,
     state_at,
 )
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.spectrum import spectrum
-from etcheck.rod.stability import THRESHOLD
+from etcheck.rod.buckled.stability import BranchSpectra, secondary_pitchfork
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import spectrum
+from etcheck.rod.straight.spectral import THRESHOLD
 from etcheck.scaling import Scales
 
 #: arc-length samples of a drawn shape
@@ -483,7 +483,7 @@ MAX_LOAD_RATIO = 6.0
 
 
 def _secondary_pitchfork(params: RodParameters, branch: Branch, N: int) -> dict:
-    """b1's first secondary pitchfork at the scene's spin: :func:`~etcheck.rod.branch_stability.secondary_pitchfork`
+    """b1's first secondary pitchfork at the scene's spin: :func:`~etcheck.rod.buckled.stability.secondary_pitchfork`
     (the one implementation of B*) on the diagram's b1 at N and b1 recomputed at 1.5 N; the value at 1.5 N,
     its relative error estimate (the change from N), or the reason why there is none."""
     try:

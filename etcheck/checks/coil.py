@@ -1,6 +1,6 @@
 """Rung 3 for a mission: where the coiled (buckled) tether is stable, and how well damped.
 
-The dimensionless work is in :mod:`etcheck.rod.branch_stability`; this module
+The dimensionless work is in :mod:`etcheck.rod.buckled.stability`; this module
 asks the engineer's questions of the first post-buckling branch b1 and returns
 JSON-able data in both the paper's numbers and SI (I·B0 in N/m, spin in rpm,
 decay rates in 1/s, decay times in s):
@@ -26,9 +26,10 @@ from etcheck.checks.sections import CoilRegion, DampingSensitivity
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
 from etcheck.numerics.pchip import Pchip
-from etcheck.rod import branches as br
-from etcheck.rod import equilibria as eq
-from etcheck.rod.branch_stability import (
+from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled.branches import Branch
+from etcheck.rod.buckled.stability import (
     BranchSpectra,
     b1_spin_branch,
     branch_spectra,
@@ -36,10 +37,9 @@ from etcheck.rod.branch_stability import (
     operator_eigenvalues,
     secondary_pitchfork,
 )
-from etcheck.rod.branches import Branch
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.spectrum import spectrum, spectrum_from
-from etcheck.rod.stability import THRESHOLD
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import spectrum, spectrum_from
+from etcheck.rod.straight.spectral import THRESHOLD
 from etcheck.scaling import RPM, Scales
 
 #: least-|lambda| pairs whose eigenvalues decide a state's stability, and the two-resolution tolerance they meet
@@ -51,7 +51,7 @@ def state_stability(state: eq.Equilibrium, gamma: float, solved: tuple | None = 
 
     ``solved``: (eigenvalues at N, at N_check, N, N_check) of the state at damping gamma, the 2 STATE_K + 8
     nearest the shift, already computed (a branch's eigenvalue paths): used where they settle it as
-    :func:`~etcheck.rod.spectrum.spectrum` would (its first two resolutions), else that is called."""
+    :func:`~etcheck.rod.core.spectrum.spectrum` would (its first two resolutions), else that is called."""
     sp = spectrum_from(*solved, STATE_K, STATE_TOL) if solved is not None else None
     if sp is None:
         sp = spectrum(state.params.with_(gamma=gamma), base=state, k=STATE_K, tol=STATE_TOL)

@@ -9,7 +9,7 @@ from typing import cast
 from etcheck.checks.plan import EXACT, EXACT_MODEL, RUNG_NAMES, Plan
 from etcheck.checks.sections import LinearSection, MarginRecord, PostbucklingSection, StraightRodSection
 from etcheck.input.mission import Mission
-from etcheck.rod.stability import CriticalKind
+from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import RPM, Scaled, Scene
 
 

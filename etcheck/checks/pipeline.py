@@ -38,7 +38,7 @@ from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, lin
 from etcheck.checks.validity import validity
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
 from etcheck.numerics.parallel import ahead
-from etcheck.rod.stability import CriticalKind
+from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import Scaled, Scene, scale, scene
 
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1}

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.core.parameters import RodParameters
 
 #: end boundary layers thinner than this fraction of the length are left to the exact determinant:
 #: Chebyshev collocation on the whole length needs N of order 1/sqrt(width) and more to resolve them
@@ -51,9 +51,9 @@ def boundary_layer(params: RodParameters) -> float:
 def straight_route(params: RodParameters) -> str:
     """How the straight tether's critical values are computed: "spectral" (Chebyshev collocation
     of rung 1) or "exact determinant" (the constant-coefficient characteristic determinant,
-    :mod:`etcheck.rod.exact_straight`) where the boundary layers are thinner than LAYER_MIN or the
+    :mod:`etcheck.rod.straight.exact`) where the boundary layers are thinner than LAYER_MIN or the
     weak axis is nearly a string (R < R_MIN_SPECTRAL), with or without damping
-    (:mod:`etcheck.rod.undamped_straight` without). Both are exact where both apply (tested to 1e-9)."""
+    (:mod:`etcheck.rod.straight.undamped` without). Both are exact where both apply (tested to 1e-9)."""
     if boundary_layer(params) < LAYER_MIN or params.R < R_MIN_SPECTRAL:
         return EXACT
     return SPECTRAL

@@ -14,7 +14,7 @@ import numpy as np
 
 from etcheck.checks.sections import NaturalFrequency, StaticBuckling, StaticCriticalLoad, StaticLimits
 from etcheck.input.mission import Mission
-from etcheck.rod import analytic
+from etcheck.rod.straight import analytic
 from etcheck.scaling import Scaled, Scene
 
 #: critical loads listed (and chi zeros located)

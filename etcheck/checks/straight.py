@@ -1,8 +1,8 @@
 """Rung 1 for a mission: buckling and whirl of the straight tether with spin,
 end tension and damping, in the numbers the report shows.
 
-Everything is solved dimensionless in :mod:`etcheck.rod.stability` and
-:mod:`etcheck.rod.spectrum`; this module chooses what to ask (the operating
+Everything is solved dimensionless in :mod:`etcheck.rod.straight.spectral` and
+:mod:`etcheck.rod.core.spectrum`; this module chooses what to ask (the operating
 point, the critical load at the operating spin, the critical spin at the
 operating load, the Campbell diagram and the stability map of the
 (I·B0, spin rate) plane) and converts the answers to SI with the mission's
@@ -25,15 +25,15 @@ from etcheck.checks.plan import EXACT, SPECTRAL
 from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
-from etcheck.rod.analytic import critical_loads
-from etcheck.rod.convergence import accuracy_table, reference_resolution
-from etcheck.rod.damped_critical import DRAFT_LADDER, LADDER
-from etcheck.rod.exact_straight import exact_critical, first_exact_root, pencil_or_exact
-from etcheck.rod.spectrum import spectrum
-from etcheck.rod.stability import THRESHOLD, CriticalKind, campbell, critical_load, scan_line, stability_map
-from etcheck.rod.stability import CriticalPoint as StabilityPoint
-from etcheck.rod.static_map import stable_rows, static_curves
-from etcheck.rod.undamped_straight import undamped_critical
+from etcheck.rod.core.spectrum import spectrum
+from etcheck.rod.straight.analytic import critical_loads
+from etcheck.rod.straight.convergence import accuracy_table, reference_resolution
+from etcheck.rod.straight.damped_critical import DRAFT_LADDER, LADDER
+from etcheck.rod.straight.exact import exact_critical, first_exact_root, pencil_or_exact
+from etcheck.rod.straight.spectral import THRESHOLD, CriticalKind, campbell, critical_load, scan_line, stability_map
+from etcheck.rod.straight.spectral import CriticalPoint as StabilityPoint
+from etcheck.rod.straight.static_map import stable_rows, static_curves
+from etcheck.rod.straight.undamped import undamped_critical
 from etcheck.scaling import RPM, Scaled
 
 
@@ -134,7 +134,7 @@ def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
 def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoint, CriticalPoint, bool, float]:
     """Critical load at the operating spin and critical spin at the operating load of a damped
     tether from the static pencils or the exact determinant (milliseconds; the determinant also where a pencil
-    root next to the end of its line missed the tolerance: :func:`~etcheck.rod.exact_straight.pencil_or_exact`),
+    root next to the end of its line missed the tolerance: :func:`~etcheck.rod.straight.exact.pencil_or_exact`),
     whether the operating point is stable, and the spin that destabilises the unloaded tether (dimensionless)."""
     if route == EXACT:  # root located to round-off; its estimate (two formulations) is judged by the mission's tolerance
         dc = exact_critical(p, tol=max(options.tol, options.eig_tol))
@@ -150,8 +150,8 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoin
 def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool):
     """Critical load, critical spin point, stable spin windows, the spin they were sought up to and the
     operating point's stability of an undamped tether (dimensionless): from the exact undamped determinant
-    (:func:`etcheck.rod.undamped_straight.undamped_critical`); where that cannot isolate a change of
-    stability (a tangency of two roots), from the spectral scans of :mod:`etcheck.rod.stability` on the
+    (:func:`etcheck.rod.straight.undamped.undamped_critical`); where that cannot isolate a change of
+    stability (a tangency of two roots), from the spectral scans of :mod:`etcheck.rod.straight.spectral` on the
     collocation route, and "not located" on the exact route (its margins are then incomplete)."""
     try:
         u = undamped_critical(p, tol=options.tol)
@@ -224,14 +224,14 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     are no stability windows; without damping they come from the exact undamped
     determinant, the spectral scans where it cannot isolate a change (flutter
     possible). The map's static curves and damped rows come from
-    :mod:`etcheck.rod.static_map` (one LU per family, small Schur complements
+    :mod:`etcheck.rod.straight.static_map` (one LU per family, small Schur complements
     per row, rows classified by crossing directions: no eigenvalue solve); the
     Campbell diagram is one resolution with a two-resolution error on three
     spins. ``options.draft`` answers the critical values and the
     operating point only (no spectrum when damped, no Campbell diagram, no map).
     ``route`` "exact determinant" (damped only; boundary layers too thin for
     collocation, see :func:`etcheck.checks.plan.straight_route`): the critical
-    values from :func:`etcheck.rod.exact_straight.exact_critical`, the map rows
+    values from :func:`etcheck.rod.straight.exact.exact_critical`, the map rows
     from its first load roots, no spectrum and no Campbell diagram.
     """
     exact = route == EXACT
@@ -342,9 +342,9 @@ def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: i
     """Time and error of the lowest k eigenvalue pairs and of B_c versus N.
 
     A measurement for this scene (BLAS on one thread, one solve per N), against
-    a reference at :func:`etcheck.rod.convergence.reference_resolution` (Ns)
+    a reference at :func:`etcheck.rod.straight.convergence.reference_resolution` (Ns)
     (N = 48 for the default Ns, 96 up to N = 64); see
-    :func:`etcheck.rod.convergence.accuracy_table`.
+    :func:`etcheck.rod.straight.convergence.accuracy_table`.
     """
     N_ref = reference_resolution(Ns)
     rows = accuracy_table(scaled.params, Ns=Ns, k=k, N_ref=N_ref)

@@ -28,7 +28,7 @@ from etcheck.input.sweep_axes import AXES, Axis, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
-from etcheck.rod.parameters import F_CLAMPED
+from etcheck.rod.core.parameters import F_CLAMPED
 
 if TYPE_CHECKING:  # etcheck.orbit (IGRF, SGP4) is imported only for missions with an [orbit] table
     from etcheck.orbit.envelope import AxialFieldEnvelope

@@ -14,8 +14,8 @@ from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
 from etcheck.checks.results import results_header
 from etcheck.errors import MissionError
 from etcheck.input.mission import Mission
-from etcheck.rod import branches as br
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.buckled import branches as br
+from etcheck.rod.core.parameters import RodParameters
 from etcheck.scaling import RPM, scale, scene
 
 

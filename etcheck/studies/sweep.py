@@ -9,10 +9,10 @@ lowest rung that is exact for it:
 
 * rung 0 (chi roots) for the critical load at zero spin and tension;
 * rung 1 static pencils with damping (the Kelvin-Tait-Chetaev structure,
-  :mod:`etcheck.rod.damped_critical`): critical load at the point's spin,
+  :mod:`etcheck.rod.straight.damped_critical`): critical load at the point's spin,
   critical spin at the point's load, one small pencil per resolution;
 * without damping (flutter windows are possible) the exact undamped
-  determinant (:mod:`etcheck.rod.undamped_straight`): divergence and
+  determinant (:mod:`etcheck.rod.straight.undamped`): divergence and
   flutter points located exactly along the load and spin lines.
 
 Each point is an independent task keyed by its dimensionless parameters, the
@@ -52,13 +52,13 @@ from etcheck.jsonable import finite_or_none
 from etcheck.numerics.blas import one_blas_thread
 from etcheck.numerics.optimize import brentq
 from etcheck.numerics.parallel import serial
-from etcheck.rod.damped_critical import first_root
-from etcheck.rod.exact_straight import MODEL as EXACT_ROOTS
-from etcheck.rod.exact_straight import exact_critical, first_exact_root, pencil_or_exact
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.stability import CriticalKind
-from etcheck.rod.undamped_straight import MODEL as UNDAMPED_MODEL
-from etcheck.rod.undamped_straight import has_real_pair, undamped_critical
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.damped_critical import first_root
+from etcheck.rod.straight.exact import MODEL as EXACT_ROOTS
+from etcheck.rod.straight.exact import exact_critical, first_exact_root, pencil_or_exact
+from etcheck.rod.straight.spectral import CriticalKind
+from etcheck.rod.straight.undamped import MODEL as UNDAMPED_MODEL
+from etcheck.rod.straight.undamped import has_real_pair, undamped_critical
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 

@@ -10,7 +10,7 @@ fastest exact route of the nominal point:
 * rung 0 (omega = T = 0): margin = B_1(R) / B = beta_1^3 sqrt(EI1 EI2) / (|I B0| L^3),
   closed form, vectorised with numpy;
 * damped rung 1 (or any rod without spin): first roots of the static pencils
-  (:func:`etcheck.rod.damped_critical.first_root`): load margin B_c(omega, T) / B,
+  (:func:`etcheck.rod.straight.damped_critical.first_root`): load margin B_c(omega, T) / B,
   spin margin omega_c(B, T) / omega. The static pencil (lambda = 0) does not
   contain the damping gamma, so every pencil is evaluated at the nominal gamma
   (which also lets samples share the assembled operators);
@@ -60,9 +60,9 @@ from etcheck.input.echo import UncertaintyInputs
 from etcheck.input.mission import Mission
 from etcheck.input.uncertainty import Distribution, Uncertainty
 from etcheck.numerics.blas import one_blas_thread, single_blas_thread
-from etcheck.rod.analytic import characteristic_roots
-from etcheck.rod.damped_critical import LADDER, first_root
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.analytic import characteristic_roots
+from etcheck.rod.straight.damped_critical import LADDER, first_root
 from etcheck.scaling import RPM, scene
 
 #: Relative step (in ln of the dimensionless parameter) of the central differences.

@@ -16,10 +16,10 @@ from etcheck.checks.margins import needs_postbuckling
 from etcheck.checks.pipeline import check
 from etcheck.cli.main import main
 from etcheck.input.mission import load_mission, mission_from_dict
-from etcheck.rod import equilibria as eq
-from etcheck.rod.analytic import critical_loads
-from etcheck.rod.branches import pitchfork_loads
-from etcheck.rod.stability import divergence_loads
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled.branches import pitchfork_loads
+from etcheck.rod.straight.analytic import critical_loads
+from etcheck.rod.straight.spectral import divergence_loads
 from etcheck.scaling import scale, scene
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -181,7 +181,7 @@ def test_past_critical_reports_the_buckled_state(coiled):
 
 def test_operating_state_is_resolution_independent():
     from etcheck.checks.buckled import _b1_to, operating_state
-    from etcheck.rod.branches import state_at
+    from etcheck.rod.buckled.branches import state_at
 
     sc = scale(scene(load_mission(ROOT / "missions" / "set-600m.toml")))
     a = operating_state(sc.params, sc.scales, N=32)

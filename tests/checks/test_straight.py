@@ -132,7 +132,7 @@ def test_unconverged_critical_value_carries_its_error_or_is_not_located(monkeypa
     """A critical value whose error estimate misses the tolerance: reported with that estimate (the margin
     carries it and says so) while it is small, "not located" (an incomplete margin) past REPORTABLE."""
     import etcheck.checks.straight as whirl
-    from etcheck.rod.damped_critical import PencilRoot
+    from etcheck.rod.straight.damped_critical import PencilRoot
 
     real = whirl.pencil_or_exact
 

@@ -1,4 +1,4 @@
-"""Rung 0 (etcheck/rod/analytic.py) against published and independent values.
+"""Rung 0 (etcheck/rod/straight/analytic.py) against published and independent values.
 
 Independent references computed here, never copied from the code:
 
@@ -21,7 +21,7 @@ import pytest
 import scipy.linalg
 from scipy.optimize import brentq
 
-from etcheck.rod import analytic
+from etcheck.rod.straight import analytic
 
 mp = pytest.importorskip("mpmath")
 mp.mp.dps = 40
@@ -335,8 +335,8 @@ def test_torsion_frequencies_without_rotary_inertia_are_infinite():
 @pytest.mark.parametrize("P, R", [(0.05, 1.0), (0.3, 0.4), (1.0, 0.2)])
 def test_bending_frequencies_large_rotary_inertia_match_rung1(P, R):
     # regression: the scan range once grew with P and skipped roots; rotary inertia only lowers them
-    from etcheck.rod.parameters import RodParameters
-    from etcheck.rod.spectrum import spectrum
+    from etcheck.rod.core.parameters import RodParameters
+    from etcheck.rod.core.spectrum import spectrum
 
     weak = analytic.bending_frequencies(P, R, F, 3, "weak")
     stiff = analytic.bending_frequencies(P, R, F, 3, "stiff")

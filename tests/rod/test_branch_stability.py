@@ -1,4 +1,4 @@
-"""Rung 3: stability of buckled, whirling equilibria (etcheck.rod.branch_stability).
+"""Rung 3: stability of buckled, whirling equilibria (etcheck.rod.buckled.stability).
 
 Published values from the paper (PHYSICS.md): secondary pitchfork of b1 at
 B = 1.942 (Sec. 7.1), spin pushes it up (Sec. 8), b1 at B = 1.2 with
@@ -13,12 +13,12 @@ import math
 import numpy as np
 import pytest
 
-from etcheck.rod import branch_stability as bs
-from etcheck.rod import branches as br
-from etcheck.rod import equilibria as eq
-from etcheck.rod.linear import linear_operator
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.spectrum import spectrum
+from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled import stability as bs
+from etcheck.rod.core.linear import linear_operator
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import spectrum
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
 N = 24
@@ -308,7 +308,7 @@ def test_a_buckled_states_spectrum_climbs_from_the_states_own_resolution(b1_stat
     sampled from the state's interpolant on fewer points cannot agree with the finer one); its growth rate agrees
     with another pair of resolutions within both error estimates."""
     from etcheck.checks import coil
-    from etcheck.rod import spectrum as sp_module
+    from etcheck.rod.core import spectrum as sp_module
 
     st = b1_static.states[len(b1_static.states) // 2]
     solved = []
@@ -332,7 +332,7 @@ def test_a_branch_s_eigenvalue_paths_decide_its_stability_without_solves_of_thei
     branch's eigenvalue paths give the stability of its probed states as their own solves do, to round-off, and
     none is solved again; at N = 24 (checked at 36, the ladder's next rung is 32) they are solved as before."""
     from etcheck.checks import coil
-    from etcheck.rod import spectrum as sp_module
+    from etcheck.rod.core import spectrum as sp_module
 
     for n, reused, B_end in ((32, True, 1.2), (24, False, 0.8)):
         start = br.primary_branches(SET, 1, n)[0]

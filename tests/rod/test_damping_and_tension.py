@@ -8,10 +8,10 @@ import numpy as np
 import pytest
 from independent import first_static_load
 
-from etcheck.rod.parameters import F_CLAMPED, RodParameters
-from etcheck.rod.spectrum import damping_cluster, spectrum
-from etcheck.rod.stability import THRESHOLD, _family, critical_load
-from etcheck.rod.static_map import plane, stable_rows, static_curves
+from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
+from etcheck.rod.core.spectrum import damping_cluster, spectrum
+from etcheck.rod.straight.spectral import THRESHOLD, _family, critical_load
+from etcheck.rod.straight.static_map import plane, stable_rows, static_curves
 
 
 @pytest.mark.parametrize("gamma", [0.2, pytest.param(0.5, marks=pytest.mark.slow), 2.0])  # 0.5: between the two

@@ -1,5 +1,5 @@
-"""Rung 2: whirling relative equilibria (etcheck.rod.equilibria), pseudo-arclength
-continuation (etcheck.numerics.continuation) and branches (etcheck.rod.branches).
+"""Rung 2: whirling relative equilibria (etcheck.rod.buckled.equilibria), pseudo-arclength
+continuation (etcheck.numerics.continuation) and branches (etcheck.rod.buckled.branches).
 
 Published values: PHYSICS.md table and paper Sec. 7 (BP1 = 0.585, secondary
 pitchfork on b1 at B = 1.942, measure_1 = 0.04 at B = 0.595 (b1) and 0.605
@@ -20,13 +20,13 @@ from scipy.spatial.transform import Rotation
 from threadpoolctl import threadpool_limits
 
 from etcheck.numerics.continuation import ContinuationOptions, continuation
-from etcheck.rod import branches as br
-from etcheck.rod import equilibria as eq
-from etcheck.rod.analytic import critical_loads
-from etcheck.rod.base_state import BaseState
-from etcheck.rod.linear import linear_operator
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.stability import divergence_loads
+from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.core.base_state import BaseState
+from etcheck.rod.core.linear import linear_operator
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.analytic import critical_loads
+from etcheck.rod.straight.spectral import divergence_loads
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
 N_LO, N_HI = 24, 32
@@ -163,7 +163,7 @@ def test_rung3_preview_b1_loses_stability_at_its_secondary_pitchfork(b1):
     """The equilibria are base states for the stability code: on b1 (omega = 0,
     undamped) the least eigenvalues are imaginary below the secondary pitchfork
     (B = 1.942) and a real pair appears above it (paper Sec. 7.1)."""
-    from etcheck.rod.spectrum import spectrum
+    from etcheck.rod.core.spectrum import spectrum
 
     for B, unstable in ((1.5, False), (1.9, False), (2.0, True)):
         _, st = br.locate(b1[N_LO], lambda s: s.params.B, B)

@@ -1,7 +1,7 @@
 """Stated errors of the primary pitchforks against the true error (issue 11).
 
-The pitchfork loads of the straight rod (:func:`etcheck.rod.branches.pitchfork_loads`)
-and the lift-off spins (:func:`etcheck.rod.branches.liftoff_estimate`) report the
+The pitchfork loads of the straight rod (:func:`etcheck.rod.buckled.branches.pitchfork_loads`)
+and the lift-off spins (:func:`etcheck.rod.buckled.branches.liftoff_estimate`) report the
 value at the finer of two resolutions and, as its error, the change of the
 coarser value. Over scenes away from the SET defaults (other R, P, tension,
 compression, spin) the true error of the reported value, measured against a
@@ -18,8 +18,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etcheck.rod import branches as br
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.buckled import branches as br
+from etcheck.rod.core.parameters import RodParameters
 
 #: the estimates use N = 16 and 24; the reference values N = 44
 N_EST, N_REF = 16, 44
@@ -78,8 +78,8 @@ NEAR_END = [
 def test_damped_critical_estimate_bounds_round_off_near_the_end_of_a_line(name, params, axis):
     """Two resolutions each at round-off can agree far better than either is right where a root falls like
     a square root: the stated error must still bound the distance to the exact determinant."""
-    from etcheck.rod.damped_critical import damped_critical
-    from etcheck.rod.exact_straight import first_exact_root
+    from etcheck.rod.straight.damped_critical import damped_critical
+    from etcheck.rod.straight.exact import first_exact_root
 
     d = damped_critical(params, tol=1e-10)
     r = d.critical_load if axis == "B" else d.critical_spin

@@ -1,4 +1,4 @@
-"""The discretised O(delta) operator (etcheck.rod.linear)."""
+"""The discretised O(delta) operator (etcheck.rod.core.linear)."""
 
 import numpy as np
 import pytest
@@ -6,9 +6,16 @@ import scipy.linalg as sla
 
 from etcheck.numerics.chebyshev import diff_matrix, lobatto_nodes, lobatto_weights
 from etcheck.numerics.eigen import match_spectra, qep_dense
-from etcheck.rod.base_state import CallableBaseState, rotated, straight
-from etcheck.rod.linear import NFIELDS, coefficient_blocks, collocation, field_slice, linear_operator, stiffness_diag
-from etcheck.rod.parameters import RodParameters
+from etcheck.rod.core.base_state import CallableBaseState, rotated, straight
+from etcheck.rod.core.linear import (
+    NFIELDS,
+    coefficient_blocks,
+    collocation,
+    field_slice,
+    linear_operator,
+    stiffness_diag,
+)
+from etcheck.rod.core.parameters import RodParameters
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
 

@@ -1,14 +1,14 @@
-"""Eigenvalues of the linearised rod (etcheck.rod.spectrum)."""
+"""Eigenvalues of the linearised rod (etcheck.rod.core.spectrum)."""
 
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
 from etcheck.numerics.eigen import eliminate_static, match_spectra, qep_dense
-from etcheck.rod.base_state import straight
-from etcheck.rod.linear import linear_operator
-from etcheck.rod.parameters import F_CLAMPED, RodParameters
-from etcheck.rod.spectrum import spectrum
+from etcheck.rod.core.base_state import straight
+from etcheck.rod.core.linear import linear_operator
+from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
+from etcheck.rod.core.spectrum import spectrum
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
 

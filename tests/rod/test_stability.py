@@ -1,12 +1,12 @@
-"""Stability of the straight rod (etcheck.rod.stability)."""
+"""Stability of the straight rod (etcheck.rod.straight.spectral)."""
 
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.spectrum import spectrum
-from etcheck.rod.stability import (
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import spectrum
+from etcheck.rod.straight.spectral import (
     campbell,
     critical_load,
     critical_spin,
@@ -155,8 +155,8 @@ def test_map_and_campbell():
 @pytest.mark.parametrize("gamma", [0.0, 0.04375])
 def test_family_eigenvalues_from_its_uncoupled_parts(gamma):
     # bending, torsion and axial parts solved apart (torsion once) give the spectrum of the whole operator
-    from etcheck.rod.spectrum import nearest_eigenvalues
-    from etcheck.rod.stability import StraightFamily
+    from etcheck.rod.core.spectrum import nearest_eigenvalues
+    from etcheck.rod.straight.spectral import StraightFamily
 
     p = SET.with_(gamma=gamma)
     fam = StraightFamily(p, 16)

@@ -1,7 +1,7 @@
-"""The undamped isotropic tether (R = 1) from the scalar complex problem D+ (etcheck.rod.undamped_isotropic).
+"""The undamped isotropic tether (R = 1) from the scalar complex problem D+ (etcheck.rod.straight.undamped_isotropic).
 
 Checked across models: the roots of D+ are roots of the coupled real determinant E(mu) of
-etcheck.rod.undamped_straight; with P = 0 the spin is a change of frame (the static load at rest is
+etcheck.rod.straight.undamped; with P = 0 the spin is a change of frame (the static load at rest is
 critical at every spin, exactly); every critical value and window edge is bracketed by the full dense
 collocation spectrum (rod.linear, every eigenvalue, no selection).
 """
@@ -17,12 +17,12 @@ import scipy.linalg as sl
 from scipy.optimize import brentq
 
 from etcheck.numerics.blas import one_blas_thread
-from etcheck.rod.base_state import straight
-from etcheck.rod.exact_straight import exact_root
-from etcheck.rod.linear import linear_operator
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.undamped_isotropic import characteristic_plus
-from etcheck.rod.undamped_straight import characteristic_mu, has_real_pair, undamped_critical
+from etcheck.rod.core.base_state import straight
+from etcheck.rod.core.linear import linear_operator
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.exact import exact_root
+from etcheck.rod.straight.undamped import characteristic_mu, has_real_pair, undamped_critical
+from etcheck.rod.straight.undamped_isotropic import characteristic_plus
 
 GAMMA = 0.76923
 
@@ -154,7 +154,7 @@ def test_collocation_indicator_looks_at_the_whole_coupled_band():
     least-|lambda| pairs (a dense low spectrum: P = 0.05, B past three static loads); the undamped stability
     indicator looks at every eigenvalue of the band that load and spin reshape, so it sees it (it saw a stable
     window at omega in [5.42, 7.14])."""
-    from etcheck.rod.stability import _family
+    from etcheck.rod.straight.spectral import _family
 
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, T=0.0)
     assert _family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
@@ -164,7 +164,7 @@ def test_a_change_of_stability_below_the_static_load_at_rest_is_refused(monkeypa
     """The hyperbolic bound is also a check of the load line: a change located below the static load at rest
     (root counts not resolved, e.g. next to the rotary-inertia accumulation of a taut tether's modes at
     Omega^2 = T / P) ends in ArithmeticError ("not located"), never in a wrong critical load."""
-    import etcheck.rod.undamped_straight as us
+    import etcheck.rod.straight.undamped as us
 
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, B=0.0, omega=1.0, T=30.0, gamma=0.0)
     rest = exact_root(p.with_(B=0.0, omega=0.0), "B").value

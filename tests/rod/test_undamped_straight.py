@@ -13,13 +13,13 @@ import math
 import numpy as np
 import pytest
 
-from etcheck.rod.analytic import critical_loads
-from etcheck.rod.damped_critical import first_root
-from etcheck.rod.exact_straight import exact_critical, string_limit_load
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.spectrum import spectrum
-from etcheck.rod.stability import CriticalKind
-from etcheck.rod.undamped_straight import characteristic_mu, has_real_pair, stability_line, undamped_critical
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import spectrum
+from etcheck.rod.straight.analytic import critical_loads
+from etcheck.rod.straight.damped_critical import first_root
+from etcheck.rod.straight.exact import exact_critical, string_limit_load
+from etcheck.rod.straight.spectral import CriticalKind
+from etcheck.rod.straight.undamped import characteristic_mu, has_real_pair, stability_line, undamped_critical
 
 SET = dict(P=1e-3, R=21 / 38, Gamma=0.76923)
 
@@ -145,7 +145,7 @@ def test_real_pairs_only_past_the_first_static_load_at_rest(R, T):
     """Without spin and compression the stiffness is positive definite below the first static load: no real pair
     (the spin line of a sweep point relies on it and does not look); just past it without tension a root mu < 0
     (under tension the roots past it can come as a close pair that the 64-point scan need not see)."""
-    from etcheck.rod.exact_straight import exact_root
+    from etcheck.rod.straight.exact import exact_root
 
     p = RodParameters(P=1e-3, R=R, Gamma=0.76923, T=T)
     static = exact_root(p, "B").value
@@ -196,7 +196,7 @@ def test_a_line_that_needs_too_many_samples_is_refused_not_run():
 def test_complex_pairs_at_a_point_as_along_the_located_line(B, omega):
     """Two routes to the number of complex pairs at a point: the located spin line (every change of stability
     on the way) and the line's two ends with the roots that pass its cut in between."""
-    from etcheck.rod.undamped_straight import _complex_pairs
+    from etcheck.rod.straight.undamped import _complex_pairs
 
     p = RodParameters(**SET, B=B, omega=omega)
     line = stability_line(p, "omega", 0.0, omega)
@@ -211,7 +211,7 @@ def test_roots_through_the_cut_all_at_once_as_one_by_one():
     differences give each on its own."""
     from scipy.optimize import brentq
 
-    from etcheck.rod.undamped_straight import _Line
+    from etcheck.rod.straight.undamped import _Line
 
     line = _Line(RodParameters(P=2e-6, R=0.55, Gamma=0.77, f=500.0), "omega", 0.0, 1000.0)
     x = line.mu_cut
@@ -269,7 +269,7 @@ def test_nearly_isotropic_flutter_load_against_the_collocation_spectrum():
 
 
 def test_horner_in_k_squared_is_the_polynomial_and_its_derivative():
-    from etcheck.rod.undamped_straight import _horner, _size
+    from etcheck.rod.straight.undamped import _horner, _size
 
     rng = np.random.default_rng(3)
     c = rng.normal(size=(40, 9)) + 1j * rng.normal(size=(40, 9))
@@ -290,8 +290,8 @@ def test_the_load_line_followed_by_a_helper_gives_the_same_answer(monkeypatch, o
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, B=0.2, omega=omega, T=0.05, gamma=0.0)
     monkeypatch.setattr(parallel, "_SERIAL", True)
     serial = undamped_critical(p, 1e-8, windows=True)
-    import etcheck.rod.exact_straight as ex
-    import etcheck.rod.undamped_straight as us
+    import etcheck.rod.straight.exact as ex
+    import etcheck.rod.straight.undamped as us
 
     for module in (us, ex):  # nothing memoised: the helper computes the load line afresh
         for fn in vars(module).values():
@@ -317,7 +317,7 @@ def test_the_stiffness_proof_holds_to_its_edge_and_no_further(R, T, P):
     first clamped mode has gone soft (its edge is sharp there: beta^4 R / f) and, for R < 1 (one negative
     direction: Kelvin-Tait-Chetaev), a real pair appears (R = 1 loses two at once: gyroscopic stabilisation).
     Under compression (T < 0) the proof is looser than the rod: its edge is only checked from inside."""
-    from etcheck.rod.undamped_straight import _complex_pairs_of, _definite
+    from etcheck.rod.straight.undamped import _complex_pairs_of, _definite
 
     p = RodParameters(P=P, R=R, Gamma=0.76923, T=T)
     lo = _edge(lambda w: _definite(p.with_(omega=w)))
@@ -334,8 +334,8 @@ def test_the_stiffness_proof_under_load_stops_short_of_the_static_load(R, T, ome
     """With load the proof bounds the load's term (2 B int u' v) by the clamped beams' bending: along B it must stop
     short of the first static load (where K is singular: a proof past it would be wrong), and where it holds the
     counted line has no real and no complex pair."""
-    from etcheck.rod.exact_straight import exact_root
-    from etcheck.rod.undamped_straight import _complex_pairs_of, _definite
+    from etcheck.rod.straight.exact import exact_root
+    from etcheck.rod.straight.undamped import _complex_pairs_of, _definite
 
     p = RodParameters(P=1e-3, R=R, Gamma=0.76923, T=T, omega=omega)
     static = exact_root(p, "B").value
@@ -365,8 +365,8 @@ def test_no_real_root_below_the_rayleigh_floor(R, load):
     rods (the load's term bounded with its factor 2 and the best split of |u|, |v|): E keeps its sign on a fine
     grid from three times the floor down to it, and has its lowest root between the floor and 0. With the factor
     1 the floor of R = 0.01 at ten times its static load was -64.6 and the lowest root -73.1."""
-    from etcheck.rod.exact_straight import exact_root
-    from etcheck.rod.undamped_straight import _rayleigh_floor
+    from etcheck.rod.straight.exact import exact_root
+    from etcheck.rod.straight.undamped import _rayleigh_floor
 
     p = RodParameters(P=0.0, R=R, Gamma=0.77)
     q = p.with_(B=load * exact_root(p, "B").value)
@@ -383,7 +383,7 @@ def test_a_close_pair_of_static_loads_bounds_an_unstable_interval():
     the 25 samples of the load line never saw: the first instability was reported as the flutter at 318.49. Now the
     scan splits the pair at its dip and the line samples either side of both; the collocation spectrum grows
     between them."""
-    from etcheck.rod.undamped_straight import _static_roots
+    from etcheck.rod.straight.undamped import _static_roots
 
     p = RodParameters(P=7.56939008700586e-05, R=0.8, Gamma=0.77, B=0.6070943507877418, omega=0.748300882787012,
                       T=50.0)

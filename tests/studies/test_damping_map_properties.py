@@ -34,7 +34,7 @@ from etcheck.checks.buckled import postbuckling_check
 from etcheck.checks.plan import LAYER_MIN, boundary_layer
 from etcheck.cli.main import main
 from etcheck.input.mission import mission_from_dict
-from etcheck.rod.stability import THRESHOLD, divergence_loads
+from etcheck.rod.straight.spectral import THRESHOLD, divergence_loads
 from etcheck.scaling import scale, scene
 
 #: resolution of the map (the CLI's smallest; its B* curve is located at N and 1.5 N)

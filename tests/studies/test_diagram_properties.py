@@ -26,7 +26,7 @@ from etcheck.checks.plan import LAYER_MIN, boundary_layer
 from etcheck.errors import EtcheckError, SolverError
 from etcheck.input.mission import mission_from_dict
 from etcheck.report import render
-from etcheck.rod.stability import divergence_loads
+from etcheck.rod.straight.spectral import divergence_loads
 from etcheck.scaling import scale, scene
 from etcheck.studies.diagram import diagram_study
 

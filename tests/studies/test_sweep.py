@@ -26,12 +26,12 @@ from etcheck.errors import MissionError
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.input.sweep_axes import parse_option
 from etcheck.report.sweep_files import read_csv, read_netcdf, to_csv, to_netcdf
-from etcheck.rod.analytic import critical_loads
-from etcheck.rod.damped_critical import damped_critical, first_root
-from etcheck.rod.exact_straight import string_limit_load
-from etcheck.rod.parameters import RodParameters
-from etcheck.rod.stability import critical_load, critical_spin
-from etcheck.rod.undamped_straight import MODEL as UNDAMPED_MODEL
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.analytic import critical_loads
+from etcheck.rod.straight.damped_critical import damped_critical, first_root
+from etcheck.rod.straight.exact import string_limit_load
+from etcheck.rod.straight.spectral import critical_load, critical_spin
+from etcheck.rod.straight.undamped import MODEL as UNDAMPED_MODEL
 from etcheck.scaling import scale, scene
 from etcheck.studies.sweep import STATUS_OK, STATUS_OUTSIDE, SweepOptions, solve_point, sweep
 

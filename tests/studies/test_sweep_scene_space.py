@@ -9,7 +9,7 @@ import math
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from etcheck.rod.parameters import F_CLAMPED, RodParameters
+from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
 from etcheck.studies.sweep import STATUS_FAILED, STATUS_OK, STATUS_OUTSIDE, solve_point
 
 params = st.builds(

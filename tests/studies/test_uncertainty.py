@@ -14,8 +14,8 @@ from scipy import integrate, stats
 from scipy.optimize import brentq
 
 from etcheck import mission_from_dict
-from etcheck.rod.analytic import critical_loads
-from etcheck.rod.damped_critical import damped_critical
+from etcheck.rod.straight.analytic import critical_loads
+from etcheck.rod.straight.damped_critical import damped_critical
 from etcheck.scaling import scale, scene
 from etcheck.studies.uncertainty import (
     LOAD,

@@ -7,7 +7,7 @@ M q'' + (G + gamma D) q' + K q = 0 with M > 0, G skew (Coriolis), D > 0
 Kelvin-Tait-Chetaev theorem the number of unstable eigenvalues equals the
 number of negative eigenvalues of K (docs/model.md, section 8,
 "Why the paper's Hopf results are in doubt"). K is the lambda = 0 operator A0, affine in B, omega^2 and T
-(:class:`~etcheck.rod.stability.StraightFamily`), so along any of those axes
+(:class:`~etcheck.rod.straight.spectral.StraightFamily`), so along any of those axes
 stability changes only where A0 is singular: at the real roots of a linear
 pencil. With K positive definite at B = omega = 0 (T above the first
 compressive load), the straight rod is stable exactly while
@@ -20,7 +20,7 @@ and the critical spin at the operating load is the first omega root at
 is one small pencil per resolution (``StraightFamily.pencil_roots``), located
 exactly (to the discretisation error, which the two-resolution agreement
 estimates). This is what makes
-parametric sweeps cheap; :mod:`etcheck.rod.stability` is the general
+parametric sweeps cheap; :mod:`etcheck.rod.straight.spectral` is the general
 (also undamped) scan that it must agree with, and a test checks it does.
 """
 
@@ -32,11 +32,11 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..numerics.blas import single_blas_thread
-from .analytic import characteristic_roots, critical_loads
-from .parameters import RodParameters
-from .spectrum import check_resolution, roundoff_floor
-from .stability import DOUBLE, _family
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import check_resolution, roundoff_floor
+from etcheck.rod.straight.analytic import characteristic_roots, critical_loads
+from etcheck.rod.straight.spectral import DOUBLE, _family
 
 __all__ = ["LADDER", "DRAFT_LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical", "critical_from_roots"]
 
@@ -150,7 +150,7 @@ def damped_critical(params: RodParameters, tol: float = 1e-8, ladder: tuple[int,
     """Critical load, critical spin and stability of the damped straight rod.
 
     Requires gamma > 0 (Kelvin-Tait-Chetaev; undamped rods can flutter and
-    need :func:`etcheck.rod.stability.critical_load`). Exact pencil roots,
+    need :func:`etcheck.rod.straight.spectral.critical_load`). Exact pencil roots,
     see the module docstring. Errors are relative to the root or to 1 % of
     its value at zero spin (load) or zero load (spin), whichever is larger.
     ``spin=False`` skips the critical spin at the operating load (NaN).
@@ -169,7 +169,7 @@ def critical_from_roots(params: RodParameters, tol: float, spin: bool, root) -> 
 
     ``root(params, axis, tol, sign=1.0, floor=0.0) -> PencilRoot`` is the
     smallest root of the static operator on ``axis`` (this module's pencils,
-    or the exact determinant of :mod:`etcheck.rod.exact_straight`): one
+    or the exact determinant of :mod:`etcheck.rod.straight.exact`): one
     orchestration for both routes (compressive limit, spin at rest, static
     load, load at the operating spin, spin at the operating load).
     """
@@ -215,7 +215,7 @@ def critical_from_roots(params: RodParameters, tol: float, spin: bool, root) -> 
 
 #: Relative round-off of the exact determinant's roots, and the least of the static pencil's, as measured
 #: against independent solvers on the scenes of the tests: 1e-14 .. 1e-13. A pencil's grows with its resolution
-#: as an eigenvalue's does (:func:`~etcheck.rod.spectrum.roundoff_floor`, 32 N^2 eps: 1.6e-11 at N = 48).
+#: as an eigenvalue's does (:func:`~etcheck.rod.core.spectrum.roundoff_floor`, 32 N^2 eps: 1.6e-11 at N = 48).
 _ROUND_OFF = 1e-13
 
 

@@ -1,7 +1,7 @@
 """Spectrum of the linearised whirling rod, with error estimates (dimensionless).
 
 Solves the quadratic eigenproblem (A0 + lambda A1 + lambda^2 A2) Y = 0 of
-:func:`etcheck.rod.linear.linear_operator` (Sec. VI of
+:func:`etcheck.rod.core.linear.linear_operator` (Sec. VI of
 arXiv:0810.3668, eqs. (82)-(85) inserted in (71)-(75)) for the
 eigenvalues of least modulus. Unstable if any Re lambda > 0.
 
@@ -50,12 +50,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..numerics.blas import single_blas_thread
-from ..numerics.chebyshev import lobatto_weights, resample_matrix
-from ..numerics.eigen import eliminate_static, match_spectra, qep_dense, qep_shift_invert
-from .base_state import BaseState, straight
-from .linear import NFIELDS, collocation, linear_operator
-from .parameters import RodParameters
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.chebyshev import lobatto_weights, resample_matrix
+from etcheck.numerics.eigen import eliminate_static, match_spectra, qep_dense, qep_shift_invert
+from etcheck.rod.core.base_state import BaseState, straight
+from etcheck.rod.core.linear import NFIELDS, collocation, linear_operator
+from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
     "SIGMA",
@@ -179,7 +179,7 @@ def prefers_dense(params: RodParameters, nev: int) -> bool:
 
 @lru_cache(maxsize=64)
 def _frequency_scale(P: float, R: float, Gamma: float, f: float, n: int) -> float:
-    from .analytic import bending_frequencies, torsion_frequencies
+    from etcheck.rod.straight.analytic import bending_frequencies, torsion_frequencies
 
     mu = np.concatenate(
         [
@@ -299,7 +299,7 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
 
     Dimensionless eigenvalues lambda of eqs. (82)-(85) (growth rate
     Re lambda, angular frequency Im lambda, in units of omega_c). ``base=None``
-    is the straight rod :func:`etcheck.rod.base_state.straight`. With
+    is the straight rod :func:`etcheck.rod.core.base_state.straight`. With
     ``N=None`` the resolution climbs ``LADDER`` (up to N_max) until every
     wanted eigenvalue agrees between N and its check resolution to ``tol``;
     with N given, N and check_resolution(N) are used and ``converged`` says

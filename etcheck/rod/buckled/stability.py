@@ -2,8 +2,8 @@
 
 The O(delta) linearisation of Sec. V B of arXiv:0810.3668 (eqs. (71)-(75),
 boundary conditions (76)-(81); Appendix A with the errata of docs/errata.md) about
-a non-trivial base state is :func:`etcheck.rod.linear.linear_operator` with an
-:class:`~etcheck.rod.equilibria.Equilibrium` as the base; this module follows
+a non-trivial base state is :func:`etcheck.rod.core.linear.linear_operator` with an
+:class:`~etcheck.rod.buckled.equilibria.Equilibrium` as the base; this module follows
 its least-|lambda| eigenvalues along branches, locates the secondary
 (symmetry-breaking) pitchfork of b1 as a curve B*(omega) (Secs. VII A, VIII), looks
 for Hopf points (Sec. VII B, Fig. 19) and maps the damping margin.
@@ -46,18 +46,25 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.sparse.linalg import ArpackNoConvergence, LinearOperator, eigs
 
-from ..errors import SolverError
-from ..numerics.blas import single_blas_thread
-from ..numerics.chebyshev import clenshaw_curtis_weights
-from ..numerics.eigen import match_spectra
-from ..numerics.optimize import linear_sum_assignment
-from ..numerics.parallel import split_map
-from . import branches as br
-from . import equilibria as eq
-from .linear import NFIELDS, collocation, linear_operator, stiffness_diag
-from .parameters import RodParameters
-from .spectrum import ERROR_FLOOR, SIGMA, check_resolution, damping_cluster, nearest_eigenvalues, prefers_dense
-from .stability import THRESHOLD
+from etcheck.errors import SolverError
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.chebyshev import clenshaw_curtis_weights
+from etcheck.numerics.eigen import match_spectra
+from etcheck.numerics.optimize import linear_sum_assignment
+from etcheck.numerics.parallel import split_map
+from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.core.linear import NFIELDS, collocation, linear_operator, stiffness_diag
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import (
+    ERROR_FLOOR,
+    SIGMA,
+    check_resolution,
+    damping_cluster,
+    nearest_eigenvalues,
+    prefers_dense,
+)
+from etcheck.rod.straight.spectral import THRESHOLD
 
 __all__ = [
     "HOPF_GAMMAS",
@@ -143,7 +150,7 @@ class DampedOperator:
 
 def damped_operator(params: RodParameters, base, N: int) -> DampedOperator:
     """Build :class:`DampedOperator` about ``base`` at resolution N with one build of
-    :func:`~etcheck.rod.linear.linear_operator` at gamma = 1: the Kelvin-Voigt term
+    :func:`~etcheck.rod.core.linear.linear_operator` at gamma = 1: the Kelvin-Voigt term
     lambda gamma K kappa(q) sits only in the constitutive rows (ODE group 1, rows
     3N..6N; eq. (74)), where no gyroscopic term appears, so A1 splits by rows
     (checked against a gamma = 0 build in the tests)."""
@@ -155,7 +162,7 @@ def damped_operator(params: RodParameters, base, N: int) -> DampedOperator:
 def operator_eigenvalues(op: DampedOperator, gamma: float, nev: int, vectors: bool = False):
     """The nev eigenvalues of ``op`` at damping gamma nearest the small real shift
     (Kelvin-Voigt cluster excluded; dense QZ when the cluster is near, else
-    shift-invert ARPACK; :func:`etcheck.rod.spectrum.nearest_eigenvalues`).
+    shift-invert ARPACK; :func:`etcheck.rod.core.spectrum.nearest_eigenvalues`).
     Returns lam or (lam, Y) with Y the full QEP eigenvectors. Dimensionless.
 
     Which solver, and why: shift-invert ARPACK on the companion form (one
@@ -318,8 +325,8 @@ def branch_spectra(branch, gamma: float, k: int = 6, N: int | None = None, state
                    name: str | None = None, stiffness: bool = True) -> BranchSpectra:
     """Eigenvalue paths of the k least-|lambda| pairs along ``branch`` at damping gamma.
 
-    ``branch``: a :class:`~etcheck.rod.branches.Branch` (or any sequence of
-    :class:`~etcheck.rod.equilibria.Equilibrium` with a common N, parameter
+    ``branch``: a :class:`~etcheck.rod.buckled.branches.Branch` (or any sequence of
+    :class:`~etcheck.rod.buckled.equilibria.Equilibrium` with a common N, parameter
     taken from the branch or "B"). Linearisation eqs. (71)-(75)
     about each state at N (default: the state's N) and
     M = check_resolution(N); every ``state_stride``-th point (and the last)
@@ -491,7 +498,7 @@ class _Single:
 def b1_spin_branch(params: RodParameters, B_ref: float, omega_max: float, N: int = 32):
     """b1 at fixed B = B_ref continued in omega from 0 to omega_max inside Fix(S1)
     (Figs. 17 and 18 use B_ref = 1.2):
-    BP1 -> (B_ref, 0) in B, then in omega. A :class:`~etcheck.rod.branches.Branch`
+    BP1 -> (B_ref, 0) in B, then in omega. A :class:`~etcheck.rod.buckled.branches.Branch`
     (parameter "omega"); cached per (P, R, Gamma, f, T, B_ref, N). Dimensionless."""
     key = (params.P, params.R, params.Gamma, params.f, params.T, B_ref, N)
     got = _OMEGA_BRANCH_CACHE.get(key)
@@ -510,7 +517,7 @@ def b1_spin_branch(params: RodParameters, B_ref: float, omega_max: float, N: int
 
 def _spin_state(params: RodParameters, B_ref: float, omega: float, N: int) -> eq.Equilibrium:
     """b1 at exactly (B_ref, omega): Newton at that spin from the omega branch
-    (:func:`~etcheck.rod.branches.state_at`), then in the full space at the exact parameters."""
+    (:func:`~etcheck.rod.buckled.branches.state_at`), then in the full space at the exact parameters."""
     bw = b1_spin_branch(params, B_ref, omega, N)
     if omega == 0:
         return bw.states[0]
@@ -930,7 +937,7 @@ def damping_map(params: RodParameters, B_grid, omega_grid, gammas=HOPF_GAMMAS, N
     there). The equilibria and operators are built once and reused
     for every gamma (A1 is affine in gamma); eigenvalues at N and
     M = check_resolution(N) (only modes agreeing to ``MAP_ACCEPT`` count).
-    ``liftoff``: b1's lift-off spin at N (:func:`~etcheck.rod.branches.liftoff_spin`) when already known
+    ``liftoff``: b1's lift-off spin at N (:func:`~etcheck.rod.buckled.branches.liftoff_spin`) when already known
     (a map computed spin by spin).
     """
     B_grid = np.asarray(B_grid, dtype=float)

@@ -3,7 +3,7 @@
 A base state is a solution of the stationary O(1) problem of Sec. V A of arXiv:0810.3668
 (eqs. (49)-(57) with (58)-(69)), i.e. of eqs. (37)-(41) with
 the time derivatives set to zero, in the frame rotating with omega e3.
-The linearisation (:mod:`etcheck.rod.linear`) needs it only through point
+The linearisation (:mod:`etcheck.rod.core.linear`) needs it only through point
 evaluations at arbitrary arc lengths s in [0, 1]:
 
 * ``x0(s)``      centreline, shape (n, 3), e-frame components;
@@ -29,7 +29,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from .parameters import RodParameters
+from etcheck.rod.core.parameters import RodParameters
 
 __all__ = ["BaseState", "CallableBaseState", "StraightBaseState", "straight", "rotated"]
 

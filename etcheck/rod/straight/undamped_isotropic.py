@@ -1,6 +1,6 @@
 """Rung 1u for R = 1: the undamped straight isotropic tether as one complex scalar problem.
 
-For R = 1 the bending equations of :mod:`etcheck.rod.undamped_straight`
+For R = 1 the bending equations of :mod:`etcheck.rod.straight.undamped`
 (paper Sec. 6.1, eq. (86) with F = +T e3, rotating frame; docs/model.md,
 section 6) decouple in w = u + i v and w~ = u - i v. With normal modes
 exp(lambda t), lambda = i Omega (Omega the frequency in the rotating frame):
@@ -12,7 +12,7 @@ and w~ solves the same with -i B and (Omega - omega)^2. Every eigenvalue of
 the rod is an eigenvalue Omega of one of the two, and the second's are minus
 the complex conjugates of the first's: the rod is stable iff every root
 Omega of the first, D+(Omega), is real. D+ is the determinant of the complex
-problem of :mod:`etcheck.rod.exact_straight` with c2 = T + P omega^2 -
+problem of :mod:`etcheck.rod.straight.exact` with c2 = T + P omega^2 -
 P Omega^2, c0 = (Omega + omega)^2, c1 = B; for real Omega the operator is
 self-adjoint (i d/ds is Hermitian under clamping) and D+ is real.
 
@@ -40,8 +40,8 @@ import math
 
 import numpy as np
 
-from .exact_straight import _BC_COMPLEX, _isotropic_batch, _isotropic_companion, _schur, _smoothing
-from .parameters import RodParameters
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.exact import _BC_COMPLEX, _isotropic_batch, _isotropic_companion, _schur, _smoothing
 
 __all__ = ["characteristic_plus"]
 

@@ -16,7 +16,7 @@ frame, u along the weak axis e1) are
 eq. (87)). Constant coefficients: exponents k are the roots of the degree-8
 polynomial p(k) = Pu(k) Pv(k) + q(k)^2 with q = B k + 2 omega lambda, and
 the clamped determinant is known exactly, as for lambda = 0 in
-:mod:`etcheck.rod.exact_straight` (same scaled state, same D = det G
+:mod:`etcheck.rod.straight.exact` (same scaled state, same D = det G
 exp(-sigma), G the map from y(0) to the boundary values).
 
 **A real function of mu = -lambda^2.** det G is real for every real mu: for
@@ -51,7 +51,7 @@ det C V(k), C the 8 x 8 coefficient matrix of q k^m, Pu k^m (m < 4), a
 Sylvester-type matrix: det C = (R/f)^3 Res(q, Pu), Res(q, Pu) = B^4 Pu(-2
 omega lambda / B). Where the exponential basis does not apply (coincident
 exponents, B = 0 with omega lambda = 0) the ordered-Schur route of
-:mod:`etcheck.rod.exact_straight` takes over; it is also the second
+:mod:`etcheck.rod.straight.exact` takes over; it is also the second
 formulation behind every error estimate.
 
 Dimensionless and pure; numpy/scipy only.
@@ -65,15 +65,15 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..numerics.blas import single_blas_thread
-from ..numerics.optimize import bracketed_roots, brentq, find_root, minimize_scalar
-from ..numerics.parallel import can_split, split_map
-from . import exact_straight as _ex
-from .exact_straight import _assemble, _log_vandermonde, _schur, _smoothing
-from .mode_band import cut, mode_count
-from .parameters import F_CLAMPED, RodParameters
-from .stability import CriticalKind, CriticalPoint, stable_windows
-from .undamped_isotropic import _characteristic_plus
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.optimize import bracketed_roots, brentq, find_root, minimize_scalar
+from etcheck.numerics.parallel import can_split, split_map
+from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
+from etcheck.rod.straight import exact as _ex
+from etcheck.rod.straight.exact import _assemble, _log_vandermonde, _schur, _smoothing
+from etcheck.rod.straight.mode_band import cut, mode_count
+from etcheck.rod.straight.spectral import CriticalKind, CriticalPoint, stable_windows
+from etcheck.rod.straight.undamped_isotropic import _characteristic_plus
 
 __all__ = ["MODEL", "characteristic_mu", "Crossing", "StabilityLine", "stability_line", "UndampedCritical",
            "undamped_critical", "has_real_pair"]
@@ -690,7 +690,7 @@ class _Line:
 
 
 class _IsoLine(_Line):
-    """D+ of :mod:`etcheck.rod.undamped_isotropic` (R = 1) along one axis on a fixed grid in Omega over
+    """D+ of :mod:`etcheck.rod.straight.undamped_isotropic` (R = 1) along one axis on a fixed grid in Omega over
     [-Omega_cut, Omega_cut] (Omega_cut^2 the mu cut of :class:`_Line`): the rod is stable iff every root of
     D+ is real, so every root counts alike (a real pair of eigenvalues is a complex pair Omega = +-i sigma
     here) and roots enter or leave through both cuts."""
@@ -932,7 +932,7 @@ def stability_line(params: RodParameters, axis: str, lo: float, hi: float, ancho
     locates each change of stability between samples exactly: a divergence
     point as a root of E(0) = D_static, a flutter point as the zero of the
     extremum value of E (a fold, E = dE/dmu = 0). For R = 1 the line follows D+ of
-    :mod:`etcheck.rod.undamped_isotropic` instead (``pairs``: complex pairs of its roots Omega). Dimensionless.
+    :mod:`etcheck.rod.straight.undamped_isotropic` instead (``pairs``: complex pairs of its roots Omega). Dimensionless.
     """
     if axis not in ("B", "omega"):
         raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
@@ -987,7 +987,7 @@ class UndampedCritical:
 
     ``critical_load``: first loss of stability as B grows from 0 at the
     operating omega and T; ``critical_spin``: as omega grows from 0 at the
-    operating B and T (both :class:`~etcheck.rod.stability.CriticalPoint`,
+    operating B and T (both :class:`~etcheck.rod.straight.spectral.CriticalPoint`,
     absolute errors, N = 0: no grid); ``windows``: the stable spin
     intervals at the operating load up to ``scanned_to``; ``stable``: the
     operating point itself; ``evaluations``: characteristic-function
@@ -1070,7 +1070,7 @@ def undamped_critical(params: RodParameters, tol: float = 1e-8, windows: bool = 
     there) to max(2, 1.25 x its second static point, 1.1 x the operating
     spin) with ``windows``, else to just past its first static point and
     the operating spin. Same shapes as the spectral scans of
-    :mod:`etcheck.rod.stability` (critical_load, scan_line); errors are
+    :mod:`etcheck.rod.straight.spectral` (critical_load, scan_line); errors are
     absolute, from a second formulation of E; ``tol`` is relative.
     ``spin=False`` (with B > 0) skips the spin line at the operating load: the critical spin is not asked
     (NaN) and the operating point is judged on the load line (stable iff below its first instability).
@@ -1147,13 +1147,13 @@ def _load_part(p: RodParameters):
 
 def _at_rest(p: RodParameters):
     """The first static load of the rod at rest (omega = 0, ExactRoot): for R = 1 the undamped rod is stable at
-    every spin below it (:mod:`etcheck.rod.undamped_isotropic`: a hyperbolic pencil)."""
+    every spin below it (:mod:`etcheck.rod.straight.undamped_isotropic`: a hyperbolic pencil)."""
     return _ex.exact_root(p.with_(B=0.0, omega=0.0), "B")
 
 
 def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> UndampedCritical:
     """:func:`undamped_critical` for R = 1 on the lines of D+ (roots that never touch), with the bound of
-    :mod:`etcheck.rod.undamped_isotropic`: below the static load at rest B_s the rod is stable at every spin,
+    :mod:`etcheck.rod.straight.undamped_isotropic`: below the static load at rest B_s the rod is stable at every spin,
     so only loads past B_s (and spins at such loads) are followed."""
     if p.T <= -4 * math.pi**2 / p.f:  # the clamped Euler load: K_B is not positive at B = 0
         raise ArithmeticError("R = 1 compressed past its clamped Euler load: the undamped isotropic lines need "
@@ -1298,7 +1298,7 @@ def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     changes on n points between the Rayleigh floor and 0 and close pairs at the dips of |E| between them (as a
     line's samples); False when none shows (not a proof). False by a proof
     where the stiffness is proven positive (:func:`_stiffness_positive`) and, for R = 1 (short of the
-    clamped Euler compression), below the static load at rest (:mod:`etcheck.rod.undamped_isotropic`)."""
+    clamped Euler compression), below the static load at rest (:mod:`etcheck.rod.straight.undamped_isotropic`)."""
     if _definite(params):
         return False
     if params.R == 1.0 and params.T > -4 * math.pi**2 / params.f and params.B < _at_rest(params).value:

@@ -1,7 +1,7 @@
 """Branches of whirling relative equilibria: start, continue, switch (dimensionless).
 
 Rod-specific layer over :mod:`etcheck.numerics.continuation` and
-:mod:`etcheck.rod.equilibria` (Secs. V A and VII of arXiv:0810.3668; docs/model.md, section 7, "Symmetry
+:mod:`etcheck.rod.buckled.equilibria` (Secs. V A and VII of arXiv:0810.3668; docs/model.md, section 7, "Symmetry
 of the welded problem").
 
 Symmetry. The welded problem is equivariant under the involutions
@@ -54,8 +54,8 @@ import scipy.linalg as sla
 import scipy.sparse as sparse
 from scipy.sparse.csgraph import connected_components
 
-from ..numerics.blas import single_blas_thread
-from ..numerics.continuation import (
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.continuation import (
     ContinuationOptions,
     ContinuationResult,
     SpecialPoint,
@@ -67,11 +67,11 @@ from ..numerics.continuation import (
     switch_branch,
     weights,
 )
-from ..numerics.eigen import pencil_eigenvalues
-from . import equilibria as eq
-from .linear import NFIELDS
-from .parameters import RodParameters
-from .spectrum import check_resolution
+from etcheck.numerics.eigen import pencil_eigenvalues
+from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.core.linear import NFIELDS
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import check_resolution
 
 __all__ = [
     "SYMMETRIES",
@@ -368,7 +368,7 @@ class Branch:
     ``values``: the continuation parameter ``parameter`` at each point;
     ``measure1``, ``measure2``, ``max_deflection``: measures (paper captions of
     Figs. 5 and 6); ``states``: the
-    :class:`~etcheck.rod.equilibria.Equilibrium` at each point; ``special``:
+    :class:`~etcheck.rod.buckled.equilibria.Equilibrium` at each point; ``special``:
     folds and branch points located on it; ``time``: wall seconds; ``N``:
     resolution; ``which``: symmetry class it was restricted to (None: full
     space); ``residual``: largest residual max-norm over the points.
@@ -581,7 +581,7 @@ def continue_branch(params: RodParameters, start, parameter: str = "B", stop: tu
     pitchfork, restricted to its symmetry class; the step ``amplitude`` is in
     the weighted arclength norm), a :class:`Branch` (continue from its last
     point, same symmetry restriction, in ``parameter``) or an
-    :class:`~etcheck.rod.equilibria.Equilibrium` (a regular solution at its
+    :class:`~etcheck.rod.buckled.equilibria.Equilibrium` (a regular solution at its
     own parameters; ``which`` = "S1"/"S2"/"b1"/"b2" restricts to that
     symmetry class, None continues in the full space). ``direction`` = +1/-1
     orients the first tangent along +/- the parameter. ``stop`` = (p_min, p_max)

@@ -22,7 +22,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..numerics.optimize import bracketed_roots, brentq
+from etcheck.numerics.optimize import bracketed_roots, brentq
 
 SQRT3 = math.sqrt(3.0)
 #: Step of the complex-step derivative (exact to rounding, no cancellation).

@@ -54,15 +54,15 @@ from functools import lru_cache
 
 import numpy as np
 
-from ..numerics.chebyshev import (
+from etcheck.numerics.chebyshev import (
     diff_matrix,
     first_kind_nodes,
     lobatto_nodes,
     lobatto_weights,
     resample_matrix,
 )
-from .base_state import BaseState, StraightBaseState
-from .parameters import RodParameters
+from etcheck.rod.core.base_state import BaseState, StraightBaseState
+from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
     "VARIABLES",

@@ -17,7 +17,7 @@ D = diag(B I, omega^2 I). So
 * the spin roots at a load B are omega^2 = -1/nu for the eigenvalues nu of
   the 4N x 4N S_w(B) = W_ww - B W_wB (I + B W_BB)^-1 W_Bw;
 
-the same values as the static pencils of :class:`etcheck.rod.stability.StraightFamily`
+the same values as the static pencils of :class:`etcheck.rod.straight.spectral.StraightFamily`
 (one pencil of the 6(N+1) reduced operator each), at a fraction of the cost. (The
 Schur complements need the other block regular: a row exactly at a spin root
 of the unloaded rod, or a column exactly at a static load of the rod at rest,
@@ -51,10 +51,10 @@ from functools import lru_cache
 import numpy as np
 import scipy.linalg as sla
 
-from ..numerics.blas import single_blas_thread
-from ..numerics.parallel import split_map
-from .parameters import RodParameters
-from .stability import DOUBLE, K_MODES, THRESHOLD, StraightFamily, _family, nearly_isotropic
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.parallel import split_map
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.spectral import DOUBLE, K_MODES, THRESHOLD, StraightFamily, _family, nearly_isotropic
 
 __all__ = ["StaticPlane", "StaticCurves", "plane", "static_curves", "stable_rows"]
 

@@ -19,7 +19,7 @@ construction because D(s) is kept in SO(3).
 
 Formulation (chosen, and why). The unknown fields are x(s), D(s) in SO(3),
 F(s), M(s) at the N+1 Chebyshev-Lobatto nodes. The residual is the rectangular
-collocation of :mod:`etcheck.rod.linear`: fields (and D' from the nodal
+collocation of :mod:`etcheck.rod.core.linear`: fields (and D' from the nodal
 values) are resampled to the N first-kind points t_k where the 12 ODE rows are
 imposed, and the 12 boundary rows are appended, so residual rows and unknowns
 are ordered exactly like the rows and columns of the linear operator
@@ -27,7 +27,7 @@ are ordered exactly like the rows and columns of the linear operator
 
     x += xi,  D <- expm(skew(a)) D,  F += phi,  M += m,
 
-the same (xi, a, phi, m) in which :func:`etcheck.rod.linear.linear_operator`
+the same (xi, a, phi, m) in which :func:`etcheck.rod.core.linear.linear_operator`
 is written. Reasons: (i) one set of perturbation variables serves Newton,
 continuation, branch detection and (rung 3) stability (docs/model.md, section 5.2);
 (ii) the rotation-vector update keeps D exactly orthonormal with 12 unknowns
@@ -53,7 +53,7 @@ default (same cost as A0, checked column by column against finite
 differences in the tests), which gives quadratic convergence to rounding;
 ``jacobian(..., exact=False)`` returns A0. Consequences: the discrete
 pitchforks of the straight rod are exactly the divergence loads of
-:mod:`etcheck.rod.stability` at the same N, and the singular points of A0
+:mod:`etcheck.rod.straight.spectral` at the same N, and the singular points of A0
 along a buckled branch (rung 3, lambda = 0) agree with the branch points found
 here to the discretisation error.
 """
@@ -67,10 +67,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import scipy.linalg as sla
 
-from ..errors import SolverError
-from ..numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
-from .linear import NFIELDS, collocation, static_operator, stiffness_diag, welded_rows
-from .parameters import RodParameters
+from etcheck.errors import SolverError
+from etcheck.numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
+from etcheck.rod.core.linear import NFIELDS, collocation, static_operator, stiffness_diag, welded_rows
+from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
     "PARAMETERS",
@@ -120,10 +120,10 @@ class Equilibrium:
     ``F`` (N+1, 3) contact force, ``M`` (N+1, 3) contact moment.
     ``residual_norm`` is the max-norm of the collocation residual, ``iterations``
     the Newton steps taken, ``converged`` whether ``residual_norm`` met the
-    tolerance. Satisfies the :class:`~etcheck.rod.base_state.BaseState`
+    tolerance. Satisfies the :class:`~etcheck.rod.core.base_state.BaseState`
     protocol through its Chebyshev interpolants (``x0``, ``D0``, ``F0``, ``M0``,
     ``kappa0``; D0 is the raw interpolant, orthonormal at the nodes and to
-    discretisation accuracy in between), so :func:`etcheck.rod.linear.linear_operator`
+    discretisation accuracy in between), so :func:`etcheck.rod.core.linear.linear_operator`
     linearises about it (rung 3).
     """
 
@@ -210,7 +210,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def residual(params: RodParameters, state: Equilibrium) -> np.ndarray:
     """Collocation residual of the O(1) BVP, shape (12 (N+1),), dimensionless.
 
-    Rows as in :func:`etcheck.rod.linear.linear_operator`: ODE group e
+    Rows as in :func:`etcheck.rod.core.linear.linear_operator`: ODE group e
     (x', constitutive, F', M' rows, e-frame components) at first-kind point
     t_k is row e N + k; then the 12 welded boundary rows
     (eqs. (58)-(69)).
@@ -254,7 +254,7 @@ def jacobian(params: RodParameters, state: Equilibrium, exact: bool = True) -> n
     ``exact=True``: the exact derivative of the discrete residual (assembled
     from the same products of interpolants; verified against finite
     differences in the tests). ``exact=False``: the lambda = 0 operator A0 of
-    :func:`etcheck.rod.linear.linear_operator` about ``state``, which equals
+    :func:`etcheck.rod.core.linear.linear_operator` about ``state``, which equals
     the exact one at the straight rod and differs from it elsewhere by the
     aliasing error of the collocation plus O(residual) (module docstring).
     """
@@ -470,7 +470,7 @@ def solve_equilibrium(params: RodParameters, guess: Equilibrium, N: int | None =
     O(1)). Returns an :class:`Equilibrium` with ``residual_norm``,
     ``iterations`` and ``converged``; raises :class:`~etcheck.errors.SolverError`
     on failure unless ``raise_on_failure`` is False. Works at isolated
-    solutions; at folds or branch points use :mod:`etcheck.rod.branches`.
+    solutions; at folds or branch points use :mod:`etcheck.rod.buckled.branches`.
     """
     state = guess if N is None or int(N) == guess.N else resample_state(guess, int(N))
     state = state.with_params(params)

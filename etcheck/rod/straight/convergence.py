@@ -16,12 +16,12 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from ..numerics.blas import one_blas_thread
-from ..numerics.eigen import match_spectra
-from .base_state import straight
-from .linear import linear_operator, static_operator
-from .parameters import RodParameters
-from .spectrum import ERROR_FLOOR, lowest_eigenvalues, select_pairs
+from etcheck.numerics.blas import one_blas_thread
+from etcheck.numerics.eigen import match_spectra
+from etcheck.rod.core.base_state import straight
+from etcheck.rod.core.linear import linear_operator, static_operator
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import ERROR_FLOOR, lowest_eigenvalues, select_pairs
 
 __all__ = ["REFERENCES", "AccuracyRow", "reference_resolution", "accuracy_table", "first_load"]
 

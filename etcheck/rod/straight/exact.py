@@ -14,7 +14,7 @@ e2 (stiffness 1/f), its static (lambda = 0) part is
 rotating frame; torsion decouples). For omega = T = 0 and f = 1 this is the
 lambda = 0 case of eq. (87). With Kelvin-Voigt damping the straight rod
 loses stability only where this static operator is singular
-(Kelvin-Tait-Chetaev, see :mod:`etcheck.rod.damped_critical`), so its exact
+(Kelvin-Tait-Chetaev, see :mod:`etcheck.rod.straight.damped_critical`), so its exact
 characteristic function decides the damped straight rod without any
 discretisation, down to boundary layers of width sqrt(R/(f T)) that a
 Chebyshev grid cannot resolve.
@@ -78,10 +78,16 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.linalg import lapack
 
-from ..numerics.blas import single_blas_thread
-from ..numerics.optimize import brentq, minimize_scalar
-from .damped_critical import LADDER, DampedCritical, PencilRoot, critical_from_roots, damped_critical
-from .parameters import RodParameters
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.optimize import brentq, minimize_scalar
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.damped_critical import (
+    LADDER,
+    DampedCritical,
+    PencilRoot,
+    critical_from_roots,
+    damped_critical,
+)
 
 __all__ = [
     "MODEL",
@@ -101,7 +107,7 @@ __all__ = [
 
 #: Model string of every root from this module.
 MODEL = "rung 1x (exact determinant)"
-#: Axes along which roots are searched (as in :func:`etcheck.rod.damped_critical.first_root`).
+#: Axes along which roots are searched (as in :func:`etcheck.rod.straight.damped_critical.first_root`).
 AXES = ("B", "omega", "T", "ray")
 
 _EPS = np.finfo(float).eps
@@ -633,7 +639,7 @@ class ExactRoot:
     route: str
 
     def pencil_root(self, tol: float) -> PencilRoot:
-        """The same root as :class:`etcheck.rod.damped_critical.PencilRoot` (N = 0: no grid)."""
+        """The same root as :class:`etcheck.rod.straight.damped_critical.PencilRoot` (N = 0: no grid)."""
         model = MODEL if self.multiplicity == 1 else f"{MODEL}, double root"
         return PencilRoot(self.axis, self.value, self.error, 0, bool(self.error <= tol), model)
 
@@ -858,8 +864,8 @@ def _separation(params: RodParameters, axis: str, x: float) -> float:
 
 def first_exact_root(params: RodParameters, axis: str, tol: float = 1e-8, sign: float = 1.0,
                      floor: float = 0.0) -> PencilRoot:
-    """:func:`exact_root` as a :class:`~etcheck.rod.damped_critical.PencilRoot`
-    (same semantics as :func:`etcheck.rod.damped_critical.first_root`: value
+    """:func:`exact_root` as a :class:`~etcheck.rod.straight.damped_critical.PencilRoot`
+    (same semantics as :func:`etcheck.rod.straight.damped_critical.first_root`: value
     signed, inf when none, error relative to max(|value|, floor))."""
     return exact_root(params, axis, sign, floor).pencil_root(tol)
 
@@ -868,7 +874,7 @@ def first_exact_root(params: RodParameters, axis: str, tol: float = 1e-8, sign: 
 def exact_critical(params: RodParameters, tol: float = 1e-8, spin: bool = True) -> DampedCritical:
     """Critical load, critical spin and stability of the damped straight rod, exactly.
 
-    Same semantics as :func:`etcheck.rod.damped_critical.damped_critical`
+    Same semantics as :func:`etcheck.rod.straight.damped_critical.damped_critical`
     (requires gamma > 0, Kelvin-Tait-Chetaev): the compressive limit when
     T < 0, the spin that destabilises the unloaded rod, the static load at
     zero spin, the critical load at the operating spin (0 beyond the spin
@@ -884,7 +890,7 @@ def exact_critical(params: RodParameters, tol: float = 1e-8, spin: bool = True) 
 
 def pencil_or_exact(params: RodParameters, tol: float = 1e-8, ladder: tuple[int, ...] = LADDER,
                     spin: bool = True) -> DampedCritical:
-    """:func:`~etcheck.rod.damped_critical.damped_critical` (the static pencils, milliseconds), and
+    """:func:`~etcheck.rod.straight.damped_critical.damped_critical` (the static pencils, milliseconds), and
     :func:`exact_critical` where a pencil root missed ``tol`` and the exact determinant meets it.
 
     Next to the end of its line (a critical load as the spin nears the unloaded rod's critical spin, a

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .parameters import RodParameters
+from etcheck.rod.core.parameters import RodParameters
 
 __all__ = ["mode_count", "coupling_wavenumber", "cut", "band_modes"]
 

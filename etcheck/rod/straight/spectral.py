@@ -1,7 +1,7 @@
 """Stability of the straight whirling rod along parameter lines (dimensionless).
 
 Everything here linearises about the straight state of eq. (86) of arXiv:0810.3668 (erratum
-F0 = +T e3) with :func:`etcheck.rod.linear.linear_operator` and decides
+F0 = +T e3) with :func:`etcheck.rod.core.linear.linear_operator` and decides
 stability from the least-|lambda| eigenvalues (unstable iff some
 Re lambda > ``THRESHOLD``; Sec. VI of the paper, eqs. (82)-(85)).
 
@@ -41,14 +41,13 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
-from ..numerics.blas import single_blas_thread
-from ..numerics.eigen import factor_static, match_spectra, pencil_eigenvalues, qep_dense
-from ..numerics.parallel import split_map
-from .base_state import straight
-from .linear import NFIELDS, linear_operator, static_differences
-from .mode_band import band_modes
-from .parameters import RodParameters
-from .spectrum import (
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.eigen import factor_static, match_spectra, pencil_eigenvalues, qep_dense
+from etcheck.numerics.parallel import split_map
+from etcheck.rod.core.base_state import straight
+from etcheck.rod.core.linear import NFIELDS, linear_operator, static_differences
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.spectrum import (
     ERROR_FLOOR,
     SIGMA,
     check_resolution,
@@ -58,6 +57,7 @@ from .spectrum import (
     roundoff_floor,
     select_pairs,
 )
+from etcheck.rod.straight.mode_band import band_modes
 
 __all__ = [
     "THRESHOLD",
@@ -228,7 +228,7 @@ class StraightFamily:
     def growth(self, B: float, omega: float, T: float, k: int = K_MODES) -> float:
         """max Re lambda over the 2k + 4 eigenvalues nearest the shift (at least the k least-|lambda| pairs: with
         heavy damping the overdamped modes piling up towards -1/gamma can push a growing one past them).
-        Undamped, over every eigenvalue of the band that load and spin reshape (:mod:`etcheck.rod.mode_band`)
+        Undamped, over every eigenvalue of the band that load and spin reshape (:mod:`etcheck.rod.straight.mode_band`)
         if that is more: with a dense low spectrum (large P, loads past several static points) a flutter pair
         can lie beyond the k least-|lambda| pairs."""
         nev = 2 * k + 4
