@@ -25,16 +25,13 @@ from independent import static_determinant  # noqa: E402
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters  # noqa: E402
 from etcheck.rod.straight.analytic import critical_loads  # noqa: E402
 from etcheck.rod.straight.damped_critical import damped_critical, first_root  # noqa: E402
-from etcheck.rod.straight.exact import (  # noqa: E402
+from etcheck.rod.straight.determinant import (  # noqa: E402
     characteristic,
     evaluate,
-    exact_critical,
-    exact_root,
-    first_exact_root,
     isotropic_characteristic,
     kernel_dimension,
-    string_limit_load,
 )
+from etcheck.rod.straight.exact import exact_critical, exact_root, first_exact_root, string_limit_load  # noqa: E402
 
 F = F_CLAMPED
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)

@@ -21,8 +21,9 @@ from etcheck.rod.core.base_state import straight
 from etcheck.rod.core.linear import linear_operator
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.exact import exact_root
-from etcheck.rod.straight.undamped import characteristic_mu, has_real_pair, undamped_critical
+from etcheck.rod.straight.undamped import has_real_pair, undamped_critical
 from etcheck.rod.straight.undamped_isotropic import characteristic_plus
+from etcheck.rod.straight.undamped_kernel import characteristic_mu
 
 GAMMA = 0.76923
 

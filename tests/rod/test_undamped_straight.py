@@ -19,7 +19,15 @@ from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.damped_critical import first_root
 from etcheck.rod.straight.exact import exact_critical, string_limit_load
 from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.rod.straight.undamped import characteristic_mu, has_real_pair, stability_line, undamped_critical
+from etcheck.rod.straight.undamped import complex_pairs, complex_pairs_on_line, has_real_pair, undamped_critical
+from etcheck.rod.straight.undamped_kernel import (
+    characteristic_mu,
+    horner,
+    rayleigh_floor,
+    rounding_scale,
+    stiffness_definite,
+)
+from etcheck.rod.straight.undamped_lines import Line, stability_line, static_roots
 
 SET = dict(P=1e-3, R=21 / 38, Gamma=0.76923)
 
@@ -196,11 +204,10 @@ def test_a_line_that_needs_too_many_samples_is_refused_not_run():
 def test_complex_pairs_at_a_point_as_along_the_located_line(B, omega):
     """Two routes to the number of complex pairs at a point: the located spin line (every change of stability
     on the way) and the line's two ends with the roots that pass its cut in between."""
-    from etcheck.rod.straight.undamped import _complex_pairs
 
     p = RodParameters(**SET, B=B, omega=omega)
     line = stability_line(p, "omega", 0.0, omega)
-    pairs, real, _ = _complex_pairs(p)
+    pairs, real, _ = complex_pairs(p)
     assert pairs == line.pairs_at_hi
     assert (pairs > 0 or real) == line.unstable_at(omega)
 
@@ -211,9 +218,8 @@ def test_roots_through_the_cut_all_at_once_as_one_by_one():
     differences give each on its own."""
     from scipy.optimize import brentq
 
-    from etcheck.rod.straight.undamped import _Line
 
-    line = _Line(RodParameters(P=2e-6, R=0.55, Gamma=0.77, f=500.0), "omega", 0.0, 1000.0)
+    line = Line(RodParameters(P=2e-6, R=0.55, Gamma=0.77, f=500.0), "omega", 0.0, 1000.0)
     x = line.mu_cut
     ps = np.linspace(0.0, 1000.0, 97)
     top = line.E(ps, np.full(ps.size, x))
@@ -269,17 +275,16 @@ def test_nearly_isotropic_flutter_load_against_the_collocation_spectrum():
 
 
 def test_horner_in_k_squared_is_the_polynomial_and_its_derivative():
-    from etcheck.rod.straight.undamped import _horner, _size
 
     rng = np.random.default_rng(3)
     c = rng.normal(size=(40, 9)) + 1j * rng.normal(size=(40, 9))
     c[:, [1, 3, 5]] = 0.0  # the rows of the exponential basis: p(k) = Q(k^2) + c7 k
     z = rng.normal(size=(40, 8)) + 1j * rng.normal(size=(40, 8))
-    p, q = _horner(c, z)
+    p, q = horner(c, z)
     for i in range(c.shape[0]):
         np.testing.assert_allclose(p[i], np.polyval(c[i], z[i]), rtol=1e-13)
         np.testing.assert_allclose(q[i], np.polyval(np.polyder(c[i]), z[i]), rtol=1e-13)
-        np.testing.assert_allclose(_size(c, z)[i], np.polyval(np.abs(c[i]), np.abs(z[i])), rtol=1e-13)
+        np.testing.assert_allclose(rounding_scale(c, z)[i], np.polyval(np.abs(c[i]), np.abs(z[i])), rtol=1e-13)
 
 
 @pytest.mark.parametrize("omega", [0.0, 0.25])
@@ -317,15 +322,14 @@ def test_the_stiffness_proof_holds_to_its_edge_and_no_further(R, T, P):
     first clamped mode has gone soft (its edge is sharp there: beta^4 R / f) and, for R < 1 (one negative
     direction: Kelvin-Tait-Chetaev), a real pair appears (R = 1 loses two at once: gyroscopic stabilisation).
     Under compression (T < 0) the proof is looser than the rod: its edge is only checked from inside."""
-    from etcheck.rod.straight.undamped import _complex_pairs_of, _definite
 
     p = RodParameters(P=P, R=R, Gamma=0.76923, T=T)
-    lo = _edge(lambda w: _definite(p.with_(omega=w)))
+    lo = _edge(lambda w: stiffness_definite(p.with_(omega=w)))
     assert lo > 0.1
-    assert _complex_pairs_of(p.with_(omega=0.999 * lo))[:2] == (0, False)
+    assert complex_pairs_on_line(p.with_(omega=0.999 * lo))[:2] == (0, False)
     if T == 0.0:
         assert lo**2 == pytest.approx(R * 4.730040744862704**4 / p.f, rel=1e-8)  # the proof keeps a margin of 1e-9
-        assert R == 1.0 or _complex_pairs_of(p.with_(omega=1.001 * lo))[1]  # the weak mode's real pair
+        assert R == 1.0 or complex_pairs_on_line(p.with_(omega=1.001 * lo))[1]  # the weak mode's real pair
 
 
 @pytest.mark.parametrize("R,T,omega", [(21 / 38, 0.0, 0.0), (0.05, 0.0, 0.0), (0.9, 2.0, 0.0), (0.3, -0.01, 0.0),
@@ -335,14 +339,13 @@ def test_the_stiffness_proof_under_load_stops_short_of_the_static_load(R, T, ome
     short of the first static load (where K is singular: a proof past it would be wrong), and where it holds the
     counted line has no real and no complex pair."""
     from etcheck.rod.straight.exact import exact_root
-    from etcheck.rod.straight.undamped import _complex_pairs_of, _definite
 
     p = RodParameters(P=1e-3, R=R, Gamma=0.76923, T=T, omega=omega)
     static = exact_root(p, "B").value
-    edge = _edge(lambda B: _definite(p.with_(B=B)), 0.0, 10.0 * static)
+    edge = _edge(lambda B: stiffness_definite(p.with_(B=B)), 0.0, 10.0 * static)
     assert 0.05 * static < edge < static
     if omega:
-        assert _complex_pairs_of(p.with_(B=0.999 * edge))[:2] == (0, False)
+        assert complex_pairs_on_line(p.with_(B=0.999 * edge))[:2] == (0, False)
 
 
 @pytest.mark.parametrize("omega", [0.2, 0.3])
@@ -366,11 +369,10 @@ def test_no_real_root_below_the_rayleigh_floor(R, load):
     grid from three times the floor down to it, and has its lowest root between the floor and 0. With the factor
     1 the floor of R = 0.01 at ten times its static load was -64.6 and the lowest root -73.1."""
     from etcheck.rod.straight.exact import exact_root
-    from etcheck.rod.straight.undamped import _rayleigh_floor
 
     p = RodParameters(P=0.0, R=R, Gamma=0.77)
     q = p.with_(B=load * exact_root(p, "B").value)
-    floor = _rayleigh_floor(q, q.B, 0.0, 0.0)
+    floor = rayleigh_floor(q, q.B, 0.0, 0.0)
     below = characteristic_mu(q, np.linspace(3.0 * floor, floor, 6001))
     assert np.all(np.sign(below) == np.sign(below[0]))
     above = characteristic_mu(q, np.linspace(floor, 0.0, 6001))
@@ -383,11 +385,10 @@ def test_a_close_pair_of_static_loads_bounds_an_unstable_interval():
     the 25 samples of the load line never saw: the first instability was reported as the flutter at 318.49. Now the
     scan splits the pair at its dip and the line samples either side of both; the collocation spectrum grows
     between them."""
-    from etcheck.rod.straight.undamped import _static_roots
 
     p = RodParameters(P=7.56939008700586e-05, R=0.8, Gamma=0.77, B=0.6070943507877418, omega=0.748300882787012,
                       T=50.0)
-    roots = _static_roots(p, "B", 325.0)
+    roots = static_roots(p, "B", 325.0)
     assert roots.size == 2 and 0.4 < roots[1] - roots[0] < 0.5
     u = undamped_critical(p, windows=False)
     assert u.critical_load.kind == "divergence" and u.critical_load.value == pytest.approx(roots[0], rel=1e-9)

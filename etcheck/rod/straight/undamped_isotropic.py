@@ -41,12 +41,12 @@ import math
 import numpy as np
 
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.exact import _BC_COMPLEX, _isotropic_batch, _isotropic_companion, _schur, _smoothing
+from etcheck.rod.straight.determinant import BC_COMPLEX, isotropic_batch, isotropic_companion, schur, smoothing
 
-__all__ = ["characteristic_plus"]
+__all__ = ["characteristic_plus", "characteristic_plus_counted"]
 
 
-def _characteristic_plus(params: RodParameters, Omega, B=None, omega=None, T=None, route: str = "auto",
+def characteristic_plus_counted(params: RodParameters, Omega, B=None, omega=None, T=None, route: str = "auto",
                          factor: float = 1.0, shift: int = 0,
                          schur_budget: float = math.inf) -> tuple[np.ndarray, int]:
     """:func:`characteristic_plus` and the number of points that took the Schur route."""
@@ -70,15 +70,15 @@ def _characteristic_plus(params: RodParameters, Omega, B=None, omega=None, T=Non
     if route != "schur":
         for group in (c0 == 0, c0 != 0):
             if np.any(group):
-                value, _, m = _isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift, small=False)
-                out[group] = value * _smoothing(m)
+                value, _, m = isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift, small=False)
+                out[group] = value * smoothing(m)
     slow = np.nonzero(~np.isfinite(out))[0] if route != "exponential" else np.zeros(0, dtype=int)
     if slow.size > schur_budget:
         raise ArithmeticError(f"the exponential basis does not apply at {slow.size} points (near-coincident "
                               f"exponents) and the Schur route's budget is spent")
     for i in slow:
-        A = _isotropic_companion(c4, c2[i], c0[i], c1[i], kap[i])
-        out[i] = _schur(A, _BC_COMPLEX, shift).value * _smoothing(np.linalg.eigvals(A))
+        A = isotropic_companion(c4, c2[i], c0[i], c1[i], kap[i])
+        out[i] = schur(A, BC_COMPLEX, shift).value * smoothing(np.linalg.eigvals(A))
     return out.real.reshape(shape), int(slow.size)
 
 
@@ -91,4 +91,4 @@ def characteristic_plus(params: RodParameters, Omega, B=None, omega=None, T=None
     "auto" (exponential basis, Schur where it does not apply), "exponential" (NaN there) or "schur";
     ``factor``, ``shift``: other wavenumber scale and split (a second formulation). Dimensionless.
     """
-    return _characteristic_plus(params, Omega, B, omega, T, route, factor, shift)[0]
+    return characteristic_plus_counted(params, Omega, B, omega, T, route, factor, shift)[0]
