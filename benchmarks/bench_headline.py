@@ -213,14 +213,14 @@ def _b1_with_stability():
     import numpy as np
 
     from etcheck.rod.buckled import branches as br
-    from etcheck.rod.buckled import stability as bs
+    from etcheck.rod.buckled import secondary, spectra
 
     p = _operating_point()
     t0 = time.perf_counter()
     start = next(s for s in br.primary_branches(p.with_(B=0.0), 1, 32) if s.which == "S1")
     b1 = br.continue_branch(p, start, stop=(0.0, 4.0 * start.load), N=32)
-    spectra = bs.branch_spectra(b1, p.gamma)
-    pf = bs.secondary_pitchfork(p, p.omega, 32, branch=b1)
+    spectra = spectra.branch_spectra(b1, p.gamma)
+    pf = secondary.secondary_pitchfork(p, p.omega, 32, branch=b1)
     wall = time.perf_counter() - t0
     err = max(pf.error / pf.B, float(np.nanmax(spectra.max_real_error)))  # B* and the stability verdicts
     return wall, err, (f"omega = {p.omega:.3g}: {len(b1.states)} states to B = {b1.values[-1]:.4g}, "
@@ -230,11 +230,11 @@ def _b1_with_stability():
 def _pitchfork_curve():
     import numpy as np
 
-    from etcheck.rod.buckled import stability as bs
+    from etcheck.rod.buckled import secondary
 
     p = _operating_point().with_(B=0.0, omega=0.0)
     t0 = time.perf_counter()
-    c = bs.secondary_pitchfork_curve(p, np.linspace(0.0, 1.0, 10), N=32)
+    c = secondary.secondary_pitchfork_curve(p, np.linspace(0.0, 1.0, 10), N=32)
     wall = time.perf_counter() - t0
     return wall, max(pt.error / pt.B for pt in c.points), "omega = 0 ... 1, N = 32 and its check resolution"
 

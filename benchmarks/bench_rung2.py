@@ -23,7 +23,7 @@ from threadpoolctl import threadpool_limits
 
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import equilibria as eq
-from etcheck.rod.buckled import stability as bs
+from etcheck.rod.buckled import secondary
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.analytic import critical_loads
 
@@ -35,7 +35,7 @@ def targets(scene: RodParameters) -> None:
     t0 = time.perf_counter()
     start = br.primary_branches(scene, 1, 32)[0]
     b1 = br.continue_branch(scene, start, stop=(0.0, 4.0 * start.load))
-    pf = bs.secondary_pitchfork(scene, 0.0, N=32, N_check=48, branch=b1)
+    pf = secondary.secondary_pitchfork(scene, 0.0, N=32, N_check=48, branch=b1)
     wall = time.perf_counter() - t0
     print(f"== target: b1 pitchfork -> 4 B1 ({len(b1.states)} states) and B* located: {wall:.2f} s "
           f"(ratio to the 3 s of the whole target {wall / 3.0:.2f}); B* = {pf.B:.10f}, stated error {pf.error:.1e}, "

@@ -27,8 +27,8 @@ from threadpoolctl import threadpool_limits
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from etcheck.rod.buckled import branches as br  # noqa: E402
+from etcheck.rod.buckled import damping_map, hopf, secondary, spectra, structure  # noqa: E402
 from etcheck.rod.buckled import equilibria as eq  # noqa: E402
-from etcheck.rod.buckled import stability as bs  # noqa: E402
 from etcheck.rod.core.parameters import RodParameters  # noqa: E402
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3)  # Gamma = 1/(1 + nu), nu = 0.3, as the missions
@@ -49,15 +49,15 @@ def targets(quick: bool) -> None:
     t = time.perf_counter()
     start = br.primary_branches(SET, 1, 32)[0]
     b1 = br.continue_branch(SET, start, stop=(0.0, 4.0 * start.load))
-    sp = bs.branch_spectra(b1, 0.04375, k=6)
-    pf = bs.secondary_pitchfork(SET, 0.0, N=32, N_check=48, branch=b1)
+    sp = spectra.branch_spectra(b1, 0.04375, k=6)
+    pf = secondary.secondary_pitchfork(SET, 0.0, N=32, N_check=48, branch=b1)
     wall = time.perf_counter() - t
     _row("b1 pitchfork -> 4 B1, stability of every state, B*", 3.0, wall,
          max(pf.error / pf.B, float(np.nanmax(sp.max_real_error))),
          f"B* = {pf.B:.10f} (stated {pf.error:.1e}, independent {B_STAR_INDEPENDENT}: "
          f"{abs(pf.B - B_STAR_INDEPENDENT):.1e}), {len(b1.states)} states")
     t = time.perf_counter()
-    c = bs.secondary_pitchfork_curve(SET, np.linspace(0.0, 1.0, 10), N=32, N_check=48)
+    c = secondary.secondary_pitchfork_curve(SET, np.linspace(0.0, 1.0, 10), N=32, N_check=48)
     _row("B*(omega) at 10 spins (0 ... 1, N = 32 and 48)", 5.0, time.perf_counter() - t,
          max(p.error / p.B for p in c.points), f"B*(0) = {c.points[0].B:.10f}, B*(1) = {c.points[-1].B:.8f}")
     if quick:
@@ -81,7 +81,7 @@ def targets(quick: bool) -> None:
 
 def pitchfork_curve(omegas, N, N_check):
     t = time.perf_counter()
-    c = bs.secondary_pitchfork_curve(SET, omegas, N=N, N_check=N_check)
+    c = secondary.secondary_pitchfork_curve(SET, omegas, N=N, N_check=N_check)
     print(f"\n[1] secondary pitchfork B*(omega) of b1, N = {N} vs {N_check}: {time.perf_counter() - t:.1f} s")
     print("    omega      B*(N)          B*(N_check)     |error|   measure1")
     for p in c.points:
@@ -94,7 +94,7 @@ def b1_static(N):
     start = br.primary_branches(SET, 1, N)[0]
     b1 = br.continue_branch(SET, start, stop=(0.0, 2.5))
     t_b = time.perf_counter() - t
-    sp = bs.branch_spectra(b1, 0.04375, k=6, state_stride=4)
+    sp = spectra.branch_spectra(b1, 0.04375, k=6, state_stride=4)
     change = np.nonzero(np.diff(sp.stable.astype(int)))[0]
     print(f"\n[2] b1 at omega = 0, gamma = 0.04375, N = {N}: branch {t_b:.1f} s, spectra {sp.time:.1f} s "
           f"({len(b1.states)} points); operator error {np.max(sp.errors[1:]):.1e}, "
@@ -111,11 +111,11 @@ def spun_b1(Ns, omega_max, gammas):
     res = {}
     for N in Ns:
         t = time.perf_counter()
-        bw = bs.b1_spin_branch(SET, 1.2, omega_max, N)
+        bw = secondary.b1_spin_branch(SET, 1.2, omega_max, N)
         t_b = time.perf_counter() - t
         for g in gammas:
-            sp = bs.branch_spectra(bw, g, k=6, state_stride=4)
-            scan = bs.find_hopf(bw, g, k=6)
+            sp = spectra.branch_spectra(bw, g, k=6, state_stride=4)
+            scan = hopf.find_hopf(bw, g, k=6)
             i = int(np.nanargmax(sp.max_real))
             res[(N, g)] = sp
             print(f"    N = {N} (check {sp.N_check}), gamma = {g}: branch {t_b:.1f} s, spectra {sp.time:.1f} s, "
@@ -138,8 +138,8 @@ def spun_b1(Ns, omega_max, gammas):
         print(f"    {a.values[i]:5.2f}  " + "  ".join(f"{z.real:+.4e}{z.imag:+.4f}j" for z in lam)
               + "  " + ",".join(a.labels[i, :3]))
     for om in (0.0, 1.5, 2.2, 4.0, 6.0):
-        st = bs.b1_state(SET, 1.2, om, N=Ns[-1])
-        c = bs.structure_check(st, gammas=(0.01, 0.04375))
+        st = secondary.b1_state(SET, 1.2, om, N=Ns[-1])
+        c = structure.structure_check(st, gammas=(0.01, 0.04375))
         print(f"    structure at omega = {om}: index(K) = {c.index}, unstable(gamma) = {c.unstable_damped}, "
               f"Hamiltonian defect {c.hamiltonian_defect:.1e}, K asymmetry {c.stiffness_asymmetry:.1e}, "
               f"max |Re| undamped {c.max_real_undamped:.1e}")
@@ -153,8 +153,8 @@ def b2_check():
         for B in (0.7, 1.2, 2.0):
             st = br.locate(b2, lambda s: s.params.B, B)[1]
             for n_op in (N, N + 16):
-                c = bs.structure_check(st, N=n_op, gammas=(0.01, 0.04375))
-                lam = bs.operator_eigenvalues(bs.damped_operator(st.params, st, n_op), 0.0, 8, False)
+                c = structure.structure_check(st, N=n_op, gammas=(0.01, 0.04375))
+                lam = spectra.operator_eigenvalues(spectra.damped_operator(st.params, st, n_op), 0.0, 8, False)
                 print(f"    base N = {N}, operator N = {n_op}, B = {B}: measure1 {eq.measure1(st):.4f}, "
                       f"index(K) = {c.index}, unstable(gamma) = {c.unstable_damped}, "
                       f"max|Re| undamped {c.max_real_undamped:.1e}, lowest |lambda| {np.min(np.abs(lam)):.6f}")
@@ -162,9 +162,9 @@ def b2_check():
 
 def damping(B_grid, omega_grid, N):
     t = time.perf_counter()
-    dm = bs.damping_map(SET, B_grid, omega_grid, gammas=bs.HOPF_GAMMAS, N=N)
+    dm = damping_map.damping_map(SET, B_grid, omega_grid, gammas=damping_map.HOPF_GAMMAS, N=N)
     wall = time.perf_counter() - t
-    print(f"\n[5] damping map, {len(omega_grid)} x {len(B_grid)} grid, gammas {bs.HOPF_GAMMAS}, N = {N} vs "
+    print(f"\n[5] damping map, {len(omega_grid)} x {len(B_grid)} grid, gammas {damping_map.HOPF_GAMMAS}, N = {N} vs "
           f"{dm.N_check}: {wall:.1f} s ({dm.timing['points']} b1 points; equilibria "
           f"{dm.timing['equilibria_s']:.1f} s, spectra {dm.timing['spectra_s']:.1f} s for all gammas)")
     print(f"    max two-resolution error of max Re lambda: {np.nanmax(dm.error):.1e}")

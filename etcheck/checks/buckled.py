@@ -59,7 +59,8 @@ from etcheck.rod.buckled.branches import (
     resolution_check,
     state_at,
 )
-from etcheck.rod.buckled.stability import BranchSpectra, secondary_pitchfork
+from etcheck.rod.buckled.secondary import secondary_pitchfork
+from etcheck.rod.buckled.spectra import BranchSpectra
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum
 from etcheck.rod.straight.spectral import THRESHOLD
@@ -483,7 +484,7 @@ MAX_LOAD_RATIO = 6.0
 
 
 def _secondary_pitchfork(params: RodParameters, branch: Branch, N: int) -> dict:
-    """b1's first secondary pitchfork at the scene's spin: :func:`~etcheck.rod.buckled.stability.secondary_pitchfork`
+    """b1's first secondary pitchfork at the scene's spin: :func:`~etcheck.rod.buckled.secondary_pitchfork`
     (the one implementation of B*) on the diagram's b1 at N and b1 recomputed at 1.5 N; the value at 1.5 N,
     its relative error estimate (the change from N), or the reason why there is none."""
     try:

@@ -1,6 +1,6 @@
 """Rung 3 for a mission: where the coiled (buckled) tether is stable, and how well damped.
 
-The dimensionless work is in :mod:`etcheck.rod.buckled.stability`; this module
+The dimensionless work is in :mod:`etcheck.rod.buckled`; this module
 asks the engineer's questions of the first post-buckling branch b1 and returns
 JSON-able data in both the paper's numbers and SI (I·B0 in N/m, spin in rpm,
 decay rates in 1/s, decay times in s):
@@ -29,14 +29,8 @@ from etcheck.numerics.pchip import Pchip
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.buckled.branches import Branch
-from etcheck.rod.buckled.stability import (
-    BranchSpectra,
-    b1_spin_branch,
-    branch_spectra,
-    damped_operator,
-    operator_eigenvalues,
-    secondary_pitchfork,
-)
+from etcheck.rod.buckled.secondary import b1_spin_branch, secondary_pitchfork
+from etcheck.rod.buckled.spectra import BranchSpectra, branch_spectra, damped_operator, operator_eigenvalues
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum, spectrum_from
 from etcheck.rod.straight.spectral import THRESHOLD

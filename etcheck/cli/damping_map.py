@@ -67,7 +67,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
         from etcheck.input.mission import load_mission
         from etcheck.report import write_reports
-        from etcheck.rod.buckled.stability import HOPF_GAMMAS
+        from etcheck.rod.buckled.damping_map import HOPF_GAMMAS
         from etcheck.studies.damping_map import damping_results
 
         mission = load_mission(args.mission)

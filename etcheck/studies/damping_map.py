@@ -4,7 +4,7 @@ For each damping of the paper's Fig. 19 (arXiv:0810.3668; or the user's), the
 damping ratio of the least-damped mode of b1 over a (B, omega) grid below b1's
 secondary-pitchfork curve B*(omega), and b1 at fixed load followed in spin with
 its eigenvalue paths (the paper's Hopf test, Sec. VII B). Dimensionless work in
-:mod:`etcheck.rod.buckled.stability`; JSON-able results with SI counterparts.
+:mod:`etcheck.rod.buckled`; JSON-able results with SI counterparts.
 """
 
 from __future__ import annotations
@@ -23,7 +23,8 @@ from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
 from etcheck.rod.buckled import branches as br
-from etcheck.rod.buckled.stability import HOPF_GAMMAS, DampingMap, b1_spin_branch, damping_map
+from etcheck.rod.buckled.damping_map import HOPF_GAMMAS, DampingMap, damping_map
+from etcheck.rod.buckled.secondary import b1_spin_branch
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution
 from etcheck.rod.straight.spectral import THRESHOLD, divergence_loads

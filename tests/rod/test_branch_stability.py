@@ -1,4 +1,4 @@
-"""Rung 3: stability of buckled, whirling equilibria (etcheck.rod.buckled.stability).
+"""Rung 3: stability of buckled, whirling equilibria (etcheck.rod.buckled).
 
 Published values from the paper (PHYSICS.md): secondary pitchfork of b1 at
 B = 1.942 (Sec. 7.1), spin pushes it up (Sec. 8), b1 at B = 1.2 with
@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import damping_map, hopf, secondary, spectra, structure
 from etcheck.rod.buckled import equilibria as eq
-from etcheck.rod.buckled import stability as bs
 from etcheck.rod.core.linear import linear_operator
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum
@@ -35,13 +35,13 @@ def b1_static():
 
 @pytest.fixture(scope="module")
 def pitchfork0():
-    return bs.secondary_pitchfork(SET, 0.0, N=N, N_check=32)
+    return secondary.secondary_pitchfork(SET, 0.0, N=N, N_check=32)
 
 
 @pytest.fixture(scope="module")
 def b1_spun():
     """b1 at B = 1.2 continued in omega from 0 to 4.2 (Figs. fig:tet:helix_stab-b1_B35_gamma05_w-*)."""
-    return bs.b1_spin_branch(SET, 1.2, 4.2, N)
+    return secondary.b1_spin_branch(SET, 1.2, 4.2, N)
 
 
 # --- secondary pitchfork ---------------------------------------------------------------------
@@ -67,7 +67,7 @@ def test_secondary_pitchfork_is_where_the_static_operator_is_singular(b1_static,
 
 
 def test_spin_pushes_the_secondary_pitchfork_up(pitchfork0):
-    curve = bs.secondary_pitchfork_curve(SET, [0.25, 1.0], N=N, N_check=32)
+    curve = secondary.secondary_pitchfork_curve(SET, [0.25, 1.0], N=N, N_check=32)
     B = np.concatenate([[pitchfork0.B], curve.B])
     assert np.all(np.diff(B) > 0.05), B  # Sec. 8
     assert np.all(curve.error < 1e-4)
@@ -78,7 +78,7 @@ def test_spin_pushes_the_secondary_pitchfork_up(pitchfork0):
 
 
 def test_b1_stable_up_to_the_secondary_pitchfork_and_unstable_after(b1_static, pitchfork0):
-    sp = bs.branch_spectra(b1_static, GAMMA_SET, k=4, state_stride=8)
+    sp = spectra.branch_spectra(b1_static, GAMMA_SET, k=4, state_stride=8)
     B = sp.values
     Bstar = pitchfork0.B
     below = (B > B[0] + 1e-3) & (B < Bstar - 0.01)
@@ -102,10 +102,10 @@ def test_b1_stable_up_to_the_secondary_pitchfork_and_unstable_after(b1_static, p
 def test_b12_is_unstable(b1_static):
     b12 = br.connecting_branch(b1_static, max_points=60)
     idx = np.linspace(2, len(b12.states) - 3, 4).astype(int)
-    sp = bs.branch_spectra([b12.states[i] for i in idx], GAMMA_SET, k=3, state_stride=0, name="b12")
+    sp = spectra.branch_spectra([b12.states[i] for i in idx], GAMMA_SET, k=3, state_stride=0, name="b12")
     assert not np.any(sp.stable)
     for i in idx:
-        chk = bs.structure_check(b12.states[i], gammas=(GAMMA_SET,))
+        chk = structure.structure_check(b12.states[i], gammas=(GAMMA_SET,))
         assert chk.index == 1 and chk.kelvin_tait_chetaev
 
 
@@ -123,10 +123,10 @@ def test_b2_is_stable_at_rest_in_this_model():
     for n in (24, 32):
         st = _b2_state(n)
         for n_op in (n, n + 16):
-            chk = bs.structure_check(st, N=n_op, gammas=(0.01, GAMMA_SET))
+            chk = structure.structure_check(st, N=n_op, gammas=(0.01, GAMMA_SET))
             assert chk.index == 0 and chk.unstable_damped == (0, 0)
             assert chk.max_real_undamped < 1e-9
-            lam = bs.operator_eigenvalues(bs.damped_operator(st.params, st, n_op), 0.0, 12, False)
+            lam = spectra.operator_eigenvalues(spectra.damped_operator(st.params, st, n_op), 0.0, 12, False)
             lows.append(np.min(np.abs(lam)))
     assert np.ptp(lows) < 1e-3 * np.max(lows)  # lowest frequency converged (about 0.19)
     assert min(lows) > 0.1
@@ -136,7 +136,7 @@ def test_b2_is_stable_at_rest_in_this_model():
                    "omega = 0, B = 0.9 stable (K index 0, lowest undamped frequency 0.189, N = 24..48)")
 def test_paper_claim_b2_unstable():
     st = _b2_state(N)
-    assert bs.structure_check(st, gammas=(GAMMA_SET,)).unstable_damped[0] > 0
+    assert structure.structure_check(st, gammas=(GAMMA_SET,)).unstable_damped[0] > 0
 
 
 def test_b1_spun_at_B12_stable_up_to_omega4(b1_spun):
@@ -144,7 +144,7 @@ def test_b1_spun_at_B12_stable_up_to_omega4(b1_spun):
     upto4 = [s for s in b1_spun.states if s.params.omega <= 4.0 + 1e-9]
     states = upto4[:-1:2] + upto4[-1:]  # every other state, and the last one below omega = 4
     assert states[-1].params.omega > 3.5
-    sp = bs.branch_spectra(states, GAMMA_SET, k=3, state_stride=0, name="b1@B=1.2")
+    sp = spectra.branch_spectra(states, GAMMA_SET, k=3, state_stride=0, name="b1@B=1.2")
     assert np.all(sp.stable) and np.all(sp.decided)
     assert np.all(sp.index == 0)  # K > 0 all along: no gamma > 0 can destabilise (KTC)
     assert np.all(sp.max_real < -3e-3)  # decay rate of the least-damped mode >= 3e-3
@@ -155,13 +155,13 @@ def test_b1_spun_at_B12_stable_up_to_omega4(b1_spun):
                    "B = 1.2; measured: no crossing up to omega = 4.2, max Re lambda (complex modes) = -9.27e-4 "
                    "near omega = 2.2 (N = 24 vs 36 differ by < 1e-5)")
 def test_paper_claim_hopf_at_gamma001(b1_spun):
-    scan = bs.find_hopf(b1_spun, 0.01, k=3)
+    scan = hopf.find_hopf(b1_spun, 0.01, k=3)
     assert any(abs(p.value - 1.5) < 0.3 for p in scan.points)
 
 
 def test_no_hopf_at_gamma001_along_b1_spun(b1_spun):
     """What the model gives: the complex modes stay damped, convergently."""
-    scan = bs.find_hopf(b1_spun, 0.01, k=3)
+    scan = hopf.find_hopf(b1_spun, 0.01, k=3)
     assert scan.points == ()
     assert np.nanmax(scan.max_real_complex) < -5e-4
     assert np.nanmax(scan.error) < 1e-4
@@ -178,7 +178,7 @@ def test_trivial_branch_reproduces_rung1():
     assert np.max(np.abs(a.eigenvalues - b.eigenvalues)) < 1e-9
     # and the gamma-split operator of rung 3 equals linear_operator at that gamma
     st = eq.straight_state(p, N)
-    op = bs.damped_operator(p, st, N)
+    op = spectra.damped_operator(p, st, N)
     for X, Y in zip(op.at(p.gamma), linear_operator(p, st, N)):
         assert np.max(np.abs(X - Y)) <= 1e-12 * max(1.0, np.max(np.abs(Y)))
 
@@ -188,7 +188,7 @@ def test_damped_operator_splits_by_rows_on_a_buckled_spun_state(b1_spun):
     lives only in the constitutive rows, the gyroscopic terms only outside them."""
     st = b1_spun.states[len(b1_spun.states) // 2]
     assert st.params.omega > 1.0
-    op = bs.damped_operator(st.params, st, N)
+    op = spectra.damped_operator(st.params, st, N)
     A1g = linear_operator(st.params.with_(gamma=0.0), st, N)[1]
     assert np.max(np.abs(A1g[3 * N:6 * N])) == 0.0 and np.max(np.abs(op.at(1.0)[1][op.damped])) > 0.1
     assert np.max(np.abs(op.at(0.0)[1] - A1g)) <= 1e-13 * np.max(np.abs(A1g))
@@ -200,11 +200,11 @@ def test_mode_labels_of_the_straight_rod():
     """Unloaded straight rod: weak-axis bending (about d2) lowest, stiff-axis
     bending (about d1) next, the first torsion mode at pi sqrt(Gamma/(2 P f))."""
     st = eq.straight_state(SET, N)
-    op = bs.damped_operator(SET, st, N)
-    lam, V = bs.operator_eigenvalues(op, 0.0, 40, True)
-    rep = bs._rep(lam)
+    op = spectra.damped_operator(SET, st, N)
+    lam, V = spectra.operator_eigenvalues(op, 0.0, 40, True)
+    rep = spectra.pair_representatives(lam)
     rep = rep[np.argsort(np.abs(lam[rep]))]
-    E = bs.mode_energies(st, V[:, rep], N, SET)
+    E = spectra.mode_energies(st, V[:, rep], N, SET)
     assert np.argmax(E[0]) == 1 and E[0, 1] > 0.999
     assert np.argmax(E[1]) == 0 and E[1, 0] > 0.999
     mu_t = math.pi * math.sqrt(SET.Gamma / (2 * SET.P * SET.f))
@@ -214,9 +214,9 @@ def test_mode_labels_of_the_straight_rod():
 
 @pytest.mark.parametrize("B, omega, index", [(1.2, 0.5, 0), (2.2, 0.0, 1)])
 def test_structure_hamiltonian_symmetric_stiffness_and_ktc(B, omega, index):
-    st = bs.b1_state(SET, B, omega, N=N)
-    chk = bs.structure_check(st, gammas=(0.01, GAMMA_SET, 0.2))
-    fine = bs.structure_check(st, N=40, gammas=())
+    st = secondary.b1_state(SET, B, omega, N=N)
+    chk = structure.structure_check(st, gammas=(0.01, GAMMA_SET, 0.2))
+    fine = structure.structure_check(st, N=40, gammas=())
     # (lambda, -lambda, conj) at gamma = 0, up to a discretisation error that decays with N
     assert chk.hamiltonian_defect < 1e-6
     assert fine.hamiltonian_defect < 1e-9 and fine.hamiltonian_defect <= max(chk.hamiltonian_defect, 1e-11)
@@ -229,7 +229,7 @@ def test_structure_hamiltonian_symmetric_stiffness_and_ktc(B, omega, index):
 
 def test_branch_spectra_tracks_paths_continuously(b1_spun):
     states = [s for s in b1_spun.states if s.params.omega <= 2.5]
-    sp = bs.branch_spectra(states, 0.01, k=3, state_stride=0)
+    sp = spectra.branch_spectra(states, 0.01, k=3, state_stride=0)
     assert sp.crossings == ()
     # from each state to the next, every path continues to the eigenvalue nearest to it (a swap of two paths would
     # continue to a farther one): measured steps up to 0.27 against distances of 0.37 or more to the other paths
@@ -238,11 +238,11 @@ def test_branch_spectra_tracks_paths_continuously(b1_spun):
     assert np.all(np.argmin(dist, axis=2) == np.arange(lam.shape[1]))
     json.dumps(sp.as_dict())
     # without the stiffness index (damped): the same paths, the index left out (-1)
-    paths_only = bs.branch_spectra(states[:6], 0.01, k=3, state_stride=0, stiffness=False)
+    paths_only = spectra.branch_spectra(states[:6], 0.01, k=3, state_stride=0, stiffness=False)
     np.testing.assert_array_equal(paths_only.eigenvalues, sp.eigenvalues[:6])
     assert np.all(paths_only.index == -1) and np.all(sp.index >= 0)
     # undamped, the index decides stability: always computed
-    assert np.all(bs.branch_spectra(states[:2], 0.0, k=3, state_stride=0, stiffness=False).index >= 0)
+    assert np.all(spectra.branch_spectra(states[:2], 0.0, k=3, state_stride=0, stiffness=False).index >= 0)
 
 
 # --- damping map --------------------------------------------------------------------------------
@@ -253,7 +253,7 @@ def test_damping_map_sanity(pitchfork0):
     # B* - 1e-4 is 15x the two-resolution error of B* at N = 24 (closer, the
     # rung-3 operator and the continuation Jacobian may disagree on the side)
     grid = np.array([0.5, 1.0, 1.5, Bstar - 1e-3, Bstar - 1e-4])
-    dm = bs.damping_map(SET, grid, [0.0], gammas=(0.01, GAMMA_SET), N=N, margin=1e-5)
+    dm = damping_map.damping_map(SET, grid, [0.0], gammas=(0.01, GAMMA_SET), N=N, margin=1e-5)
     assert abs(dm.curve_B[0] - pitchfork0.B_check) < 1e-9  # the map's curve is at N = 24, B* at 32
     assert not dm.inside[0, 0]  # below the primary pitchfork: no b1
     assert np.all(dm.inside[0, 1:])
@@ -283,20 +283,20 @@ def test_secondary_pitchfork_estimate_bounds_its_error(params):
     """B* (the value at the finer resolution) is within its stated error of B* at a much finer
     resolution, and the check's route (b1 from its pitchfork at the scene's spin) and the curve's
     route (b1 reached through spin at B_ref) give one value."""
-    b = bs._b1_direct(params, 20, 2.5)
-    pt = bs.secondary_pitchfork(params, params.omega, N=20, N_check=28, branch=b)
-    ref = bs.first_break(bs._b1_direct(params, 40, 1.02 * pt.B)).value
+    b = secondary.b1_direct(params, 20, 2.5)
+    pt = secondary.secondary_pitchfork(params, params.omega, N=20, N_check=28, branch=b)
+    ref = secondary.first_break(secondary.b1_direct(params, 40, 1.02 * pt.B)).value
     assert abs(pt.B - ref) <= pt.error
     if params.omega == 0:
-        up, _ = bs._b1_in_B(params, 0.0, 28, 1.2, 2.5)
-        assert abs(bs.first_break(up, above=1.2).value - pt.B) <= 1e-9  # one value, one route
+        up, _ = secondary.b1_in_B(params, 0.0, 28, 1.2, 2.5)
+        assert abs(secondary.first_break(up, above=1.2).value - pt.B) <= 1e-9  # one value, one route
 
 
 def test_measure1_estimate_bounds_its_error():
     """measure_1 along b1: the two-resolution estimate of resolution_check bounds the change
     against a much finer resolution (SET, omega = 0.3)."""
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, f=_F, omega=0.3)
-    b = bs._b1_direct(p, 20, 1.6)
+    b = secondary.b1_direct(p, 20, 1.6)
     chk = br.resolution_check(b)
     B, st = br.locate(b, lambda s: s.params.B, 1.5)
     fine = eq.solve_equilibrium(st.params, eq.resample_state(st, 40))
