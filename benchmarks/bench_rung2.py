@@ -23,7 +23,7 @@ from threadpoolctl import threadpool_limits
 
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import equilibria as eq
-from etcheck.rod.buckled import secondary
+from etcheck.rod.buckled import pitchforks, secondary, symmetry
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.analytic import critical_loads
 
@@ -44,20 +44,20 @@ def targets(scene: RodParameters) -> None:
     for p in (scene, scene.with_(omega=0.3, T=0.5), scene.with_(P=0.05, R=0.1, omega=0.2, T=-0.3)):
         for which in ("S1", "S2"):
             t0 = time.perf_counter()
-            est = br.pitchfork_loads(p, which, 24, 2)
+            est = pitchforks.pitchfork_loads(p, which, 24, 2)
             dt = time.perf_counter() - t0
-            true = np.abs(est.loads - br.class_loads(p, which, 64, 2))
+            true = np.abs(est.loads - pitchforks.class_loads(p, which, 64, 2))
             print(f"  omega {p.omega:4.2f} T {p.T:5.2f} R {p.R:.3f} {which}: B = {np.array2string(est.loads, precision=10)}"
                   f" stated {np.array2string(est.errors, precision=1)} true {np.array2string(true, precision=1)}"
                   f" ({dt * 1e3:.0f} ms)")
         for which in ("b1", "b2"):
             t0 = time.perf_counter()
-            w = br.liftoff_estimate(p, which, 1, N=24)
+            w = pitchforks.liftoff_estimate(p, which, 1, N=24)
             dt = time.perf_counter() - t0
             if not np.isfinite(w.omega):
                 print(f"  {which} does not lift off below omega = 4")
                 continue
-            roots = br._omega_roots(p, br.BRANCH_CLASS[which], 64)
+            roots = pitchforks.pitchfork_spins(p, symmetry.BRANCH_CLASS[which], 64)
             true = float(np.min(np.abs(roots - w.omega)))
             print(f"  {which} lift-off omega = {w.omega:.12f} stated {w.error:.1e} true {true:.1e} ({dt:.2f} s)")
 
@@ -109,7 +109,7 @@ def main() -> None:
         for which in ("b1", "b2"):
             for P in (0.001, 0.0):
                 t0 = time.perf_counter()
-                vals = [br.liftoff_spin(scene.with_(P=P), which, N=N) for N in (24, 32)]
+                vals = [pitchforks.liftoff_spin(scene.with_(P=P), which, N=N) for N in (24, 32)]
                 dt = time.perf_counter() - t0
                 print(f"  {which} P = {P}: omega = {vals[1]:.10f}  (N 24 vs 32: {abs(vals[0] - vals[1]):.1e})"
                       f"  {dt:5.2f} s")

@@ -46,19 +46,16 @@ from etcheck.numerics.parallel import split_map
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.buckled.branches import (
     Branch,
-    LiftoffSpin,
     ResolutionCheck,
-    class_loads,
     class_starts,
     connecting_branch,
     continue_branch,
-    liftoff_estimate,
     locate,
-    pitchfork_loads,
     primary_branches,
     resolution_check,
     state_at,
 )
+from etcheck.rod.buckled.pitchforks import LiftoffSpin, class_loads, liftoff_estimate, pitchfork_loads
 from etcheck.rod.buckled.secondary import secondary_pitchfork
 from etcheck.rod.buckled.spectra import BranchSpectra
 from etcheck.rod.core.parameters import RodParameters

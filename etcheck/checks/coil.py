@@ -26,8 +26,8 @@ from etcheck.checks.sections import CoilRegion, DampingSensitivity
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
 from etcheck.numerics.pchip import Pchip
-from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled import pitchforks
 from etcheck.rod.buckled.branches import Branch
 from etcheck.rod.buckled.secondary import b1_spin_branch, secondary_pitchfork
 from etcheck.rod.buckled.spectra import BranchSpectra, branch_spectra, damped_operator, operator_eigenvalues
@@ -169,13 +169,13 @@ def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff
     rows = []
     # b1 is reached at B_ref by continuation in spin: above b1's pitchfork at rest (which falls with spin)
     # and below its secondary pitchfork (about 3.3 times it for SET)
-    B_ref = 1.5 * float(br.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
+    B_ref = 1.5 * float(pitchforks.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
     b1_spin_branch(params, B_ref, omega_max, N)  # one continuation in spin serves every row
 
     def pitchfork(w: float) -> float | None:
         if math.isfinite(lift) and w >= lift:
             return None
-        loads = br.class_loads(params.with_(B=0.0, omega=float(w)), "S1", N, n=1)
+        loads = pitchforks.class_loads(params.with_(B=0.0, omega=float(w)), "S1", N, n=1)
         return float(loads[0]) if loads.size else None
 
     for w in np.linspace(0.0, omega_max, n):

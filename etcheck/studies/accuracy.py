@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from etcheck.checks.straight import accuracy
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import pitchforks
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum
 from etcheck.scaling import Scaled
@@ -71,7 +72,7 @@ def trace_b1(params: RodParameters, N: int) -> BranchTrace:
     """
     t0 = time.perf_counter()
     if params.omega > 0:
-        lift = br.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N, omega_max=params.omega + 0.1)
+        lift = pitchforks.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N, omega_max=params.omega + 0.1)
         if math.isfinite(lift) and params.omega >= lift:
             return BranchTrace(N, time.perf_counter() - t0, 0, None, None, float(lift))
     start = next(s for s in br.primary_branches(params.with_(B=0.0), 1, N) if s.which == "S1")

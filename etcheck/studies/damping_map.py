@@ -22,7 +22,7 @@ from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
-from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import pitchforks
 from etcheck.rod.buckled.damping_map import HOPF_GAMMAS, DampingMap, damping_map
 from etcheck.rod.buckled.secondary import b1_spin_branch
 from etcheck.rod.core.parameters import RodParameters
@@ -45,7 +45,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     their SI counterparts.
     """
     t0 = time.perf_counter()
-    pf0 = float(br.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
+    pf0 = float(pitchforks.class_loads(params.with_(B=0.0, omega=0.0), "S1", N, n=1)[0])
     B_ref = 1.5 * pf0  # b1 is reached here and followed in spin (above its pitchfork, below B*)
     B_max = B_max or 5.0 * pf0
     B = np.linspace(0.0, B_max, n_B + 1)[1:]
@@ -60,7 +60,7 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         except _UNANSWERED as exc:
             spin_branch_failed = f"b1 at B = {B_ref:.4g} was not followed in spin to {omega_max:g} at N = {n} ({exc})"
     try:
-        lift = br.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N=N)
+        lift = pitchforks.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N=N)
     except _UNANSWERED:
         lift = None  # each spin's column finds it again and says why it failed
     t_curve = time.perf_counter() - t_curve

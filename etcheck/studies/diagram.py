@@ -14,7 +14,7 @@ from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
 from etcheck.checks.results import results_header
 from etcheck.errors import MissionError
 from etcheck.input.mission import Mission
-from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import pitchforks
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.scaling import RPM, scale, scene
 
@@ -55,7 +55,7 @@ def refuse_outside_limit(mission: Mission, params: RodParameters, what: str, fie
 def _refuse_below_first_pitchfork(params: RodParameters, options: DiagramOptions) -> None:
     """A usage error (exit 2) naming --B-max when the load range ends at or below the diagram's first
     pitchfork (the smallest static load of either symmetry class at the scene's spin): no branch would be drawn."""
-    loads = [float(x[0]) for x in (br.class_loads(params.with_(B=0.0), which, options.N, n=1) for which in ("S1", "S2"))
+    loads = [float(x[0]) for x in (pitchforks.class_loads(params.with_(B=0.0), which, options.N, n=1) for which in ("S1", "S2"))
              if x.size]
     if loads and options.B_max <= min(loads):
         raise MissionError("command line", "--B-max",

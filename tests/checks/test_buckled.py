@@ -17,7 +17,7 @@ from etcheck.checks.pipeline import check
 from etcheck.cli.main import main
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.rod.buckled import equilibria as eq
-from etcheck.rod.buckled.branches import pitchfork_loads
+from etcheck.rod.buckled.pitchforks import pitchfork_loads
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.spectral import divergence_loads
 from etcheck.scaling import scale, scene

@@ -35,7 +35,7 @@ from scene_missions import (
 from etcheck import check
 from etcheck.cli.main import main
 from etcheck.input.mission import mission_from_dict
-from etcheck.rod.buckled.branches import liftoff_spin
+from etcheck.rod.buckled.pitchforks import liftoff_spin
 from etcheck.rod.straight.spectral import divergence_loads
 from etcheck.scaling import scale, scene
 from etcheck.studies.sweep import solve_point

@@ -22,6 +22,7 @@ from threadpoolctl import threadpool_limits
 from etcheck.numerics.continuation import ContinuationOptions, continuation
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled import pitchforks, symmetry
 from etcheck.rod.core.base_state import BaseState
 from etcheck.rod.core.linear import linear_operator
 from etcheck.rod.core.parameters import RodParameters
@@ -191,25 +192,25 @@ def test_measure1_is_exact_for_a_sign_changing_shape():
 
 def test_involutions_and_equivariance(b1):
     for which in ("S1", "S2"):
-        S = br.symmetry_matrix(12, which)
+        S = symmetry.symmetry_matrix(12, which)
         assert np.array_equal(S @ S, np.eye(S.shape[0]))
-        bases = br.symmetry_bases(SET, 12, which)
+        bases = symmetry.symmetry_bases(SET, 12, which)
         assert bases.equivariance < 1e-12
     state = b1[N_LO].states[len(b1[N_LO].states) // 2]
     # b1 lies in Fix(S1) and not in Fix(S2)
-    r1, r2 = br.reflect(state, "S1"), br.reflect(state, "S2")
+    r1, r2 = symmetry.reflect(state, "S1"), symmetry.reflect(state, "S2")
     assert max(np.max(np.abs(r1.x - state.x)), np.max(np.abs(r1.D - state.D)), np.max(np.abs(r1.F - state.F))) < 1e-12
     assert np.max(np.abs(r2.x - state.x)) > 1e-2
     # the image under S2 is again an equilibrium (equivariance of the residual)
     assert np.max(np.abs(eq.residual(state.params, r2))) < 1e-9
-    bases = br.symmetry_bases(SET, N_LO, "S1")
+    bases = symmetry.symmetry_bases(SET, N_LO, "S1")
     J = eq.jacobian(state.params, state)
     assert np.max(np.abs(J @ bases.S - bases.S_row @ J)) < 1e-10 * np.max(np.abs(J))
 
 
 def test_symmetry_bases_are_orthonormal_eigenbases_and_the_2x2_kernels_are_the_svds():
     for which in ("S1", "S2"):
-        b = br.symmetry_bases(SET, 16, which)
+        b = symmetry.symmetry_bases(SET, 16, which)
         n = b.S.shape[0]
         for V, L, sign in ((b.V_plus, b.L_plus, 1.0), (b.V_minus, b.L_minus, -1.0)):
             V, L = V.toarray(), L.toarray()
@@ -224,8 +225,8 @@ def test_symmetry_bases_are_orthonormal_eigenbases_and_the_2x2_kernels_are_the_s
     Ms = np.concatenate([np.einsum("mi,mj->mij", u, v), rng.normal(size=(40, 2, 2)), np.zeros((1, 2, 2)),
                          np.einsum("mi,mj->mij", u, v) + 1e-12 * rng.normal(size=(40, 2, 2)),
                          np.array([[[-1.0, 1.0], [1.0, -1.0]], [[1.0, 1.0], [1.0, 1.0]]])])
-    for M, Z in zip(Ms, br._kernels_2x2(Ms)):
-        ref = br._kernel(M)
+    for M, Z in zip(Ms, symmetry.null_bases_2x2(Ms)):
+        ref = symmetry.null_basis(M)
         assert Z.shape == ref.shape
         if Z.shape[1] == 1:
             assert abs(abs(float(Z[:, 0] @ ref[:, 0])) - 1.0) < 1e-12 and np.max(np.abs(M @ Z)) < 1e-9 * np.abs(M).max()
@@ -241,12 +242,12 @@ def test_pitchfork_loads_are_the_restricted_pencils_roots(which):
     import scipy.linalg as sla
 
     p = SET.with_(omega=0.25, T=0.5, B=0.0)
-    A, C, _ = br._straight_pencil(p, 32, which, "B")
+    A, C, _ = pitchforks.straight_pencil(p, 32, which, "B")
     alpha, beta = sla.eig(A, -C, right=False, homogeneous_eigvals=True)
     finite = np.abs(beta) > 1e-12 * np.abs(alpha)
-    qz = br._real(alpha[finite] / beta[finite])
+    qz = pitchforks.real_eigenvalues(alpha[finite] / beta[finite])
     qz = qz[qz > 1e-12][:4]
-    loads = br.class_loads(p, which, 32, 4)
+    loads = pitchforks.class_loads(p, which, 32, 4)
     assert loads.size == 4
     np.testing.assert_allclose(loads, qz, rtol=1e-11, atol=0)
 
@@ -327,8 +328,8 @@ def test_b12_connects_b1_to_bp1_and_breaks_the_symmetry(b1, b12):
     assert abs(b.values[-1] - Bc) < 0.01
     _, st = br.locate(b, eq.measure1, 0.04)
     assert abs(eq.measures(st).measure2) > 1e-4  # measure_2 != 0: neither symmetry
-    assert np.max(np.abs(br.reflect(st, "S1").x - st.x)) > 1e-3
-    assert np.max(np.abs(br.reflect(st, "S2").x - st.x)) > 1e-3
+    assert np.max(np.abs(symmetry.reflect(st, "S1").x - st.x)) > 1e-3
+    assert np.max(np.abs(symmetry.reflect(st, "S2").x - st.x)) > 1e-3
 
 
 def test_b2_at_measure1_004_converged(b2):
@@ -352,10 +353,10 @@ def test_liftoff_spins():
     # P = 0: the pitchfork reaches B = 0 where the non-magnetic whirl mode goes static:
     # weak axis (b1) at sqrt(R), stiff axis (b2) at 1 (f = first clamped root^4)
     p0 = SET.with_(P=0.0)
-    assert abs(br.liftoff_spin(p0, "b1") - math.sqrt(SET.R)) < 1e-8
-    assert abs(br.liftoff_spin(p0, "b2") - 1.0) < 1e-8
-    w1 = br.liftoff_spin(SET, "b1")
-    w2 = br.liftoff_spin(SET, "b2")
+    assert abs(pitchforks.liftoff_spin(p0, "b1") - math.sqrt(SET.R)) < 1e-8
+    assert abs(pitchforks.liftoff_spin(p0, "b2") - 1.0) < 1e-8
+    w1 = pitchforks.liftoff_spin(SET, "b1")
+    w2 = pitchforks.liftoff_spin(SET, "b2")
     assert math.sqrt(SET.R) < w1 < 0.75  # gyroscopic stiffening by rotary inertia, still < 0.75
     assert 1.0 < w2 < 1.02
     # independent check (matrix-exponential shooting of the straight rod at B = 0):
@@ -365,8 +366,8 @@ def test_liftoff_spins():
         assert lo * hi < 0
     # at omega = 0.75 b1 no longer bifurcates: no Fix(S1) pitchfork near BP1, b2's still there
     p = SET.with_(omega=0.75)
-    assert br.class_loads(p, "b1", N_LO)[0] > 3.0
-    assert abs(br.class_loads(p, "b2", N_LO)[0] - divergence_loads(p, n=1)[0]) < 1e-8
+    assert pitchforks.class_loads(p, "b1", N_LO)[0] > 3.0
+    assert abs(pitchforks.class_loads(p, "b2", N_LO)[0] - divergence_loads(p, n=1)[0]) < 1e-8
 
 
 @pytest.mark.parametrize("omega,T,which", [(0.0, 0.0, "S1"), (0.4, 0.0, "S2"), (0.7, 0.3, "S1"), (1.3, -0.2, "S2")])
@@ -376,9 +377,9 @@ def test_lift_off_tracking_roots_equal_the_qz_roots(omega, T, which):
     from etcheck.numerics.eigen import pencil_eigenvalues
 
     p = SET.with_(omega=omega, T=T, B=0.0)
-    A, C, _ = br._straight_pencil(p, N_LO, which, "B")
+    A, C, _ = pitchforks.straight_pencil(p, N_LO, which, "B")
     assert np.count_nonzero(np.any(C != 0.0, axis=0)) < A.shape[0] // 4  # the small route is taken
-    fast, qz = br._real(pencil_eigenvalues(A, C)), br._real_roots(A, C)
+    fast, qz = pitchforks.real_eigenvalues(pencil_eigenvalues(A, C)), pitchforks.real_roots(A, C)
     small = qz[np.abs(qz) < 1e3]
     assert small.size >= 3
     assert np.allclose(fast[np.abs(fast) < 1e3], small, rtol=1e-10, atol=0.0)
@@ -387,7 +388,7 @@ def test_lift_off_tracking_roots_equal_the_qz_roots(omega, T, which):
 @pytest.mark.xfail(strict=True, reason="paper Sec. 7.2: b2 lifts off near omega = 1.25; the straight-rod linear "
                                        "theory gives 1.00621 (P = 0.001), exactly 1 for P = 0")
 def test_b2_liftoff_paper_value():
-    assert abs(br.liftoff_spin(SET, "b2") - 1.25) < 0.05
+    assert abs(pitchforks.liftoff_spin(SET, "b2") - 1.25) < 0.05
 
 
 # --- continuation in other parameters ----------------------------------------------------------
@@ -413,7 +414,7 @@ def test_continuation_in_spin_and_tension(spun):
     bt = br.continue_branch(SET, st, parameter="T", stop=(-1.0, 0.5), max_points=12, which="S1")
     bps = [q.value for q in bt.special if q.kind == "bp"]
     assert len(bps) == 1
-    assert abs(br.class_loads(SET.with_(T=bps[0]), "S1", N_LO)[0] - 1.2) < 1e-6
+    assert abs(pitchforks.class_loads(SET.with_(T=bps[0]), "S1", N_LO)[0] - 1.2) < 1e-6
     # and the same state continued in the full space stays on b1 (symmetric up to rounding)
     bf = br.continue_branch(SET, st, parameter="omega", stop=(-1.0, 0.2))
     assert bf.values[-1] == 0.2 and np.max(np.abs(bf.measure2)) < 1e-9

@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etcheck.rod.buckled import branches as br
+from etcheck.rod.buckled import pitchforks, symmetry
 from etcheck.rod.core.parameters import RodParameters
 
 #: the estimates use N = 16 and 24; the reference values N = 44
@@ -34,7 +34,7 @@ SCENES = {
 
 def _check(value: np.ndarray, error: np.ndarray, coarse_error: np.ndarray, ref: np.ndarray) -> None:
     true = np.abs(value - ref)
-    floor = br.ROUNDING * np.abs(ref)
+    floor = pitchforks.ROUNDING * np.abs(ref)
     assert np.all(true <= error), (true, error)
     assert np.all(error <= 2.0 * coarse_error + floor), (error, coarse_error)
 
@@ -43,9 +43,9 @@ def _check(value: np.ndarray, error: np.ndarray, coarse_error: np.ndarray, ref: 
 def test_pitchfork_load_errors_bound_the_true_error(scene):
     p = SCENES[scene]
     for which in ("S1", "S2"):
-        ref = br.class_loads(p, which, N_REF, 2)
-        est = br.pitchfork_loads(p, which, N_EST, 2)
-        coarse = br.class_loads(p, which, N_EST, 2)
+        ref = pitchforks.class_loads(p, which, N_REF, 2)
+        est = pitchforks.pitchfork_loads(p, which, N_EST, 2)
+        coarse = pitchforks.class_loads(p, which, N_EST, 2)
         _check(est.loads, est.errors, np.abs(coarse - ref), ref)
 
 
@@ -54,10 +54,10 @@ def test_liftoff_spin_errors_bound_the_true_error():
     for name in ("SET", "spun, tensioned"):
         p = SCENES[name]
         for which in ("b1", "b2"):
-            est = br.liftoff_estimate(p, which, 1, N=N_EST)
+            est = pitchforks.liftoff_estimate(p, which, 1, N=N_EST)
             if not np.isfinite(est.omega):
                 continue
-            roots = br._omega_roots(p, br.BRANCH_CLASS[which], N_REF)
+            roots = pitchforks.pitchfork_spins(p, symmetry.BRANCH_CLASS[which], N_REF)
             ref = roots[np.argmin(np.abs(roots - est.omega))]
             _check(np.array([est.omega]), np.array([est.error]), np.array([abs(est.omega_coarse - ref)]), np.array([ref]))
             checked += 1

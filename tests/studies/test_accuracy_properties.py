@@ -22,7 +22,7 @@ from scene_missions import mission_dict, profile, scenes
 
 from etcheck.input.mission import mission_from_dict
 from etcheck.numerics.eigen import match_spectra, relative_distance
-from etcheck.rod.buckled.branches import liftoff_spin
+from etcheck.rod.buckled.pitchforks import liftoff_spin
 from etcheck.rod.core.spectrum import ERROR_FLOOR, lowest_eigenvalues, spectrum
 from etcheck.rod.straight.convergence import reference_resolution
 from etcheck.scaling import scale, scene

@@ -4,30 +4,8 @@ Rod-specific layer over :mod:`etcheck.numerics.continuation` and
 :mod:`etcheck.rod.buckled.equilibria` (Secs. V A and VII of arXiv:0810.3668; docs/model.md, section 7, "Symmetry
 of the welded problem").
 
-Symmetry. The welded problem is equivariant under the involutions
-
-    S_Q: x(s) -> Q x(1-s) + (x3(0) + x3(1)) e3,  D(s) -> Q D(1-s) Q,
-         F(s) -> -Q F(1-s),  M(s) -> -Q M(1-s),
-
-with Q = diag(1, -1, -1) (``"S1"``: s -> 1-s and a half-turn about e1) or
-Q = diag(-1, 1, -1) (``"S2"``: half-turn about e2), for every B, omega, T, R
-(Lorentz, centrifugal and rotary-inertia terms all commute with Q; the
-sliding-end position z0 = x3(0) is kept). Their linear action S on an update
-(xi, a, phi, m) is xi(s) -> Q xi(1-s) + (xi3(0) + xi3(1)) e3,
-a(s) -> Q a(1-s), phi(s) -> -Q phi(1-s), m(s) -> -Q m(1-s) (an exact
-involution, :func:`symmetry_matrix`); on the residual rows it acts by a
-constant matrix S_row = J S J^{-1}, computed once per N at a regular straight
-state (equivariance J S = S_row J is checked at another state and, in the
-tests, on a buckled one). Each doubly degenerate pitchfork of the straight rod is simple
-inside Fix(S1) and inside Fix(S2): the primary branches are continued with
-Newton restricted to the fixed-point space (square restricted Jacobian
-L_+ J V_+, with V_+ / L_+ orthonormal bases of the +1 eigenspaces of S and
-S_row^T), which also keeps them exactly symmetric. Symmetry-breaking
-(secondary) branch points on a primary branch are zeros of the Jacobian
-restricted to the -1 eigenspace, L_- J V_-; they are detected by the sign
-change of a continuous test function (sign det times a smallest-singular-value
-estimate) and the connecting branch (b12) is followed in the full space from
-the kernel of L_- J V_-.
+The symmetries are :mod:`etcheck.rod.buckled.symmetry`; the straight rod's pitchforks and lift-off spins
+:mod:`etcheck.rod.buckled.pitchforks`.
 
 Labels. "b1" is the Fix(S1) branch from BP1 (x(s) = x(1-s), y(s) = -y(1-s)),
 whose pitchfork load decreases with spin and reaches B = 0 at the spin where
@@ -47,12 +25,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
-import scipy.linalg as sla
-import scipy.sparse as sparse
-from scipy.sparse.csgraph import connected_components
 
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.continuation import (
@@ -67,202 +41,27 @@ from etcheck.numerics.continuation import (
     switch_branch,
     weights,
 )
-from etcheck.numerics.eigen import pencil_eigenvalues
 from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled.pitchforks import real_roots, straight_pencil
+from etcheck.rod.buckled.symmetry import symmetry_bases, symmetry_class
 from etcheck.rod.core.linear import NFIELDS
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution
 
 __all__ = [
-    "SYMMETRIES",
-    "BRANCH_CLASS",
-    "symmetry_matrix",
-    "reflect",
-    "SymmetryBases",
-    "symmetry_bases",
-    "BranchStart",
-    "RodBranchPoint",
     "Branch",
-    "class_loads",
-    "PitchforkLoads",
-    "pitchfork_loads",
-    "LiftoffSpin",
-    "liftoff_estimate",
-    "primary_branches",
+    "BranchStart",
     "class_starts",
-    "continue_branch",
     "connecting_branch",
+    "continue_branch",
     "locate",
-    "state_at",
-    "liftoff_spin",
-    "trivial_branch_points",
-    "ResolutionCheck",
+    "primary_branches",
     "resolution_check",
+    "ResolutionCheck",
+    "RodBranchPoint",
+    "state_at",
+    "trivial_branch_points",
 ]
-
-SYMMETRIES = {"S1": np.array([1.0, -1.0, -1.0]), "S2": np.array([-1.0, 1.0, -1.0])}
-#: symmetry class of the paper's primary branches from BP1
-BRANCH_CLASS = {"b1": "S1", "b2": "S2"}
-
-
-def _class(which: str) -> str:
-    which = BRANCH_CLASS.get(which, which)
-    if which not in SYMMETRIES:
-        raise ValueError(f"unknown branch/symmetry {which!r}; use 'b1', 'b2', 'S1' or 'S2'")
-    return which
-
-
-# --- symmetry --------------------------------------------------------------------------
-
-
-@lru_cache(maxsize=16)
-def symmetry_matrix(N: int, which: str) -> np.ndarray:
-    """Linear action S of the involution ``which`` on updates (xi, a, phi, m), shape (n, n).
-
-    n = 12 (N+1), ``linear.VARIABLES`` ordering; S @ S = I exactly.
-    """
-    q = SYMMETRIES[_class(which)]
-    n1 = N + 1
-    S = np.zeros((NFIELDS * n1, NFIELDS * n1))
-    signs = np.concatenate([q, q, -q, -q])
-    j = np.arange(n1)
-    for c in range(NFIELDS):
-        S[c * n1 + j, c * n1 + (N - j)] = signs[c]
-    z = 2 * n1  # xi3 block: xi3~(s) = -xi3(1-s) + xi3(0) + xi3(1)
-    S[z + j, z] += 1.0
-    S[z + j, z + N] += 1.0
-    S.setflags(write=False)
-    return S
-
-
-def reflect(state: eq.Equilibrium, which: str) -> eq.Equilibrium:
-    """The image S(state) of an equilibrium under the involution ``which`` (dimensionless)."""
-    Q = np.diag(SYMMETRIES[_class(which)])
-    x = state.x[::-1] @ Q
-    x[:, 2] += state.x[0, 2] + state.x[-1, 2]
-    D = np.einsum("ab,nbc,cd->nad", Q, state.D[::-1], Q)
-    return eq.Equilibrium(state.params, x, D, -state.F[::-1] @ Q, -state.M[::-1] @ Q)
-
-
-@dataclass(frozen=True, eq=False)
-class SymmetryBases:
-    """Orthonormal bases of the +/-1 eigenspaces of S (columns of V) and of S_row^T (rows of L).
-
-    V and L are sparse (``scipy.sparse``): S and S_row are block diagonal with
-    blocks of one or two unknowns (rows) except the axial-displacement block
-    (the tension row), and each basis is built block by block, so that the
-    restricted Jacobians L J V cost two sparse-dense products instead of two
-    dense matrix products.
-
-    ``equivariance`` is ||J S - S_row J|| / ||J|| at a second (curved-free)
-    check state: rounding level when the row action is state independent.
-    """
-
-    which: str
-    N: int
-    S: np.ndarray
-    S_row: np.ndarray
-    V_plus: np.ndarray
-    V_minus: np.ndarray
-    L_plus: np.ndarray
-    L_minus: np.ndarray
-    equivariance: float
-
-
-def _components(A: np.ndarray) -> list[np.ndarray]:
-    """Index sets of the diagonal blocks of A (connected components of the pattern of A + A^T)."""
-    pattern = sparse.csr_array((A != 0) | (A.T != 0))
-    n, labels = connected_components(pattern, directed=False)
-    order = np.argsort(labels, kind="stable")
-    return np.split(order, np.cumsum(np.bincount(labels, minlength=n))[:-1])
-
-
-def _eigenspace(A: np.ndarray, sign: float, blocks: list[np.ndarray]) -> sparse.csc_array:
-    """Orthonormal basis (columns) of ker(A - sign I) for A block diagonal on ``blocks``:
-    per block its kernel as scipy.linalg.null_space finds it (rcond 1e-9), so the basis is as sparse as A's
-    blocks. Most blocks are 2 x 2 (the signed permutation s -> 1 - s pairs the collocation points): their
-    kernels are written out, all at once (:func:`_kernels_2x2`); the few others by one small SVD each."""
-    kernels: list = [None] * len(blocks)
-    for size in sorted({b.size for b in blocks}):
-        which = [i for i, b in enumerate(blocks) if b.size == size]
-        idx = np.stack([blocks[i] for i in which])
-        Ms = A[idx[:, :, None], idx[:, None, :]] - sign * np.eye(size)
-        if size == 2:
-            for i, Z in zip(which, _kernels_2x2(Ms)):
-                kernels[i] = Z
-            continue
-        for i, M in zip(which, Ms):
-            kernels[i] = _kernel(M)
-    rows, cols, vals, k = [], [], [], 0
-    for idx, Z in zip(blocks, kernels):
-        Z[np.abs(Z) < 1e-15] = 0.0
-        r, c = np.nonzero(Z)
-        rows.append(idx[r])
-        cols.append(c + k)
-        vals.append(Z[r, c])
-        k += Z.shape[1]
-    return sparse.csc_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(A.shape[0], k))
-
-
-def _kernel(M: np.ndarray) -> np.ndarray:
-    """Orthonormal basis (columns) of ker M: the right singular vectors of singular values at or below 1e-9 of
-    the largest (as scipy.linalg.null_space)."""
-    _, sv, vh = sla.svd(M, lapack_driver="gesvd", check_finite=False)
-    rank = int(np.sum(sv > 1e-9 * sv.max(initial=0.0)))
-    return vh[rank:].T.conj()
-
-
-def _kernels_2x2(Ms: np.ndarray) -> list[np.ndarray]:
-    """:func:`_kernel` of each 2 x 2 matrix of the stack Ms (m, 2, 2) at once: the singular values from the
-    Frobenius norm and the determinant (s_max^2 + s_min^2 = |M|_F^2, s_max s_min = |det M|); a matrix of rank 1
-    has the unit vector orthogonal to its larger row as its kernel, one of rank 2 none; the zero matrix (kernel:
-    the plane) by the SVD."""
-    fro2 = np.einsum("mij,mij->m", Ms, Ms)
-    det = Ms[:, 0, 0] * Ms[:, 1, 1] - Ms[:, 0, 1] * Ms[:, 1, 0]
-    s_max = np.sqrt(0.5 * (fro2 + np.sqrt(np.maximum(fro2**2 - 4.0 * det**2, 0.0))))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s_min = np.abs(det) / s_max
-    rows = np.where((np.abs(Ms[:, 0]).sum(axis=1) >= np.abs(Ms[:, 1]).sum(axis=1))[:, None], Ms[:, 0], Ms[:, 1])
-    v = np.stack([-rows[:, 1], rows[:, 0]], axis=1)
-    v /= np.linalg.norm(v, axis=1, keepdims=True).clip(min=1e-300)
-    out = []
-    for M, smax, smin, vk in zip(Ms, s_max, s_min, v):
-        if smax == 0.0:
-            out.append(_kernel(M))
-        elif smin > 1e-9 * smax:
-            out.append(np.zeros((2, 0)))
-        else:
-            out.append(vk[:, None])
-    return out
-
-
-@lru_cache(maxsize=16)
-def _bases(N: int, which: str, P: float, R: float, Gamma: float, f: float) -> SymmetryBases:
-    S = symmetry_matrix(N, which)
-    p = RodParameters(P=P, R=R, Gamma=Gamma, f=f, B=0.37 * 7.33**3 * math.sqrt(R) / f, omega=0.3, T=0.1)
-    J0 = eq.jacobian(p, eq.straight_state(p, N))
-    # S_row = J0 S J0^{-1}: a signed permutation on the collocation rows (t_k -> t_{N-1-k}) and on the
-    # boundary rows, except the sliding-end tension row F3(0) - T, which maps to F3(1) - T = that row plus
-    # the quadrature of the F3' rows; entries below rounding are the zeros of that structure
-    S_row = np.linalg.solve(J0.T, (J0 @ S).T).T
-    S_row[np.abs(S_row) < 1e-12 * np.max(np.abs(S_row))] = 0.0
-    S_row.setflags(write=False)
-    p2 = p.with_(B=0.9 * p.B, omega=0.7, T=-0.05)
-    J2 = eq.jacobian(p2, eq.straight_state(p2, N))
-    equiv = float(np.max(np.abs(J2 @ S - S_row @ J2)) / np.max(np.abs(J2)))
-    n = S.shape[0]
-    cols, rows = _components(S), _components(S_row)
-    Vp, Vm = _eigenspace(S, 1.0, cols), _eigenspace(S, -1.0, cols)
-    Lp, Lm = _eigenspace(S_row.T, 1.0, rows), _eigenspace(S_row.T, -1.0, rows)
-    if Vp.shape[1] != Lp.shape[1] or Vm.shape[1] != Lm.shape[1] or Vp.shape[1] + Vm.shape[1] != n:
-        raise RuntimeError(f"symmetry bases inconsistent: {Vp.shape}, {Vm.shape}, {Lp.shape}, {Lm.shape}")
-    return SymmetryBases(which, N, S, S_row, Vp, Vm, Lp.T.tocsr(), Lm.T.tocsr(), equiv)
-
-
-def symmetry_bases(params: RodParameters, N: int, which: str) -> SymmetryBases:
-    """Cached :class:`SymmetryBases` for resolution N (depend on P, R, Gamma, f only through
-    the check state; the eigenspaces themselves are parameter independent)."""
-    return _bases(int(N), _class(which), params.P, params.R, params.Gamma, params.f)
 
 
 # --- continuation problems -------------------------------------------------------------
@@ -275,7 +74,7 @@ class _RodProblem:
         if parameter not in eq.PARAMETERS:
             raise ValueError(f"parameter must be one of {eq.PARAMETERS}, got {parameter!r}")
         self.params, self.parameter, self.N = params, parameter, int(N)
-        self.which = None if which is None else _class(which)
+        self.which = None if which is None else symmetry_class(which)
         self.bases = None if which is None else symmetry_bases(params, N, which)
         self._last = None
 
@@ -431,88 +230,6 @@ def _branch(name, problem: _RodProblem, res: ContinuationResult) -> Branch:
     )
 
 
-# --- straight rod: pitchforks in each symmetry class -------------------------------------
-
-
-def _straight_pencil(params: RodParameters, N: int, which: str, axis: str = "B"):
-    """Restricted A0 = A + x C of the straight rod, x = B or omega^2 (others from params)."""
-    b = symmetry_bases(params, N, which)
-    if axis == "B":
-        p0, p1 = params.with_(B=0.0), params.with_(B=1.0)
-    else:
-        p0, p1 = params.with_(omega=0.0), params.with_(omega=1.0)
-    A0 = eq.jacobian(p0, eq.straight_state(p0, N))
-    A1 = eq.jacobian(p1, eq.straight_state(p1, N)) - A0
-    return b.L_plus @ A0 @ b.V_plus, b.L_plus @ A1 @ b.V_plus, b
-
-
-def _real_roots(A: np.ndarray, C: np.ndarray) -> np.ndarray:
-    """The real x with A + x C singular, sorted, solved through the columns C reaches (:func:`pencil_eigenvalues`;
-    the Lorentz load reaches a sixth of them: 5-8x fewer seconds than QZ of the whole restricted pencil at N = 32
-    and 48, the same roots to 1e-12 relative, SET at omega = 0 - 0.6, T = 0 - 0.5)."""
-    return _real(pencil_eigenvalues(A, C))
-
-
-def _real(x: np.ndarray) -> np.ndarray:
-    """The real ones among eigenvalues x (imaginary part below 1e-7 of their size), sorted."""
-    return np.sort(x[np.abs(x.imag) <= 1e-7 * np.maximum(np.abs(x), 1e-12)].real)
-
-
-@single_blas_thread
-def class_loads(params: RodParameters, which: str, N: int = 32, n: int = 3) -> np.ndarray:
-    """The n smallest B > 0 where the straight rod has a pitchfork inside the class
-    ``which`` ("b1"/"S1", "b2"/"S2") at params.omega, params.T (dimensionless; exact
-    real eigenvalues of the restricted linear pencil in B at resolution N)."""
-    A, C, _ = _straight_pencil(params, N, which, "B")
-    r = _real_roots(A, C)
-    return r[r > 1e-12][:n]
-
-
-#: relative rounding floor of the error estimates of pitchfork loads and lift-off spins: the
-#: restricted pencils carry differentiation matrices of norm ~N^2, so their eigenvalues agree between
-#: resolutions only to ~1e-12 relative once converged (measured up to N = 64 on the test scenes)
-ROUNDING = 1e-11
-
-
-@dataclass(frozen=True)
-class PitchforkLoads:
-    """The n smallest pitchfork loads B > 0 of the straight rod in one symmetry class,
-    with their discretisation errors (dimensionless).
-
-    ``loads`` at the finer resolution ``N_check``; ``errors``: the change
-    |B(N) - B(N_check)| of the coarser value (each fine root paired with the
-    nearest coarse one), floored at ROUNDING |B|. The collocation converges
-    spectrally, so the change of the coarser value bounds the error of the
-    finer one (checked against N = 64 over a set of scenes in the tests);
-    it overestimates it by the ratio of the two resolutions' errors.
-    """
-
-    which: str
-    N: int
-    N_check: int
-    loads: np.ndarray
-    errors: np.ndarray
-
-
-def _paired_errors(fine: np.ndarray, coarse: np.ndarray) -> np.ndarray:
-    if coarse.size == 0:
-        return np.full(fine.shape, math.inf)
-    d = np.min(np.abs(fine[:, None] - coarse[None, :]), axis=1)
-    return np.maximum(d, ROUNDING * np.abs(fine))
-
-
-@single_blas_thread
-def pitchfork_loads(params: RodParameters, which: str, N: int = 32, n: int = 3,
-                    N_check: int | None = None) -> PitchforkLoads:
-    """:func:`class_loads` at N and N_check (default N + max(8, N // 2)), as a
-    :class:`PitchforkLoads` (value at the finer resolution, error the change of
-    the coarser one). Dimensionless."""
-    Nc = check_resolution(N) if N_check is None else int(N_check)
-    fine = class_loads(params, which, max(int(N), Nc), n)
-    coarse = class_loads(params, which, min(int(N), Nc), n + 2)
-    return PitchforkLoads(_class(which), int(N), Nc, fine, _paired_errors(fine, coarse))
-
-
 @single_blas_thread
 def primary_branches(params: RodParameters, k: int = 1, N: int = 40) -> tuple[BranchStart, BranchStart]:
     """The two branch starts at the k-th pitchfork of the straight rod (dimensionless).
@@ -532,9 +249,9 @@ def primary_branches(params: RodParameters, k: int = 1, N: int = 40) -> tuple[Br
 def class_starts(params: RodParameters, which: str, ks: tuple[int, ...], N: int = 40) -> tuple[BranchStart, ...]:
     """The branch starts at the k-th pitchforks (k in ``ks``) of the straight rod inside one symmetry class
     (as :func:`primary_branches`; one restricted pencil for all of them). Dimensionless."""
-    which = _class(which)
-    A, C, b = _straight_pencil(params, N, which, "B")
-    roots = _real_roots(A, C)
+    which = symmetry_class(which)
+    A, C, b = straight_pencil(params, N, which, "B")
+    roots = real_roots(A, C)
     roots = roots[roots > 1e-12]
     out = []
     for k in ks:
@@ -816,97 +533,3 @@ def resolution_check(branch: Branch, N_check: int | None = None, stride: int = 4
         e2 = max(e2, abs(ms.max_deflection - branch.max_deflection[i]))
         res = max(res, rn)
     return ResolutionCheck(branch.N, M, e1, e2, res, checked, skipped)
-
-
-# --- lift-off ----------------------------------------------------------------------------
-
-
-@dataclass(frozen=True)
-class LiftoffSpin:
-    """Lift-off spin of a primary branch with its discretisation error (dimensionless).
-
-    ``omega`` at the finer resolution ``N_check`` (the root of the restricted
-    omega^2 pencil of the straight rod at B = 0 nearest the value tracked at
-    N); ``error`` the change of the N value, floored at ROUNDING omega (as
-    :class:`PitchforkLoads`); NaN for both when the branch does not lift off
-    below omega_max.
-    """
-
-    omega: float
-    error: float
-    N: int
-    N_check: int
-    omega_coarse: float = math.nan  # the value at the coarser resolution
-
-
-def _omega_roots(params: RodParameters, which: str, N: int) -> np.ndarray:
-    """Spins omega > 0 at which the straight rod has a pitchfork at B = 0 inside the class."""
-    A, C, _ = _straight_pencil(params.with_(B=0.0, omega=0.0), N, which, "omega")
-    om2 = _real_roots(A, C)
-    return np.sqrt(om2[om2 > 0])
-
-
-@single_blas_thread
-def liftoff_estimate(params: RodParameters, which: str = "b1", k: int = 1, N: int = 24,
-                     N_check: int | None = None, omega_max: float = 4.0) -> LiftoffSpin:
-    """:func:`liftoff_spin` at N (tracked from omega = 0, which identifies the
-    branch) and its root at N_check (default N + max(8, N // 2)): a
-    :class:`LiftoffSpin`. Dimensionless."""
-    Nc = check_resolution(N) if N_check is None else int(N_check)
-    w = liftoff_spin(params, which, k, N, omega_max)
-    if not math.isfinite(w):
-        return LiftoffSpin(math.nan, math.nan, int(N), Nc)
-    roots = _omega_roots(params, _class(which), Nc)
-    if roots.size == 0:
-        return LiftoffSpin(w, math.inf, int(N), Nc, w)
-    wc = float(roots[np.argmin(np.abs(roots - w))])
-    return LiftoffSpin(wc, max(abs(wc - w), ROUNDING * wc), int(N), Nc, w)
-
-
-@single_blas_thread
-def liftoff_spin(params: RodParameters, which: str = "b1", k: int = 1, N: int = 24, omega_max: float = 4.0,
-                 d_omega: float = 0.05) -> float:
-    """Spin at which the pitchfork of the k-th primary branch of class ``which`` reaches B = 0.
-
-    Linear theory of the straight rod (dimensionless): the pitchfork load of the
-    class-restricted pencil (exact lambda = 0 problem) is followed from its
-    omega = 0 value (the k-th root) as omega grows; where it reaches B = 0 the
-    branch no longer bifurcates from the straight rod (it has merged with its
-    mirror image at -B and lifted off, Sec. VII B). The value is the root of the
-    restricted omega^2 pencil at B = 0 inside the last bracket. Returns nan if
-    it does not happen below ``omega_max``.
-    """
-    base = params.with_(B=0.0, omega=0.0)
-    # the restricted Jacobian of the straight rod is affine in B and in omega^2 (no cross term: the Lorentz
-    # and centrifugal loads add), so the pencil at any spin is A + omega^2 W + B C, assembled once
-    # (solved through the columns the Lorentz load reaches: _real_roots)
-    A, C, _ = _straight_pencil(base, N, which, "B")
-    W = _straight_pencil(base, N, which, "omega")[1]
-
-    def loads(w: float, n: int) -> np.ndarray:
-        r = _real_roots(A + w**2 * W, C)
-        return r[r > 1e-12][:n]
-
-    roots0 = loads(0.0, k)
-    if roots0.size < k:
-        raise ValueError("not enough pitchforks at omega = 0")
-    cur = float(roots0[k - 1])
-    w = 0.0
-    slope = 0.0
-    while w < omega_max:
-        w2 = w + d_omega
-        r = loads(w2, 50)
-        guess = cur + slope * d_omega
-        if r.size == 0 or np.min(np.abs(r - guess)) > max(0.25 * cur, 0.02) or (cur < 0.5 * roots0[k - 1] and
-                                                                                np.min(r) > 2 * cur):
-            # the tracked pitchfork has left B > 0: refine at B = 0 in omega^2
-            om = _omega_roots(base, _class(which), N)
-            inside = om[(om > w - 1e-9) & (om <= w2 + 1e-9)]
-            if inside.size == 0:
-                cand = om[np.argmin(np.abs(om - w2))]
-                return float(cand)
-            return float(inside[0])
-        new = float(r[np.argmin(np.abs(r - guess))])
-        slope = (new - cur) / d_omega
-        cur, w = new, w2
-    return math.nan

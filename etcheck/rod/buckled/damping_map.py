@@ -14,8 +14,8 @@ import numpy as np
 from etcheck.jsonable import jsonable
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.eigen import match_spectra
-from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import equilibria as eq
+from etcheck.rod.buckled import pitchforks
 from etcheck.rod.buckled.secondary import b1_in_B, first_break
 from etcheck.rod.buckled.spectra import damped_operator, operator_eigenvalues
 from etcheck.rod.core.parameters import RodParameters
@@ -128,13 +128,13 @@ def damping_map(params: RodParameters, B_grid, omega_grid, gammas=HOPF_GAMMAS, N
     curve = np.full(omega_grid.size, np.nan)
     primary = np.full(omega_grid.size, np.nan)
     t0 = time.perf_counter()
-    lift = br.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N=N) if liftoff is None else liftoff
+    lift = pitchforks.liftoff_spin(params.with_(gamma=0.0), "b1", 1, N=N) if liftoff is None else liftoff
     t_eq = time.perf_counter() - t0
     t_sp = 0.0
     for iw, w in enumerate(omega_grid):
         t0 = time.perf_counter()
         pw = params.with_(omega=float(w), gamma=0.0)
-        loads = br.class_loads(pw, "S1", N, n=1)
+        loads = pitchforks.class_loads(pw, "S1", N, n=1)
         pf = float(loads[0]) if (loads.size and (not math.isfinite(lift) or w < lift)) else -math.inf
         primary[iw] = pf
         lower = max(pf + margin, float(B_grid.min()) - 0.05) if math.isfinite(pf) else float(B_grid.min()) - 0.05

@@ -22,7 +22,17 @@ from etcheck.rod.core.spectrum import (
     check_resolution,
 )
 
-__all__ = ["b1_direct", "PitchforkCurve", "PitchforkPoint", "b1_in_B", "b1_spin_branch", "b1_state", "first_break", "secondary_pitchfork", "secondary_pitchfork_curve"]
+__all__ = [
+    "b1_direct",
+    "b1_in_B",
+    "b1_spin_branch",
+    "b1_state",
+    "first_break",
+    "PitchforkCurve",
+    "PitchforkPoint",
+    "secondary_pitchfork",
+    "secondary_pitchfork_curve",
+]
 
 
 # --- b1 states and the secondary pitchfork curve -----------------------------------------

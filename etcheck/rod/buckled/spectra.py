@@ -48,7 +48,20 @@ from etcheck.rod.core.spectrum import (
 )
 from etcheck.rod.straight.spectral import THRESHOLD
 
-__all__ = ["pair_representatives", "BranchSpectra", "DampedOperator", "LABELS", "branch_spectra", "real_positive_count", "damped_operator", "mode_energies", "operator_eigenvalues", "point_spectrum", "static_problem", "stiffness_index"]
+__all__ = [
+    "LABELS",
+    "branch_spectra",
+    "BranchSpectra",
+    "damped_operator",
+    "DampedOperator",
+    "mode_energies",
+    "operator_eigenvalues",
+    "pair_representatives",
+    "point_spectrum",
+    "real_positive_count",
+    "static_problem",
+    "stiffness_index",
+]
 
 
 #: Mode labels, in the order of the energy fractions.

@@ -38,7 +38,15 @@ from etcheck.rod.core.spectrum import check_resolution, roundoff_floor
 from etcheck.rod.straight.analytic import characteristic_roots, critical_loads
 from etcheck.rod.straight.spectral import DOUBLE, _family
 
-__all__ = ["LADDER", "DRAFT_LADDER", "PencilRoot", "DampedCritical", "first_root", "damped_critical", "critical_from_roots"]
+__all__ = [
+    "DRAFT_LADDER",
+    "LADDER",
+    "critical_from_roots",
+    "damped_critical",
+    "DampedCritical",
+    "first_root",
+    "PencilRoot",
+]
 
 #: Chebyshev resolutions tried in turn until two resolutions agree.
 LADDER = (16, 24, 32, 48, 64, 96, 128)

@@ -39,7 +39,14 @@ from etcheck.rod.straight.undamped_lines import (
     static_roots,
 )
 
-__all__ = ["MODEL", "UndampedCritical", "complex_pairs", "complex_pairs_on_line", "has_real_pair", "undamped_critical"]
+__all__ = [
+    "MODEL",
+    "complex_pairs",
+    "complex_pairs_on_line",
+    "has_real_pair",
+    "undamped_critical",
+    "UndampedCritical",
+]
 
 
 

@@ -56,7 +56,18 @@ from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
 from etcheck.rod.straight import determinant
 from etcheck.rod.straight.determinant import assemble, log_vandermonde, schur, smoothing
 
-__all__ = ["MODEL", "horner", "rounding_scale", "characteristic_counted", "characteristic_mu", "coefficients", "rayleigh_floor", "stiffness_definite", "stiffness_positive", "wavenumbers"]
+__all__ = [
+    "MODEL",
+    "characteristic_counted",
+    "characteristic_mu",
+    "coefficients",
+    "horner",
+    "rayleigh_floor",
+    "rounding_scale",
+    "stiffness_definite",
+    "stiffness_positive",
+    "wavenumbers",
+]
 
 
 #: Model string of every value from this module.

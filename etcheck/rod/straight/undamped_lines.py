@@ -44,7 +44,16 @@ from etcheck.rod.straight.undamped_kernel import (
 
 _EPS = np.finfo(float).eps
 
-__all__ = ["Crossing", "Line", "StabilityLine", "close_pairs", "dips", "pair_count", "stability_line", "static_roots"]
+__all__ = [
+    "close_pairs",
+    "Crossing",
+    "dips",
+    "Line",
+    "pair_count",
+    "stability_line",
+    "StabilityLine",
+    "static_roots",
+]
 
 
 @dataclass(frozen=True)
