@@ -23,9 +23,6 @@ class Verdict(StrEnum):
 
 PASS, FAIL, INCOMPLETE = Verdict.PASS, Verdict.FAIL, Verdict.INCOMPLETE
 
-#: said in a critical value's message when its error estimate missed the check's tolerance
-MISSED_TOLERANCE = "missed its tolerance"
-
 
 @dataclass(frozen=True)
 class Margin:
@@ -168,8 +165,8 @@ def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, r
             f"stable over the whole scanned range (up to {hi:.4g} {unit}); the margin shown is a lower bound",
         )
     error = (point["error"] or 0.0) / point["value"] if point["value"] else 0.0
-    if MISSED_TOLERANCE in point["message"]:
-        why = f"{why}; the critical value {MISSED_TOLERANCE} (an ill-conditioned root): its error estimate is carried here"
+    if not point["within_tolerance"]:
+        why = f"{why}; the critical value missed its tolerance (an ill-conditioned root): its error estimate is carried here"
     return ratio_margin(name, unit, critical, operating, required, 1, error, f"{why} ({kind})")
 
 

@@ -165,6 +165,7 @@ class CriticalPoint(TypedDict):
     error: float | None
     message: str
     N: int | None
+    within_tolerance: bool  # False: located, but its error estimate missed the check's tolerance (carried by its margin)
 
 
 class CriticalLoad(CriticalPoint):

@@ -20,7 +20,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from etcheck.checks.margins import MISSED_TOLERANCE
 from etcheck.checks.plan import EXACT, SPECTRAL
 from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum
 from etcheck.jsonable import finite_or_none
@@ -85,7 +84,8 @@ def _unconverged(point: CriticalPoint, what: str, error: float | None) -> Critic
     when that is at most REPORTABLE relative, else "not located" (its margin is then incomplete)."""
     value = point["value"]
     if value is not None and error is not None and error <= REPORTABLE * abs(value):
-        return point | {"message": f"{point['message']}; the {what} {MISSED_TOLERANCE}: it is reported with "
+        return point | {"within_tolerance": False,
+                        "message": f"{point['message']}; the {what} missed its tolerance: it is reported with "
                                    f"its error estimate {error:.1e} (the margin is judged on its pessimistic side)"}
     est = f"error estimate {error:.1e}" if error is not None else "no error estimate"
     return point | {"value": None, "kind": CriticalKind.NOT_LOCATED, "error": None,
@@ -101,6 +101,7 @@ def _critical(point, what: str) -> CriticalPoint:
         "error": float(point.error) if math.isfinite(point.error) else None,
         "message": point.message,
         "N": point.N,
+        "within_tolerance": True,
     }
     if CriticalKind(point.kind).located and not point.converged:
         return _unconverged(out, what, out["error"])
@@ -116,7 +117,8 @@ def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
         at = f" at N = {root.N}" if root.N else ""
         point: CriticalPoint = {"value": value, "kind": CriticalKind.DIVERGENCE,
                                 "bracket": [float(value or 0.0)] * 2, "error": error,
-                                "message": f"first root of the static operator ({root.model}){at}", "N": root.N}
+                                "message": f"first root of the static operator ({root.model}){at}", "N": root.N,
+                                "within_tolerance": True}
         return _unconverged(point, what, error)
     if root.value == 0:
         kind = CriticalKind.UNSTABLE_AT_START
@@ -128,7 +130,7 @@ def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
     return {"value": value, "kind": kind, "bracket": [0.0, float(hi)] if kind == CriticalKind.NONE_FOUND else
             [float(root.value), float(root.value)], "error": root.error * (value or 0.0),
             "message": f"first root of the static operator ({root.model})" + (f", N = {root.N}" if root.N else ""),
-            "N": root.N}
+            "N": root.N, "within_tolerance": True}
 
 
 def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoint, CriticalPoint, bool, float]:

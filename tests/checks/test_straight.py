@@ -150,6 +150,8 @@ def test_unconverged_critical_value_carries_its_error_or_is_not_located(monkeypa
     if outcome == "kept":  # judged on the pessimistic side, with the estimate in the margin
         assert load["verdict"] in ("pass", "fail") and load["error"] == pytest.approx(error)
         assert "missed its tolerance" in results["linear"]["critical_load"]["message"]
+        assert results["linear"]["critical_load"]["within_tolerance"] is False
+        assert "missed its tolerance" in load["why"]
     else:
         assert load["verdict"] == "incomplete" and "was not located" in load["why"]
         assert results["linear"]["critical_load"]["value"] is None
