@@ -17,7 +17,8 @@ import warnings
 
 import numpy as np
 
-from etcheck.orbit import axial_field_envelope, field_along, parse_orbit, trajectory, worst_axial
+from etcheck.input.orbit_table import parse_orbit
+from etcheck.orbit import axial_field_envelope, field_along, trajectory, worst_axial
 from etcheck.orbit.elements import kepler_state
 from etcheck.orbit.frames import gcrs_to_itrs, parse_utc, rotate
 
@@ -41,7 +42,7 @@ def _best(fn, repeat=3):
 
 
 def envelope():
-    dt, env = _best(lambda: axial_field_envelope(LEO))
+    dt, env = _best(lambda: axial_field_envelope(parse_orbit(LEO)))
     print("1. one day, 500 km, 51.6 deg, libration 10/5 deg, IGRF-14, 2027-03-01")
     print(f"   envelope with converged step: {dt:.3f} s, {len(env.series)} samples")
     for h, w in zip(env.steps, env.worst_by_step):

@@ -1,4 +1,4 @@
-"""The load margin along the orbit (issue 14): where on the orbit the margin is smallest.
+"""The load margin along the orbit: where on the orbit the margin is smallest.
 
 The critical load of the straight tether (N/m, at the operating spin and
 tension) does not depend on the field, so the margin at time t is
@@ -24,6 +24,7 @@ import math
 import numpy as np
 
 from etcheck.checks.margins import Margin
+from etcheck.checks.orbit_field import statement
 from etcheck.checks.sections import OrbitSection, OrbitSeries
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
@@ -97,7 +98,8 @@ def orbit_results(mission: Mission, margins: list[Margin]) -> OrbitSection | Non
         "margin": None if m is None else {"name": m.name, "critical_N_per_m": critical,
                                           "smallest": critical / worst_load if worst_load > 0 else None,
                                           "required": m.required},
-        "statement": mission.echo()["orbit"]["statement"],
+        "statement": statement(env),
+        "envelope_s": env.seconds,
         "first_orbit": _series(s, first, current, critical),
         "series": _series(s, whole, current, critical),
         "series_note": (f"all {n} samples" if stride == 1 else

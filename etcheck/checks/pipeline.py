@@ -1,4 +1,4 @@
-"""The library entry point: mission -> scene -> plan -> solve -> margins -> results.
+"""The library entry point: mission -> orbit field -> scene -> plan -> solve -> margins -> results.
 
 ``check(mission)`` returns a :class:`CheckResult` whose ``results`` are plain
 JSON-able data; reports are rendered from those alone (see :mod:`etcheck.report`).
@@ -22,6 +22,7 @@ from etcheck.checks.margins import (
     overall_verdict,
     straight_margins,
 )
+from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.orbit_load import orbit_results
 from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, plan
 from etcheck.checks.results import results_header
@@ -72,6 +73,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     elif isinstance(mission, dict):
         mission = mission_from_dict(mission)
     started = time.perf_counter()
+    mission = with_orbit_field(mission)
     sc = scene(mission)
     scaled = scale(sc)
     chosen = plan(scaled.params, mission.fidelity)

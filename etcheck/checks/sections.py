@@ -590,6 +590,7 @@ class OrbitSection(TypedDict):
     worst_load_N_per_m: float
     margin: OrbitMargin | None
     statement: str
+    envelope_s: float
     first_orbit: OrbitSeries
     series: OrbitSeries
     series_note: str

@@ -48,7 +48,7 @@ class OperationEcho(TypedDict):
     """``mission.operation``: current and field as [value] or [low, high]; the field in µT."""
 
     current: list[str]
-    axial_field: list[str]
+    axial_field: list[str] | None  # None: from the [orbit], not yet evaluated
     spin_rate: str
     spin_rate_rpm: float
     end_tension: str
@@ -66,7 +66,8 @@ class CheckEcho(TypedDict):
 
 
 class OrbitEcho(TypedDict):
-    """``mission.orbit`` (missions with an [orbit] table): the orbit as read and the worst axial field.
+    """``mission.orbit`` (missions with an [orbit] table): the orbit as read (the field along it is in the
+    results' ``orbit`` section).
 
     Orbital elements give the element keys (``kind`` "elements"); a TLE gives
     ``lines`` and ``epoch`` (``kind`` "tle")."""
@@ -88,8 +89,6 @@ class OrbitEcho(TypedDict):
     libration_in_plane_deg: float
     libration_out_of_plane_deg: float
     model: str
-    worst_axial_field_uT: float
-    statement: str
 
 
 class MissionEcho(TypedDict):

@@ -23,7 +23,7 @@ import astropy.units as u
 from etcheck.errors import MissionError
 from etcheck.input.echo import MissionEcho
 from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
-from etcheck.input.orbit_field import check_one_field_source, orbit_axial_field, orbit_echo, orbit_notes
+from etcheck.input.orbit_field import check_one_field_source, orbit_echo
 from etcheck.input.sweep_axes import AXES, Axis, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
@@ -66,7 +66,7 @@ class Field:
     choices: tuple[str, ...] = ()
 
 
-#: table -> field -> how it is read. [orbit] fields are checked by etcheck.orbit.spec.parse_orbit
+#: table -> field -> how it is read. [orbit] fields are checked by etcheck.input.orbit_table.parse_orbit
 #: (imported only when the table is given); tether.end_masses and operation.orbit_rate/orbit_altitude by
 #: etcheck.input.gravity_gradient; [sweep] by etcheck.input.sweep_axes; [uncertainty] by etcheck.input.uncertainty.
 SCHEMA: dict[str, dict[str, Field]] = {
@@ -122,7 +122,7 @@ class Mission:
     mass_per_length: u.Quantity
     rotary_inertia_ratio: float  # P
     current: tuple[u.Quantity, u.Quantity]
-    axial_field: tuple[u.Quantity, u.Quantity]
+    axial_field: tuple[u.Quantity, u.Quantity] | None  # None: from the [orbit], evaluated by the orbit stage
     spin_rate: u.Quantity = 0.0 * u.rad / u.s
     end_tension: u.Quantity = 0.0 * u.N
     damping_time: u.Quantity | None = None
@@ -140,8 +140,8 @@ class Mission:
     notes: tuple[str, ...] = field(default_factory=tuple)
     sweep: tuple[Axis, ...] = ()  # the [sweep] table: default axes of `etcheck sweep`
     uncertainty: Uncertainty | None = None  # the [uncertainty] table (etcheck.input.uncertainty)
-    # the [orbit] table (etcheck.orbit.spec) and its envelope, computed once at load: axial_field is then
-    # (env.worst, env.worst) T, the worst axial field over the orbit and the libration set
+    # the [orbit] table as read, and its envelope once the check's orbit stage (etcheck.checks.orbit_field) has
+    # evaluated it: axial_field is then (env.worst, env.worst) T, the worst axial field over the orbit and libration
     orbit: OrbitSpec | None = None
     orbit_envelope: AxialFieldEnvelope | None = field(default=None, compare=False, repr=False)
     # tether.end_masses + orbit rate: the tension profile; end_tension is then its minimum (conservative)
@@ -158,6 +158,9 @@ class Mission:
 
     @property
     def worst_field(self) -> u.Quantity:
+        if self.axial_field is None:
+            raise ValueError("the axial field of a mission with an [orbit] table is evaluated by the check's orbit "
+                             "stage: pass the mission through etcheck.checks.orbit_field.with_orbit_field first")
         return max(abs(self.axial_field[0]), abs(self.axial_field[1]))
 
     @property
@@ -196,7 +199,7 @@ class Mission:
             },
             "operation": {
                 "current": pair(self.current),
-                "axial_field": microtesla(self.axial_field),
+                "axial_field": None if self.axial_field is None else microtesla(self.axial_field),
                 "spin_rate": q(self.spin_rate),
                 "spin_rate_rpm": float(self.spin_rate.to(u.cycle / u.min).value),
                 "end_tension": q(self.end_tension),
@@ -211,8 +214,8 @@ class Mission:
             },
             "notes": list(self.notes),
         }
-        if self.orbit is not None and self.orbit_envelope is not None:
-            out["orbit"] = orbit_echo(self.orbit, self.orbit_envelope)
+        if self.orbit is not None:
+            out["orbit"] = orbit_echo(self.orbit)
         return out
 
 
@@ -265,15 +268,16 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     P, E, A, inertia_notes = _rotary_inertia(t, EI1, length, source)
     damping = read_field(t, "tether", "damping_time", source)
     current = _range(o, "operation", "current", "current", source)
-    bfield, orbit, envelope, field_notes = _axial_field(o, data, source)
+    bfield, orbit = _axial_field(o, data, source)
     spin, spin_notes = _spin_rate(o, source)
     tension, gg, tension_notes = _tension(t, o, orbit, length, mass, source)
     settings = {key: read_field(c, "check", key, source) for key in SCHEMA["check"]}
     nominal = {"EI1": EI1, "EI2": EI2, "torsional_stiffness": GJ, "mass_per_length": mass, "length": length,
-               "current": max(abs(current[0]), abs(current[1])), "axial_field": max(abs(bfield[0]), abs(bfield[1])),
+               "current": max(abs(current[0]), abs(current[1])),
+               "axial_field": None if bfield is None else max(abs(bfield[0]), abs(bfield[1])),
                "spin_rate": spin, "end_tension": tension, "damping_time": damping}
     uncertainty, uncertainty_notes = _uncertainty(data, source, nominal, gj_derived=nu is not None)
-    notes = (*torsion_notes, *inertia_notes, *field_notes, *spin_notes, *tension_notes,
+    notes = (*torsion_notes, *inertia_notes, *spin_notes, *tension_notes,
              *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping))
     return Mission(
         name=name,
@@ -299,7 +303,6 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         sweep=parse_table(data["sweep"], source) if data.get("sweep") else (),
         uncertainty=uncertainty,
         orbit=orbit,
-        orbit_envelope=envelope,
         gravity_gradient=gg,
     )
 
@@ -437,13 +440,14 @@ def _rotary_inertia(t: dict[str, Any], EI1: u.Quantity, length: u.Quantity, sour
 
 
 def _axial_field(o: dict[str, Any], data: dict[str, Any], source: str):
-    """operation.axial_field, or the worst field over the [orbit] (IGRF), evaluated once here: (field range in T,
-    OrbitSpec or None, envelope or None, notes)."""
+    """(operation.axial_field as a range in T, None), or (None, the [orbit] table as an OrbitSpec): the field over
+    the orbit is evaluated by the check's orbit stage, not here."""
     check_one_field_source(o, data, source)
     if "orbit" not in data:
-        return _range(o, "operation", "axial_field", "field", source), None, None, []
-    orbit, envelope = orbit_axial_field(data["orbit"], source)
-    return (envelope.worst * u.T, envelope.worst * u.T), orbit, envelope, orbit_notes(orbit, envelope)
+        return _range(o, "operation", "axial_field", "field", source), None
+    from etcheck.input.orbit_table import parse_orbit  # astropy.time and SGP4 only for a mission with an orbit
+
+    return None, parse_orbit(data["orbit"], source)
 
 
 def _spin_rate(o: dict[str, Any], source: str) -> tuple[u.Quantity, list[str]]:
@@ -465,8 +469,8 @@ def _tension(t: dict[str, Any], o: dict[str, Any], orbit: OrbitSpec | None, leng
     return gg.minimum * u.N, gg, [gg.statement()]
 
 
-def _range_notes(current: tuple[u.Quantity, u.Quantity], bfield: tuple[u.Quantity, u.Quantity]) -> list[str]:
-    if current[0] != current[1] or bfield[0] != bfield[1]:
+def _range_notes(current: tuple[u.Quantity, u.Quantity], bfield: tuple[u.Quantity, u.Quantity] | None) -> list[str]:
+    if current[0] != current[1] or (bfield is not None and bfield[0] != bfield[1]):
         return ["current and/or field given as a range: the check uses the worst case |I| x |B0|"]
     return []
 

@@ -19,7 +19,6 @@ Units: SI (tesla, metres, seconds); latitude and longitude in degrees
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass, fields
 
 import astropy.units as u
@@ -30,7 +29,7 @@ from etcheck.orbit import frames
 from etcheck.orbit.attitude import axial_component, worst_axial
 from etcheck.orbit.elements import KeplerianElements, PropagationError, trajectory
 from etcheck.orbit.field import CentredDipole, field_along
-from etcheck.orbit.spec import MAX_SAMPLES, OrbitSpec, parse_orbit
+from etcheck.orbit.spec import MAX_SAMPLES, OrbitSpec
 
 #: Longest starting step (s) of the convergence loop.
 INITIAL_STEP = 60.0
@@ -84,7 +83,8 @@ class AxialFieldEnvelope:
     whichever is larger) from step x 2 to step; converged: step_change <
     tolerance; steps (s) and worst_by_step (T): the convergence history.
     start (UTC ISO), duration (s), model: the window and the field model;
-    libration_in_plane, libration_out_of_plane: the bounds (rad).
+    libration_in_plane, libration_out_of_plane: the bounds (rad). seconds: the
+    wall time of the evaluation (set by the check's orbit stage; 0 if not timed).
     """
 
     series: AxialFieldSeries
@@ -113,6 +113,7 @@ class AxialFieldEnvelope:
     model: str
     libration_in_plane: float
     libration_out_of_plane: float
+    seconds: float = 0.0
 
 
 def axial_field_series(spec: OrbitSpec, t, model: str | CentredDipole | None = None, source: str = "mission") -> AxialFieldSeries:
@@ -167,7 +168,7 @@ def orbital_period(spec: OrbitSpec) -> float:
 
 
 def axial_field_envelope(
-    spec: OrbitSpec | Mapping,
+    spec: OrbitSpec,
     *,
     tolerance: float = TOLERANCE,
     model: str | CentredDipole | None = None,
@@ -176,13 +177,11 @@ def axial_field_envelope(
 ) -> AxialFieldEnvelope:
     """Sample the orbit until the worst axial field converges; its envelope.
 
-    ``spec``: an :class:`OrbitSpec` or the ``[orbit]`` table (dict, parsed with
-    :func:`~etcheck.orbit.spec.parse_orbit`). ``model`` overrides the field
+    ``spec``: the orbit, window and libration (:class:`OrbitSpec`; a mission's ``[orbit]`` table is read into
+    one by :func:`etcheck.input.orbit_table.parse_orbit`). ``model`` overrides the field
     model (e.g. a :class:`CentredDipole`). Raises MissionError for orbits that
     cannot be propagated over the window.
     """
-    if isinstance(spec, Mapping):
-        spec = parse_orbit(spec, source)
     D = spec.duration
     first = spec.step if spec.step is not None else min(INITIAL_STEP, orbital_period(spec) / 64, D)
     n = max(2, math.ceil(D / first - 1e-9) + 1)

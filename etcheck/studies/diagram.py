@@ -10,6 +10,7 @@ from __future__ import annotations
 from typing import Any
 
 from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
+from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
 from etcheck.checks.results import results_header
 from etcheck.errors import MissionError
@@ -69,7 +70,7 @@ def diagram_study(mission: Mission, omega: float | None = None, R: float | None 
                   options: DiagramOptions | None = None) -> dict[str, Any]:
     """Branches of the mission's tether at dimensionless spin ``omega`` (default: the mission's)
     and stiffness ratio ``R`` (default: the mission's); JSON-able with SI scales."""
-    scaled = scale(scene(mission))
+    scaled = scale(scene(with_orbit_field(mission)))
     params = scaled.params if omega is None else scaled.params.with_(omega=omega)
     if R is not None:
         params = params.with_(R=R)

@@ -43,6 +43,7 @@ import numpy as np
 
 from etcheck import __version__
 from etcheck.checks.buckled import buckled_point
+from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.plan import EXACT, straight_route
 from etcheck.checks.results import results_header
 from etcheck.errors import EtcheckError, MissionError
@@ -438,6 +439,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
     """
     started = time.perf_counter()
     axes = tuple(sorted(axes, key=lambda a: a.name != "length"))
+    mission = with_orbit_field(mission)
     base = scene(mission)
     current = float(mission.worst_current.to_value("A"))
     field = float(mission.worst_field.to_value("T"))

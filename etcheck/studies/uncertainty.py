@@ -54,6 +54,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.plan import plan
 from etcheck.checks.sections import CheckResults, MarginSensitivityRecord, ProbabilityRecord, UncertaintySection
 from etcheck.input.echo import UncertaintyInputs
@@ -210,6 +211,7 @@ def margin_model(mission: Mission, tol: float = 1e-8) -> MarginModel:
     """The margin model of a mission at its worst-case operating point (as the check uses)."""
     from etcheck.scaling import scale
 
+    mission = with_orbit_field(mission)
     sc = scene(mission)
     scaled = scale(sc)
     p = scaled.params

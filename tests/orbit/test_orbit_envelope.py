@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from etcheck.orbit import axial_field_envelope, axial_field_series, parse_orbit
+from etcheck.input.orbit_table import parse_orbit
+from etcheck.orbit import axial_field_envelope, axial_field_series
 
 ORBIT = {
     "altitude": "500 km",
@@ -21,7 +22,7 @@ ORBIT = {
 
 @pytest.fixture(scope="module")
 def envelope():
-    return axial_field_envelope(ORBIT)
+    return axial_field_envelope(parse_orbit(ORBIT))
 
 
 def test_sampling_converges_and_a_finer_grid_agrees(envelope):
@@ -60,7 +61,7 @@ def test_summary_is_consistent_with_the_series(envelope):
 
 def test_a_given_step_is_used_and_its_change_reported():
     orbit = dict(ORBIT, duration="2 h", step="20 s")
-    env = axial_field_envelope(orbit)
+    env = axial_field_envelope(parse_orbit(orbit))
     assert env.step == pytest.approx(20.0) and env.steps == (env.step,)
     assert 0 <= env.step_change < 1e-2
     assert len(env.series) == 361

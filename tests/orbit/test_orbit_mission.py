@@ -18,8 +18,10 @@ from helpers import set_like
 from etcheck.checks.pipeline import check
 from etcheck.errors import MissionError
 from etcheck.input.mission import load_mission, mission_from_dict
+from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.input.orbit_table import parse_orbit
 from etcheck.input.sweep_axes import parse_option
-from etcheck.orbit import axial_field_envelope, parse_orbit
+from etcheck.orbit import axial_field_envelope
 from etcheck.studies.orbit_sweep import SWEEP_STEP
 from etcheck.studies.sweep import SweepOptions, sweep
 
@@ -54,22 +56,36 @@ def results(mission):
 # --- the mission ------------------------------------------------------------------------------
 
 
-def test_orbit_mission_takes_the_envelopes_worst_case(mission, envelope):
+def test_loading_an_orbit_mission_only_reads_it(mission):
+    """The mission holds the orbit's specification; nothing is propagated or evaluated at load."""
     assert mission.orbit == parse_orbit(ORBIT)
-    assert mission.orbit_envelope.worst == envelope.worst
-    assert 20e-6 < envelope.worst < 60e-6  # LEO at 51.6 deg
-    lo, hi = mission.axial_field
-    assert lo.to_value("T") == hi.to_value("T") == envelope.worst
-    assert mission.operating_load.to_value("N/m") == pytest.approx(1.0 * envelope.worst, rel=1e-15)
+    assert mission.axial_field is None and mission.orbit_envelope is None
     echo = mission.echo()
-    assert echo["operation"]["axial_field"] == [f"{envelope.worst * 1e6:.6g} µT"]
-    stated = echo["orbit"]["statement"]
+    assert echo["operation"]["axial_field"] is None
+    assert echo["orbit"]["inclination_deg"] == pytest.approx(51.6) and echo["orbit"]["period_s"] == pytest.approx(5677, rel=1e-3)
+    assert "statement" not in echo["orbit"] and not any("worst case over the orbit" in n for n in mission.notes)
+    with pytest.raises(ValueError, match="orbit stage"):
+        mission.worst_field
+
+
+def test_orbit_mission_takes_the_envelopes_worst_case(mission, envelope, results):
+    resolved = with_orbit_field(mission)
+    assert with_orbit_field(resolved) is resolved  # a stage applied once
+    assert resolved.orbit_envelope.worst == envelope.worst and resolved.orbit_envelope.seconds > 0
+    assert 20e-6 < envelope.worst < 60e-6  # LEO at 51.6 deg
+    lo, hi = resolved.axial_field
+    assert lo.to_value("T") == hi.to_value("T") == envelope.worst
+    assert resolved.operating_load.to_value("N/m") == pytest.approx(1.0 * envelope.worst, rel=1e-15)
+    assert resolved.echo()["operation"]["axial_field"] == [f"{envelope.worst * 1e6:.6g} µT"]
+    stated = results["orbit"]["statement"]
     assert stated.startswith("axial field: worst case over the orbit, ")
     assert f"{envelope.worst * 1e6:.4g} µT" in stated and envelope.worst_utc[:19] in stated
     lat = f"{abs(envelope.worst_latitude):.2f}° {'N' if envelope.worst_latitude >= 0 else 'S'}"
     assert lat in stated
-    assert any(n.startswith(stated) for n in mission.notes)
-    assert echo["orbit"]["inclination_deg"] == pytest.approx(51.6) and echo["orbit"]["period_s"] == pytest.approx(5677, rel=1e-3)
+    assert any(n.startswith(stated) for n in resolved.notes)
+    assert any(n.startswith(stated) for n in results["mission"]["notes"])
+    assert results["orbit"]["envelope_s"] > 0
+    assert results["mission"]["operation"]["axial_field"] == [f"{envelope.worst * 1e6:.6g} µT"]
 
 
 def test_mission_stays_immutable_and_comparable(mission):
@@ -146,7 +162,7 @@ def test_shipped_orbit_mission_loads_with_assumptions_marked():
     orbit_table = text.split("[orbit]")[1].split("[check]")[0]
     for line in orbit_table.strip().splitlines():  # every orbit value says where it comes from
         assert "ASSUMPTION" in line or "Johnson" in line or "one day" in line, line
-    m = load_mission(ROOT / "missions" / "proseds-orbit.toml")
+    m = with_orbit_field(load_mission(ROOT / "missions" / "proseds-orbit.toml"))
     assert m.orbit is not None and m.orbit_envelope.converged
     assert math.degrees(m.orbit.orbit.inclination) == pytest.approx(28.5)
     # a 28.5 deg, 360 km orbit: the worst axial field lies in the South Atlantic-Indian band, 30-60 uT
@@ -185,10 +201,11 @@ def test_margin_along_the_orbit(results, envelope):
 def test_long_series_are_downsampled_with_the_worst_sample_kept():
     m = mission_from_dict(orbit_mission(ORBIT | {"duration": "2 d", "step": "30 s"}))
     o = check(m).results["orbit"]
-    n = len(m.orbit_envelope.series)
+    env = with_orbit_field(m).orbit_envelope
+    n = len(env.series)
     assert n == 5761 and o["sampling"]["samples"] == n
     assert len(o["series"]["time_s"]) <= 3000 and "every 2th" in o["series_note"]
-    assert max(o["series"]["axial_worst_T"]) == m.orbit_envelope.worst
+    assert max(o["series"]["axial_worst_T"]) == env.worst
     assert len(o["first_orbit"]["time_s"]) == int(o["period_s"] // 30) + 1  # full resolution
 
 

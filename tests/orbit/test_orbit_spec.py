@@ -8,7 +8,8 @@ import math
 import pytest
 
 from etcheck.errors import MissionError
-from etcheck.orbit import KeplerianElements, TwoLineElements, parse_orbit
+from etcheck.input.orbit_table import parse_orbit
+from etcheck.orbit import KeplerianElements, TwoLineElements
 
 GOOD = {"altitude": "500 km", "inclination": "51.6 deg", "epoch": "2027-03-01T00:00:00"}
 ISS = [
