@@ -1,6 +1,7 @@
-"""The headline of issue 10: every row of its table against its target, in one run.
+"""The headline: every command and solver row against its target, in one run.
 
     python benchmarks/bench_headline.py [--quick] [--missions missions/set.toml,...] [--no-missions]
+                                        [--markdown docs/performance.md]
 
 Prints, for each row (the cold CLI runs, the draft check, the damped critical
 load and spin at the operating point, the undamped spin windows, b1 with its
@@ -8,9 +9,11 @@ stability and secondary pitchfork, B*(omega) at 10 spins, the bifurcation
 diagram and the damping map from the CLI, the 40 x 40 damped and undamped
 sweeps), the wall time, the largest stated error and the ratio to the target;
 then the draft and sign-off margins of every shipped mission side by side (the
-trade the user chooses). ``--quick`` skips the rows that took minutes before
-issue 10 (B*(omega) at 10 spins, diagram, damping map, undamped sweep) and
-compares SET only. One BLAS thread; the solvers are called through their
+trade the user chooses). ``--quick`` skips the slow rows (B*(omega) at 10 spins,
+diagram, damping map, undamped sweep) and compares SET only. ``--markdown FILE``
+rewrites the table between the markers ``<!-- bench_headline:begin -->`` and
+``<!-- bench_headline:end -->`` of FILE with this run's rows (skipped rows keep
+their previous line). One BLAS thread; the solvers are called through their
 public functions and the CLI, so the benchmark follows their changes. A row
 whose function does not exist (yet) prints "n/a". A measurement, not a test:
 on a shared machine, repeat it.
@@ -331,7 +334,9 @@ def _machine_now() -> float:
     return _reference_workload(3, statistics.median)
 
 
-def headline(quick: bool) -> None:
+def headline(quick: bool) -> list[tuple[str, float, float, float | None]]:
+    """Print every row; returns the measured ones as (what, wall [s], target [s], largest stated error)."""
+    measured = []
     _compile_bytecode()
     print(f"{len(os.sched_getaffinity(0))} cores, load average {os.getloadavg()[0]:.1f} at the start "
           "(times are wall times: on a busy machine they are longer); etcheck's bytecode compiled first")
@@ -340,7 +345,7 @@ def headline(quick: bool) -> None:
     print("machine: the reference workload (median of 3) just before and after the row, against its median now "
           "(1.00: as fast as at the start; 1.30: the row ran on a machine 30 % slower)")
     start = _machine_now()
-    print(f"{'issue 10, row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8} {'machine':>8}  note")
+    print(f"{'row':<62} {'time [s]':>9} {'target':>7} {'ratio':>6} {'error':>8} {'machine':>8}  note")
     for row in ROWS:
         if quick and row.slow:
             print(f"{row.what:<62} {'skipped':>9} {row.target:>7.3g} {'':>6} {'':>8} {'':>8}  --quick")
@@ -358,6 +363,31 @@ def headline(quick: bool) -> None:
         slow = max(before, _machine_now()) / start
         print(f"{row.what:<62} {wall:>9.3f} {row.target:>7.3g} {wall / row.target:>6.2f} {e:>8} {slow:>8.2f}  {note}",
               flush=True)
+        measured.append((row.what, wall, row.target, err))
+    return measured
+
+
+BEGIN, END = "<!-- bench_headline:begin -->", "<!-- bench_headline:end -->"
+
+
+def _seconds(x: float) -> str:
+    return f"{x * 1e3:.3g} ms" if x < 0.1 else f"{x:.3g} s"
+
+
+def write_markdown(path: Path, measured: list[tuple[str, float, float, float | None]]) -> None:
+    """Rewrite the table between BEGIN and END of ``path``: a row measured now replaces the line of the same
+    'what'; the others are kept."""
+    text = path.read_text()
+    head, rest = text.split(BEGIN, 1)
+    body, tail = rest.split(END, 1)
+    lines = [line for line in body.strip().splitlines() if line.startswith("| ")]
+    header, rows = lines[:2], {line.split("|")[1].strip(): line for line in lines[2:]}
+    stamp = time.strftime("%Y-%m-%d")
+    for what, wall, target, err in measured:
+        e = "" if err is None else f"{err:.1e}"
+        rows[what] = f"| {what} | {_seconds(wall)} ({stamp}) | {_seconds(target)} | {e} |"
+    header = header or ["| what | time | target | largest stated error |", "| --- | --- | --- | --- |"]
+    path.write_text(head + BEGIN + "\n" + "\n".join(header + list(rows.values())) + "\n" + END + tail)
 
 
 # ----------------------------------------------------------------------------- the fidelity trade
@@ -388,13 +418,17 @@ def missions_table(paths: list[Path]) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="skip the rows that took minutes before issue 10")
+    ap.add_argument("--quick", action="store_true", help="skip the slow rows")
+    ap.add_argument("--markdown", type=Path, default=None,
+                    help="rewrite the headline table between the bench_headline markers of this file")
     ap.add_argument("--missions", default=None,
                     help="comma-separated mission files for the draft/sign-off table (default: missions/*.toml; "
                     "SET with --quick)")
     ap.add_argument("--no-missions", action="store_true", help="skip the draft/sign-off table")
     args = ap.parse_args()
-    headline(args.quick)
+    measured = headline(args.quick)
+    if args.markdown is not None:
+        write_markdown(args.markdown, measured)
     if not args.no_missions:
         paths = ([Path(p) for p in args.missions.split(",")] if args.missions
                  else [SET] if args.quick else sorted((ROOT / "missions").glob("*.toml")))
