@@ -1,4 +1,4 @@
-"""Orbit axes of a sweep (issue 14): the worst axial field of every (altitude, inclination).
+"""Orbit axes of a sweep: the worst axial field of every (altitude, inclination).
 
 ``etcheck sweep --altitude 300km:1500km:20 --inclination 0deg:98deg:20``
 maps the margins over orbits: every grid point takes the mission's ``[orbit]``

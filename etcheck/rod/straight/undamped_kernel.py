@@ -2,7 +2,7 @@
 and the bounds that confine its real roots.
 
 Without damping (gamma = 0) the linearisation about the straight rod (paper
-Sec. 6.1, eq. (86) with F = +T e3; docs/model.md, section 6) is gyroscopic,
+Sec. VI A, eq. (86) with F = +T e3; docs/model.md, section 6) is gyroscopic,
 M q'' + G q' + K q = 0 with G skew: it loses stability by divergence (a pair
 lambda = +-i Omega through 0) or by flutter (two imaginary pairs collide and
 leave the axis), and it can regain it (stable windows). With normal modes
