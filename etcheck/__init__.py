@@ -12,7 +12,7 @@ __version__ = "0.1.0"
 
 from ._numpy_clone import install as _install_import_hook
 
-_install_import_hook()  # scipy's clone of numpy skips numpy's developer tools (0.15 s of every cold start)
+_install_import_hook()  # scipy's clone of numpy skips numpy's developer tools (~0.15 s of every cold start)
 
 # Lazy public API (PEP 562): importing the unitless core (etcheck.rod,
 # etcheck.numerics) must not pull in astropy, pint or the report stack.

@@ -1,5 +1,5 @@
 """A mission as nested dicts for the Python API: the static SET data
-(Table table:et:parameters, no spin), with fields overridden per test."""
+(Table I of the paper, no spin), with fields overridden per test."""
 
 from __future__ import annotations
 

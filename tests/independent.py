@@ -2,7 +2,7 @@
 
 The straight rod at lambda = 0 has constant coefficients, so its static
 problem is solved exactly by a matrix exponential (shooting) instead of
-Chebyshev collocation: PHYSICS.md's straight-rod equations at lambda = 0,
+Chebyshev collocation: the straight-rod equations of docs/model.md, section 6, at lambda = 0,
 
     (R/f) u'''' - (T + P R w^2) u'' - w^2 u - B v' = 0
     (1/f) v'''' - (T + P   w^2) v'' - w^2 v + B u' = 0,  u = u' = v = v' = 0 at 0, 1.

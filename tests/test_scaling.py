@@ -1,4 +1,4 @@
-"""Mission <-> dimensionless problem (etcheck/scaling.py, eq. ``eq:nondim``)."""
+"""Mission <-> dimensionless problem (etcheck/scaling.py, eq. (36))."""
 
 from __future__ import annotations
 
@@ -107,7 +107,7 @@ def test_scale_unscale_round_trip(scaled):
 @settings(max_examples=200, deadline=None)
 @given(scenes())
 def test_scale_matches_definitions(s):
-    """eq. eq:nondim written out again: omega_c = sqrt(f EI1/(rho A L^4)), B = I B0 L^3/(f EI1), ..."""
+    """eq. (36) written out again: omega_c = sqrt(f EI1/(rho A L^4)), B = I B0 L^3/(f EI1), ..."""
     p = scale(s).params
     wc = math.sqrt(s.f * s.EI1 / s.mass_per_length) / s.length**2
     assert p.R == pytest.approx(s.EI2 / s.EI1, rel=1e-13)
@@ -123,7 +123,7 @@ def test_scale_matches_definitions(s):
 @settings(max_examples=200, deadline=None)
 @given(scenes(), pos(1e-2, 1e2))
 def test_length_scaling_laws(s, k):
-    """PHYSICS.md: B ∝ L^3, P ∝ L^-2, T ∝ L^2, omega ∝ L^2, gamma ∝ L^-2; R, Gamma, f fixed."""
+    """docs/scaling.md: B ∝ L^3, P ∝ L^-2, T ∝ L^2, omega ∝ L^2, gamma ∝ L^-2; R, Gamma, f fixed."""
     p0 = scale(s).params
     p1 = scale(with_length(s, s.length * k)).params
     assert p1.B == pytest.approx(p0.B * k**3, rel=1e-12, abs=1e-300)

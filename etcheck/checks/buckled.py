@@ -65,13 +65,13 @@ from etcheck.scaling import Scales
 
 #: arc-length samples of a drawn shape
 SHAPE_POINTS = 121
-#: relative cost per state of a primary branch (SET at omega = 0.25, one core): its record with the eigenvalue
-#: paths and its stability from them (0.12 s), without them (0.008 s), its stability then (0.015 s), and the
-#: continuation of the connecting branch that leaves it (about twice its points at 0.055 s each, and the branch
-#: point where it ends: 0.14 s)
+#: relative cost per state of a primary branch, the weights by which the items are shared between two cores
+#: (measured on SET at omega = 0.25, one core): its record with the eigenvalue paths and its stability from them,
+#: without them, its stability then, and the continuation of the connecting branch that leaves it (about twice its
+#: points, and the branch point where it ends)
 COST = {"paths": 1.1, "record": 0.07, "stability": 0.13, "connect": 1.3}
-#: seconds, SET at omega = 0.25, one core: a lift-off spin, a class's restricted pencil and loads, and the
-#: start and continuation of one primary branch
+#: expected seconds (the same measurement): a lift-off spin, a class's restricted pencil and loads, and the start
+#: and continuation of one primary branch
 COST_START = {"liftoff": 0.6, "class": 0.3, "primary": 0.6}
 
 

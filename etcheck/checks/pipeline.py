@@ -86,7 +86,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=())
     if chosen.rung == 1 and chosen.complete:
         # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
-        # nothing from the rest: where a core is free a helper computes it meanwhile (SET: the check 0.74 -> 0.56 s)
+        # nothing from the rest: where a core is free a helper computes it meanwhile
         def table() -> list | None:
             return accuracy(scaled, options.accuracy_N)
 

@@ -43,7 +43,7 @@ class SceneSection(TypedDict):
 
 
 class ScaledSection(TypedDict):
-    """``scaled``: the dimensionless parameters of the rod (eq. (25) of arXiv:0810.3668 and docs/scaling.md)."""
+    """``scaled``: the dimensionless parameters of the rod (eqs. (36), (42) of arXiv:0810.3668 and docs/scaling.md)."""
 
     P: float
     R: float

@@ -194,14 +194,14 @@ def _operating_spectrum(op, wc: float) -> OperatingSpectrum:
 
 #: Relative error up to which a map row's boundary is drawn (a figure resolves about 1e-3 of its axis; the margins
 #: keep their own tolerance): near the unloaded critical spin a tape's roots carry ~1e-8 from their two formulations,
-#: and rows held to 1e-10 were left empty, drawn unstable where the tether is stable.
+#: and rows held to 1e-10 would be left empty, drawn unstable where the tether is stable.
 MAP_TOLERANCE = 1e-6
 
 
 def _exact_rows(p, w_rows, B_hi: float, rest: float, tol: float) -> list[list[float]]:
     """Stable load interval [0, B_c(omega)) of each spin row, from the exact determinant (damped), each boundary to
     the looser of ``tol`` and :data:`MAP_TOLERANCE`; the rows are independent, shared with a forked helper on two
-    cores (61 rows of a tape: 4.4 -> 2.3 s)."""
+    cores."""
 
     def row(w: float) -> list:
         if w >= rest:

@@ -45,7 +45,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         # while a report process loads the report stack, the accuracy table's timed solves run after the rest
         result = check(mission, replace(DEFAULT_OPTIONS, accuracy_beside=render is in_process))
-        if mission.uncertainty is not None:  # the [uncertainty] table: sensitivities and probabilities (issue 15)
+        if mission.uncertainty is not None:  # the [uncertainty] table: sensitivities and probabilities
             from etcheck.studies.uncertainty import attach
 
             attach(result.results, mission)

@@ -52,7 +52,7 @@ def run() -> None:
 
     Everything is written by then (reports atomically and synced, the report process and any helpers joined);
     what is left is the interpreter's teardown of ~640 modules and their objects, ~0.1 s of a cold
-    ``--format json`` run (measured: median 1.69 -> 1.54 s over 8 interleaved runs). Output is flushed first; a
+    ``--format json`` run. Output is flushed first; a
     reader that went away (a closed pipe) ends it with 141, as the shell reports a command stopped by SIGPIPE.
     """
     try:

@@ -1,4 +1,4 @@
-"""Gravity-gradient tension of a tether hanging on the local vertical (issue 16).
+"""Gravity-gradient tension of a tether hanging on the local vertical.
 
 A mission may give the masses of the two end bodies (``[tether] end_masses =
 ["upper", "lower"]``) and the orbit rate instead of ``[operation]

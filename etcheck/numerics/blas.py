@@ -1,8 +1,8 @@
 """BLAS with one thread: the matrices here are small, and etcheck's parallelism is processes.
 
 Threaded BLAS only adds overhead on matrices of a few hundred rows and
-oversubscribes the cores when other work runs (measured: 5-10x slower scans on
-2 busy cores; dense eigen-solves tens of times slower). The CLI starts BLAS
+oversubscribes the cores when other work runs (scans several times slower on
+busy cores, dense eigen-solves tens of times slower). The CLI starts BLAS
 with one thread (:func:`pin_before_numpy`); a library caller keeps its own
 settings, and the solvers limit BLAS to one thread while they run
 (:func:`one_blas_thread`, threadpoolctl).
@@ -52,8 +52,7 @@ def single_blas_thread(fn):
     """Decorator: run fn with BLAS limited to one thread.
 
     The matrices here are small (hundreds); threaded BLAS only adds overhead
-    and oversubscribes the cores when other work runs (measured: 5-10x slower
-    scans on 2 busy cores).
+    and oversubscribes the cores when other work runs (module docstring).
     """
 
     @functools.wraps(fn)

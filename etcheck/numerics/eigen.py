@@ -102,8 +102,8 @@ class StaticFactor:
 def factor_static(A0: np.ndarray, drop) -> StaticFactor:
     """QR of the columns ``drop`` of A0 (full column rank required): the rows Q2^T A0 no longer involve them.
 
-    Q stays in Householder form (LAPACK geqrf, applied by ormqr): forming it cost 4x the factorisation at
-    12 (N + 1) = 300.
+    Q stays in Householder form (LAPACK geqrf, applied by ormqr): forming it would cost several times the
+    factorisation.
     """
     drop = np.asarray(drop)
     mask = np.ones(A0.shape[0], dtype=bool)
@@ -159,9 +159,8 @@ def pencil_eigenvalues(A0: np.ndarray, n0: np.ndarray) -> np.ndarray:
     """The finite x with A0 + x n0 singular (real square A0, n0).
 
     Where A0 is regular: x = -1 / kappa for the non-zero eigenvalues kappa of (A0^-1 n0) on the columns n0
-    reaches (the others give kappa = 0, infinite x): 3-4x fewer seconds than QZ of the whole pencil where n0
-    reaches half of the columns, 1.5-2x where it reaches all (measured at sizes 102-198). Where A0 is nearly
-    singular (reciprocal condition below 1e-10: a root next to x = 0), QZ."""
+    reaches (the others give kappa = 0, infinite x): cheaper than QZ of the whole pencil, the more so the fewer
+    columns n0 reaches. Where A0 is nearly singular (reciprocal condition below 1e-10: a root next to x = 0), QZ."""
     cols = np.flatnonzero(np.any(n0 != 0.0, axis=0))
     if 0 < cols.size:
         lu, piv, info = _getrf(A0)
@@ -230,7 +229,7 @@ def qep_shift_invert(A0, A1, A2, k: int, sigma: float = 0.0, vectors: bool = Fal
     lu, piv = sla.lu_factor(Qs, overwrite_a=True, check_finite=False)  # Qs is ours: no copy
     # A2 z2 + (A1 + sigma A2) z1 through the rows and columns that A1, A2 reach (with damping, gyroscopic and
     # inertia terms in a few fields only: a third of the entries) in one product, and LAPACK's getrs called
-    # directly: 1.6x fewer seconds per product at 12 (N + 1) = 396
+    # directly (without the per-call overhead of scipy's lu_solve)
     rows = np.flatnonzero(A1.any(axis=1) | A2.any(axis=1))
     cols = np.flatnonzero(A1.any(axis=0) | A2.any(axis=0))
     ix = np.ix_(rows, cols)
@@ -254,7 +253,7 @@ def qep_shift_invert(A0, A1, A2, k: int, sigma: float = 0.0, vectors: bool = Fal
     if maxiter is None:
         maxiter = 500  # restarts; what did not converge by then is dropped, never invented
     if ncv is None:
-        ncv = min(2 * n, max(3 * k, 20))  # a wider Krylov space: fewer restarts (P = 0: 3x faster)
+        ncv = min(2 * n, max(3 * k, 20))  # a wider Krylov space: fewer restarts
     v0 = _start_vector(2 * n)
     try:
         out = eigs(op, k=k, which="LM", ncv=ncv, tol=tol, maxiter=maxiter, v0=v0, return_eigenvectors=vectors)

@@ -5,11 +5,8 @@ operator at N = 48 is 588 x 588 doubles, 2.8 MB; its LU, products and copies
 alike). glibc's malloc returns freed memory at the top of its heap to the
 system once more than twice its (self-adjusting) mmap threshold is free, and
 serves large blocks by mmap; either way the next matrix of that size is
-fresh memory, zeroed page by page by the kernel at its first touch (~2.5 us
-per 4 KiB page). Measured on the 2-core machine, one BLAS thread: building
-a damped operator at N = 48 took 10.4 ms, 2.2-4.4 ms with the memory kept;
-its 20 eigenvalues 34-38 ms, 25-27 ms; ``etcheck diagram missions/set.toml
---spin 0.25 --branches 3`` 10.7-11.4 s, 10.1-10.4 s.
+fresh memory, zeroed page by page by the kernel at its first touch
+(microseconds per 4 KiB page, a large share of building an operator).
 
 :func:`keep_freed_memory` raises both thresholds (blocks up to 32 MiB come
 from the heap, which keeps up to 256 MiB of freed memory). It changes how

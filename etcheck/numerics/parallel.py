@@ -11,8 +11,8 @@ here (an error is then raised here, with its traceback). The results are the
 same bytes either way: the same code runs on one BLAS thread in both processes.
 
 Only work whose result is all that is needed belongs in the map: what the helper memoises (lru caches,
-counters) stays in the helper. Measured: the undamped load line computed in a helper inside a sweep lost the
-roots the sweep shares between the points of a length (a 40 x 40 undamped sweep took 300 s instead of 69 s);
+counters) stays in the helper. The undamped load line computed in a helper inside a sweep would lose the
+roots the sweep shares between the points of a length (a sweep several times slower);
 a single check computes it in a helper (nothing to share), a sweep's chunks never fork.
 """
 

@@ -6,7 +6,7 @@ harmonic mean of the neighbouring secants; the three-point end slopes of
 Fritsch & Butland, limited so that they keep the secant's sign and, next to an
 extremum, stay within three times it): the same values to round-off (tested
 against scipy). Written here because importing ``scipy.interpolate`` takes
-0.4-1.1 s (it loads scipy.optimize and scipy's docstring machinery), more than
+up to a second (it loads scipy.optimize and scipy's docstring machinery), more than
 a report process spends drawing a diagram's branches with it.
 """
 

@@ -16,7 +16,7 @@ Errors of these approximations: |UT1 - UTC| < 0.9 s is < 0.0038 deg of Earth
 rotation (< 0.5 km along the ground at 500 km altitude), polar motion
 < 0.5 arcsec (< 20 m). Measured against astropy's GCRS -> ITRS (with its IERS
 table extrapolated, since future epochs have no IERS data offline) at 500 km
-for 2027: 89 m, in 0.6-1.5 ms per 10^4 samples instead of 0.5-3 s. A rotation by
+for 2027: 89 m, in milliseconds per 10^4 samples where astropy takes seconds. A rotation by
 GMST alone (no precession-nutation) would be 46 km off in 2027 (0.37 deg of
 precession since J2000), so it is not used. The magnetic field changes by
 < 0.01 % over 100 m in LEO.

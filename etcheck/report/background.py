@@ -13,11 +13,9 @@ Beside a study (a sweep, a diagram, a damping map: seconds of work on every
 core) the report process runs at the lowest priority (nice 19): loading the
 report stack (~1.7 CPU-seconds) then takes only what the study leaves idle
 (its serial start, the gaps between its parallel steps) instead of slowing
-it, and the report is drawn after the study, when nothing else runs.
-Measured, ``etcheck diagram missions/set.toml --spin 0.25 --branches 3``:
-10.7 s against 11.5 s (means of 6 interleaved runs). A check (a second of
-work, its report the longer part) keeps the normal priority: its report
-would wait for the check's cores.
+it, and the report is drawn after the study, when nothing else runs. A
+check (a second of work, its report the longer part) keeps the normal
+priority: its report would wait for the check's cores.
 """
 
 from __future__ import annotations

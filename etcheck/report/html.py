@@ -102,7 +102,7 @@ def render_sweep_html(results: dict) -> str:
         if status != "ok":
             failures.append({"values": [grids[k][i] for k, i in enumerate(idx)], "status": status,
                              "reason": np.array(g["reason"], dtype=object)[idx]})
-    from etcheck.report.figures.sweep import sweep_figures  # here: its axis table loads astropy.units (0.35 s)
+    from etcheck.report.figures.sweep import sweep_figures  # here: its axis table loads astropy.units (~0.35 s)
 
     figs = {name: _fig(fig) for name, fig in sweep_figures(results).items()}
     return _render(TEMPLATES["sweep"], r=results, figs=figs, models=dict(models),

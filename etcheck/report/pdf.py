@@ -3,8 +3,7 @@
 The figures are PNGs drawn once (:mod:`etcheck.report.figures.common`). A PDF
 holds an RGB image as the same zlib stream as a PNG's IDAT chunks (FlateDecode
 with PNG predictors), yet WeasyPrint decodes every PNG and encodes it again to
-get that stream: a quarter to a third of the time it takes to typeset a report
-(0.23 s of the check report's 1.3 s, 0.36 s of the diagram's 0.9 s; one core).
+get that stream: a quarter to a third of the time it takes to typeset a report.
 While a report is typeset, :func:`_figures_as_drawn` hands it the IDAT stream of
 each 8-bit RGB, non-interlaced PNG as it is; anything else (alpha, palette,
 16 bit, interlaced, a WeasyPrint without that step) takes WeasyPrint's own path.

@@ -1,4 +1,4 @@
-"""Orbit axes of a sweep (issue 14): the worst axial field of every (altitude, inclination).
+"""Orbit axes of a sweep: the worst axial field of every (altitude, inclination).
 
 ``etcheck sweep --altitude 300km:1500km:20 --inclination 0deg:98deg:20``
 maps the margins over orbits: every grid point takes the mission's ``[orbit]``
@@ -14,8 +14,8 @@ Sampling: unless the mission's ``[orbit]`` fixes a step, sweeps sample every
 :data:`SWEEP_STEP` = 60 s (no halving). Measured over a day at 10 deg / 5 deg
 libration on 20 orbits (300-1500 km x 0-98 deg, epoch 2027-03-01): the worst
 field at 60 s is below the converged one (halved to < 0.1 % change) by at most
-0.085 % (so the margin is at most 0.085 % optimistic), at about 0.085 s per
-orbit instead of 0.2-0.6 s; 120 s would be 0.30 %. A single check
+0.085 % (so the margin is at most 0.085 % optimistic), in a fraction of the
+time of the halving; 120 s would be 0.30 %. A single check
 (``etcheck check``) always converges its one orbit.
 
 Units: SI at this level (m, rad, T); display in km, deg, µT.

@@ -1,5 +1,5 @@
 """Which input a margin hinges on: elasticities, tolerance swings and the
-probability of falling below the required margin (issue 15).
+probability of falling below the required margin.
 
 Everything here works on SI floats and the dimensionless parameters of
 :mod:`etcheck.scaling`; units are crossed only by the mission parser.
@@ -130,7 +130,7 @@ class MarginModel:
         return v
 
     def params(self, v: dict[str, float]) -> RodParameters:
-        """Dimensionless parameters (eq. eq:nondim) of physical inputs; the stiff axis is the larger EI."""
+        """Dimensionless parameters (eq. (36)) of physical inputs; the stiff axis is the larger EI."""
         EI1, EI2 = max(v["EI1"], v["EI2"]), min(v["EI1"], v["EI2"])
         L, m = v["length"], v["mass_per_length"]
         wc = math.sqrt(self.f * EI1 / (m * L**4))

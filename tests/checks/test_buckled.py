@@ -43,10 +43,10 @@ def test_static_pair_b12_and_stability(set_scaled):
     B1 = critical_loads(set_scaled.params.R, set_scaled.params.f, 1)[0]
     for name in ("b1", "b2"):  # the degenerate pair starts at the analytic load
         assert by[name]["pitchfork_B"] == pytest.approx(B1, rel=1e-6)
-    # shapes at measure1 = 0.04 (paper Fig. fig:tet:tether-modes-transition)
+    # shapes at measure1 = 0.04 (paper Fig. 7)
     assert by["b1"]["shapes"]["measure1=0.04"]["B"] == pytest.approx(0.595, rel=5e-3)
     assert by["b12"]["shapes"]["measure1=0.04"]["B"] == pytest.approx(0.605, rel=5e-3)
-    # b1 stable up to its secondary pitchfork (Sec. 7.1: B = 1.942), unstable after; b12 unstable
+    # b1 stable up to its secondary pitchfork (Sec. VII A: B = 1.942), unstable after; b12 unstable
     brk = [q["B"] for q in by["b1"]["special"] if q["kind"] == "break"]
     assert brk and brk[0] == pytest.approx(1.942, abs=5e-4)
     for B, st in zip(by["b1"]["values"][1:], by["b1"]["stable"][1:]):
@@ -208,7 +208,7 @@ def test_many_coils_are_not_attempted(tmp_path):
     assert math.isfinite(post["load_ratio"])
 
 
-# --- rung 3 for users: the damping map (cf. Fig. fig:hopf) ------------------------------------------
+# --- rung 3 for users: the damping map (cf. Fig. 19) ------------------------------------------
 
 
 @pytest.mark.slow  # 5 s; the command's properties: tests/studies/test_damping_map_properties.py
@@ -219,7 +219,7 @@ def test_damping_map_command(tmp_path):
     folder = tmp_path / "set" / "damping-map"
     s = json.loads((folder / "damping.json").read_text())["study"]
     assert s["unstable_points"] == 0
-    # the secondary pitchfork at rest is the paper's 1.942, and spin pushes it up (Sec. 8)
+    # the secondary pitchfork at rest is the paper's 1.942, and spin pushes it up (Sec. VIII)
     assert s["secondary_pitchfork_B"][0] == pytest.approx(1.942, abs=5e-4)
     assert s["secondary_pitchfork_B"][1] > s["secondary_pitchfork_B"][0]
     zeta = np.array(s["damping_ratio"], dtype=float)
@@ -244,7 +244,7 @@ def test_design_answer_for_a_coiled_tether(coiled):
     reg = post["region"]
     rows = reg["rows"]
     assert rows[0]["secondary_B"] == pytest.approx(1.94246, rel=1e-4)
-    assert all(b["secondary_B"] > a["secondary_B"] for a, b in zip(rows[:-1], rows[1:]))  # spin raises B* (Sec. 8)
+    assert all(b["secondary_B"] > a["secondary_B"] for a, b in zip(rows[:-1], rows[1:]))  # spin raises B* (Sec. VIII)
     assert reg["lowest_stable_spin_rpm"] == 0.0  # B = 0.795 < B*(0): stable down to rest
     sens = post["operating"]["damping_sensitivity"]
     assert [d["factor"] for d in sens] == [0.25, 0.5, 1.0, 2.0, 4.0]

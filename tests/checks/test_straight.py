@@ -73,7 +73,7 @@ def test_margins_against_shooting(spin, tension, R_stiff):
 
 
 def test_spin_above_critical_with_damping_fails_at_any_load():
-    # omega = 0.75 (above sqrt(R) = 0.743...): with damping no stable straight state (Sec. 7.2)
+    # omega = 0.75 (above sqrt(R) = 0.743...): with damping no stable straight state (Sec. VII B)
     wc = 0.043613  # rad/s, omega_c of this tether
     spin = f"{0.75 * wc * 60 / (2 * 3.141592653589793)} rpm"
     result = check(mission(spin=spin), LIGHT)

@@ -8,7 +8,7 @@ Independent references computed here, never copied from the code:
   ``lin_eqs`` at lambda = 0, f = 1) clamped at both ends, by a matrix
   exponential: its boundary matrix has a two-dimensional kernel at B_k;
 * clamped-clamped Euler-Bernoulli roots of cos a cosh a = 1 (mpmath) and a
-  determinant of the 4x4 boundary matrix of the Rayleigh beam (Sec. 6.2)
+  determinant of the 4x4 boundary matrix of the Rayleigh beam (Sec. VI B)
   built from the general solution, root-bracketed on a grid.
 """
 
@@ -92,7 +92,7 @@ PUBLISHED_BETAS = [7.332130, 13.613561, 19.896753]
 @pytest.mark.parametrize("k, printed", list(enumerate(PUBLISHED_BETAS, start=1)))
 def test_roots_match_published_digits(k, printed):
     roots = analytic.characteristic_roots(3)
-    # Fig. fig:char_clamp prints six decimals; 19.8967535... rounds to ...754 (PHYSICS.md)
+    # Fig. 4 prints six decimals; 19.8967535... rounds to ...754 (docs/validation.md)
     assert abs(roots[k - 1].beta - printed) <= 1.01e-6
     assert roots[k - 1].k == k
 
@@ -197,7 +197,7 @@ def test_set_critical_loads_R_21_38():
     expected = [beta_ref(k) ** 3 * math.sqrt(R) / F for k in range(1, 6)]
     for got, ref in zip(loads, expected):
         assert got == pytest.approx(ref, rel=5e-8)  # 7 significant digits
-    # published (Sec. 7.1): 0.585, 3.747, 11.698
+    # published (Sec. VII A): 0.585, 3.747, 11.698
     assert loads[0] == pytest.approx(0.585395, abs=1e-6)
     assert loads[1] == pytest.approx(3.74691, abs=1e-5)
     assert loads[2] == pytest.approx(11.6978, abs=1e-4)
@@ -264,7 +264,7 @@ def test_buckling_mode_clamped_and_solves_equations(k, R):
     assert np.max(np.abs(x)) > 0.1
 
 
-# --- unperturbed spectrum (Sec. 6.2) --------------------------------------------------
+# --- unperturbed spectrum (Sec. VI B) --------------------------------------------------
 
 
 @pytest.mark.parametrize("R", [21 / 38, 1.0, 0.25])
@@ -295,7 +295,7 @@ def test_bending_frequencies_with_rotary_inertia(P, R, axis):
     assert np.all(np.diff(got) > 0)
     ref = rayleigh_beam_roots(P, stiffness, 5) / math.sqrt(F)
     np.testing.assert_allclose(got, ref, rtol=1e-10)
-    # and they satisfy the printed Sec. 6.2 equation (a^2-b^2) sin a sinh b = 2ab(1 - cos a cosh b)
+    # and they satisfy the printed Sec. VI B equation (a^2-b^2) sin a sinh b = 2ab(1 - cos a cosh b)
     for mu_f in got:
         mu = mp.mpf(float(mu_f)) * mp.sqrt(F)
         root = mp.sqrt(mu**4 * P**2 + 4 * mu**2 / stiffness)

@@ -1,8 +1,8 @@
 """Rung 3: stability of buckled, whirling equilibria (etcheck.rod.buckled).
 
-Published values from the paper (PHYSICS.md): secondary pitchfork of b1 at
-B = 1.942 (Sec. 7.1), spin pushes it up (Sec. 8), b1 at B = 1.2 with
-gamma = 0.04375 stable at least up to omega = 4 (Sec. 7.2). The paper's Hopf
+Published values from the paper (docs/validation.md): secondary pitchfork of b1 at
+B = 1.942 (Sec. VII A), spin pushes it up (Sec. VIII), b1 at B = 1.2 with
+gamma = 0.04375 stable at least up to omega = 4 (Sec. VII B). The paper's Hopf
 claims (gamma = 0.01) and "all branches but b1 unstable" are checked as
 strict xfails carrying the measured values.
 """
@@ -22,7 +22,7 @@ from etcheck.rod.core.spectrum import spectrum
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
 N = 24
-GAMMA_SET = 0.04375  # Sec. 7.2: damping of a real tether
+GAMMA_SET = 0.04375  # Sec. VII B: damping of a real tether
 
 
 @pytest.fixture(scope="module")
@@ -40,7 +40,7 @@ def pitchfork0():
 
 @pytest.fixture(scope="module")
 def b1_spun():
-    """b1 at B = 1.2 continued in omega from 0 to 4.2 (Figs. fig:tet:helix_stab-b1_B35_gamma05_w-*)."""
+    """b1 at B = 1.2 continued in omega from 0 to 4.2 (Figs. 17 and 18)."""
     return secondary.b1_spin_branch(SET, 1.2, 4.2, N)
 
 
@@ -50,7 +50,7 @@ def b1_spun():
 def test_secondary_pitchfork_at_rest_matches_paper(pitchfork0):
     p = pitchfork0
     assert p.error < 1e-4  # N = 24 vs N = 32
-    assert round(p.B, 3) == 1.942  # Sec. 7.1
+    assert round(p.B, 3) == 1.942  # Sec. VII A
     assert abs(p.B - 1.9424629) < 1e-4 + p.error  # converged value (N = 32, 40 agree to 1e-8)
 
 
@@ -69,7 +69,7 @@ def test_secondary_pitchfork_is_where_the_static_operator_is_singular(b1_static,
 def test_spin_pushes_the_secondary_pitchfork_up(pitchfork0):
     curve = secondary.secondary_pitchfork_curve(SET, [0.25, 1.0], N=N, N_check=32)
     B = np.concatenate([[pitchfork0.B], curve.B])
-    assert np.all(np.diff(B) > 0.05), B  # Sec. 8
+    assert np.all(np.diff(B) > 0.05), B  # Sec. VIII
     assert np.all(curve.error < 1e-4)
     assert abs(curve.B[0] - 2.0643166) < 1e-4  # independent in-house value at omega = 0.25
 
@@ -132,7 +132,7 @@ def test_b2_is_stable_at_rest_in_this_model():
     assert min(lows) > 0.1
 
 
-@pytest.mark.xfail(strict=True, reason="paper (Sec. 7.2/8): all branches but b1 unstable; measured: b2 at "
+@pytest.mark.xfail(strict=True, reason="paper (Secs. VII B, VIII): all branches but b1 unstable; measured: b2 at "
                    "omega = 0, B = 0.9 stable (K index 0, lowest undamped frequency 0.189, N = 24..48)")
 def test_paper_claim_b2_unstable():
     st = _b2_state(N)
@@ -140,7 +140,7 @@ def test_paper_claim_b2_unstable():
 
 
 def test_b1_spun_at_B12_stable_up_to_omega4(b1_spun):
-    """Sec. 7.2: b1 at B = 1.2, gamma = 0.04375 stable at least up to omega = 4."""
+    """Sec. VII B: b1 at B = 1.2, gamma = 0.04375 stable at least up to omega = 4."""
     upto4 = [s for s in b1_spun.states if s.params.omega <= 4.0 + 1e-9]
     states = upto4[:-1:2] + upto4[-1:]  # every other state, and the last one below omega = 4
     assert states[-1].params.omega > 3.5
@@ -151,7 +151,7 @@ def test_b1_spun_at_B12_stable_up_to_omega4(b1_spun):
     assert np.max(sp.max_real_error) < 1e-4
 
 
-@pytest.mark.xfail(strict=True, reason="paper (Sec. 7.2): Hopf of lambda1 at omega ~ 1.5 for gamma = 0.01, "
+@pytest.mark.xfail(strict=True, reason="paper (Sec. VII B): Hopf of lambda1 at omega ~ 1.5 for gamma = 0.01, "
                    "B = 1.2; measured: no crossing up to omega = 4.2, max Re lambda (complex modes) = -9.27e-4 "
                    "near omega = 2.2 (N = 24 vs 36 differ by < 1e-5)")
 def test_paper_claim_hopf_at_gamma001(b1_spun):

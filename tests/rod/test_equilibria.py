@@ -1,7 +1,7 @@
 """Rung 2: whirling relative equilibria (etcheck.rod.buckled.equilibria), pseudo-arclength
 continuation (etcheck.numerics.continuation) and branches (etcheck.rod.buckled.branches).
 
-Published values: PHYSICS.md table and paper Sec. 7 (BP1 = 0.585, secondary
+Published values (docs/validation.md), the paper's Sec. VII (BP1 = 0.585, secondary
 pitchfork on b1 at B = 1.942, measure_1 = 0.04 at B = 0.595 (b1) and 0.605
 (b12), b1 lifted off at omega = 0.75). Values the paper states that this
 computation does not reproduce are xfail tests carrying the measured value.
@@ -163,7 +163,7 @@ def test_equilibrium_is_a_base_state_for_the_stability_code(b1):
 def test_rung3_preview_b1_loses_stability_at_its_secondary_pitchfork(b1):
     """The equilibria are base states for the stability code: on b1 (omega = 0,
     undamped) the least eigenvalues are imaginary below the secondary pitchfork
-    (B = 1.942) and a real pair appears above it (paper Sec. 7.1)."""
+    (B = 1.942) and a real pair appears above it (paper Sec. VII A)."""
     from etcheck.rod.core.spectrum import spectrum
 
     for B, unstable in ((1.5, False), (1.9, False), (2.0, True)):
@@ -339,7 +339,7 @@ def test_b2_at_measure1_004_converged(b2):
     assert 0.6 < vals[1] < 0.7
 
 
-@pytest.mark.xfail(strict=True, reason="paper caption (Fig. fig:tet:tether-modes-transition) gives B = 0.7 on b2 "
+@pytest.mark.xfail(strict=True, reason="paper caption (Fig. 7) gives B = 0.7 on b2 "
                                        "at measure_1 = 0.04; computed 0.654089333 (two resolutions agree to 1e-9)")
 def test_b2_paper_caption_value(b2):
     B, _ = br.locate(b2[N_HI], eq.measure1, 0.04)
@@ -385,7 +385,7 @@ def test_lift_off_tracking_roots_equal_the_qz_roots(omega, T, which):
     assert np.allclose(fast[np.abs(fast) < 1e3], small, rtol=1e-10, atol=0.0)
 
 
-@pytest.mark.xfail(strict=True, reason="paper Sec. 7.2: b2 lifts off near omega = 1.25; the straight-rod linear "
+@pytest.mark.xfail(strict=True, reason="paper Sec. VII B: b2 lifts off near omega = 1.25; the straight-rod linear "
                                        "theory gives 1.00621 (P = 0.001), exactly 1 for P = 0")
 def test_b2_liftoff_paper_value():
     assert abs(pitchforks.liftoff_spin(SET, "b2") - 1.25) < 0.05
@@ -425,10 +425,10 @@ def test_continuation_in_spin_and_tension(spun):
 
 @pytest.mark.slow  # 9 s: b12 at omega = 0.25; B* moving up with spin is tested in test_branch_stability
 def test_spin_resolves_the_connection():
-    """omega = 0.25: spin pushes b1's secondary pitchfork up (Sec. 8) and b12 no
+    """omega = 0.25: spin pushes b1's secondary pitchfork up (Sec. VIII) and b12 no
     longer reaches the straight rod: it runs from b1's secondary pitchfork to a
     symmetry-breaking pitchfork on b2 ("the connecting branches move up along
-    the principal branches", Sec. 7.2)."""
+    the principal branches", Sec. VII B)."""
     p = SET.with_(omega=0.25)
     s1, s2 = br.primary_branches(p, 1, N_LO)
     b1 = br.continue_branch(p, s1, stop=(0.0, 3.0))
@@ -496,7 +496,7 @@ def _independent_bvp(params, guess, n=60):
     """The O(1) problem in an independent formulation: 13 first-order ODEs for
     (x, quaternion q, F, M) with D' = D skew(kappa), kappa = K^{-1} D^T M, solved
     by scipy's solve_bvp (4th-order collocation, adaptive mesh); welded ends
-    with q(0) = 1 (eq:et:stat:BC23-BC34; F(0).e3 = +T)."""
+    with q(0) = 1 (eqs. (58)-(69); F(0).e3 = +T)."""
     K = np.array([1.0, params.R, params.Gamma * (1 + params.R) / 2]) / params.f
     w, e3 = np.array([0.0, 0.0, params.omega]), np.array([0.0, 0.0, 1.0])
 

@@ -65,7 +65,7 @@ class _Wavy:
 
 
 def _residual(params, base, N, Y, eps, lam):
-    """Nonlinear residual of eq:lmomentum-eq:constitutive at the ODE points for the
+    """Nonlinear residual of eqs. (37)-(41) at the ODE points for the
     perturbation eps * Y e^{lam t} (t = 0), in the operator's row form."""
     col = collocation(N)
     s, t = col.s, col.t
@@ -121,8 +121,8 @@ def _residual(params, base, N, Y, eps, lam):
 
 @pytest.mark.parametrize("lam", [0.0, 0.7, -1.3])
 def test_operator_is_the_linearisation_for_a_general_base_state(lam):
-    """Central differences of the nonlinear PDE residual (eq:lmomentum, eq:amomentum,
-    eq:tangent, eq:twist2, eq:constitutive) about a base state with D0 != I, F0, M0 != 0
+    """Central differences of the nonlinear PDE residual (eqs. (37), (38),
+    (39), (40), (41)) about a base state with D0 != I, F0, M0 != 0
     reproduce (A0 + lam A1 + lam^2 A2) Y on the ODE rows."""
     N = 14
     params = RodParameters(P=0.02, R=0.6, Gamma=0.8, f=3.0, B=0.7, omega=0.9, T=0.3, gamma=0.15)
@@ -144,7 +144,7 @@ def test_operator_is_the_linearisation_for_a_general_base_state(lam):
 
 
 def _reduced_fourth_order(params, N):
-    """Independent square collocation of the straight-rod reduction (PHYSICS.md):
+    """Independent square collocation of the straight-rod reduction (docs/model.md, section 6):
     lam^2 (u - P R u'') - 2 lam w v + (R/f)(1 + g lam) u'''' - (T + P R w^2) u'' - w^2 u - B v' = 0
     lam^2 (v - P v'') + 2 lam w u + (1/f)(1 + g lam) v'''' - (T + P w^2) v'' - w^2 v + B u' = 0
     clamped at both ends; returns all finite eigenvalues."""

@@ -14,7 +14,7 @@ SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
 
 
 def _beam_roots(P, R, count):
-    """Sec. 6.2 (f = 1): (a^2 - b^2) sin a sinh b = 2ab (1 - cos a cosh b), mu_1 > 0."""
+    """Sec. VI B (f = 1): (a^2 - b^2) sin a sinh b = 2ab (1 - cos a cosh b), mu_1 > 0."""
 
     def g(mu):
         root = np.sqrt(mu**4 * P**2 + 4 * mu**2 / R)

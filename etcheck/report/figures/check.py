@@ -304,7 +304,7 @@ def coil_region_plot(results: dict) -> str:
         low_w = np.array(pc["spin_rpm"], dtype=float)
         low = np.array([v if v is not None else 0.0 for v in pc["IB0_N_per_m"]], dtype=float)
         top_w, top = np.array(sc["spin_rpm"], dtype=float), np.array(sc["IB0_N_per_m"], dtype=float)
-    else:  # results written before the curves were stored: the located rows only
+    else:  # results without the stored curves (an older results file): the located rows only
         low_w = top_w = np.array([r["spin_rpm"] for r in rows], dtype=float)
         low = np.array([r["pitchfork_IB0_N_per_m"] or 0.0 for r in rows], dtype=float)
         top = np.array([r["secondary_IB0_N_per_m"] if r["secondary_IB0_N_per_m"] is not None else np.nan

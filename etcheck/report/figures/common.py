@@ -142,6 +142,6 @@ def _cropped_png(fig) -> bytes:
             (max(cols[0] - pad, 0), max(rows[0] - pad, 0), min(cols[-1] + pad + 1, w), min(rows[-1] + pad + 1, h)))
     out = io.BytesIO()
     # RGB without alpha: the PDF writer would otherwise split off and compress an alpha mask. zlib level 1:
-    # a third of the time of the default level for a fifth more bytes (the PDF writer re-compresses anyway)
+    # much faster than the default level for slightly larger files (the PDF writer re-compresses anyway)
     crop.convert("RGB").save(out, format="PNG", compress_level=1)
     return out.getvalue()

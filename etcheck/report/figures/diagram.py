@@ -7,7 +7,7 @@ tether, ■: secondary pitchfork, ▲: fold). A branch is drawn through its
 computed states by the monotone cubic (PCHIP) in the chord length of the
 figure's coordinates: the continuation's steps grow where the branch is
 nearly straight in the space of states, where the figure's measures may still
-bend (a polyline showed corners there).
+bend (a polyline would show corners there).
 """
 
 from __future__ import annotations

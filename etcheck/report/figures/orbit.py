@@ -1,5 +1,5 @@
-"""Figures of the field along the orbit (issue 14): ground track coloured by the axial
-field, and the axial field and the load margin against time (first orbit, whole window).
+"""Figures of the field along the orbit: ground track coloured by the axial field,
+and the axial field and the load margin against time (first orbit, whole window).
 
 Every function takes the JSON-able check results (``results["orbit"]``, SI:
 tesla, seconds, N/m; latitude and longitude in degrees) and returns the figure

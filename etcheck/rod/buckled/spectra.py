@@ -115,12 +115,10 @@ def operator_eigenvalues(op: DampedOperator, gamma: float, nev: int, vectors: bo
 
     Which solver, and why: shift-invert ARPACK on the companion form (one
     dense LU of the 12(N+1) operator, ~60 products per solve) is the cheapest
-    that meets the 1e-13 tolerance: 17 ms at N = 32 and 38 ms at N = 48 (one
-    core, a buckled SET state), against ~0.3 s for dense QZ of the companion;
-    eliminating the lambda-free unknowns (phi, m) first halves the companion,
-    but its QR costs as much as it saves (11 + 7 ms at N = 32, 30 + 10 ms at
-    N = 48). The stiffness index uses the linear pencil in mu = lambda^2
-    instead (:func:`static_problem`)."""
+    that meets the 1e-13 tolerance, an order of magnitude below dense QZ of the
+    companion; eliminating the lambda-free unknowns (phi, m) first halves the
+    companion, but its QR costs about as much as it saves. The stiffness index
+    uses the linear pencil in mu = lambda^2 instead (:func:`static_problem`)."""
     p = op.params.with_(gamma=gamma)
     A0, A1, A2 = op.at(gamma)
     return nearest_eigenvalues(A0, A1, A2, nev, gamma, vectors=vectors, dense=prefers_dense(p, nev))

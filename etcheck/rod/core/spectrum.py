@@ -5,25 +5,14 @@ Solves the quadratic eigenproblem (A0 + lambda A1 + lambda^2 A2) Y = 0 of
 arXiv:0810.3668, eqs. (82)-(85) inserted in (71)-(75)) for the
 eigenvalues of least modulus. Unstable if any Re lambda > 0.
 
-**Eigen-strategy: shift-invert ARPACK on the full 12(N+1) system.** Measured
-on one core (BLAS pinned) for the SET scene (omega = 0.25, gamma = 0.04375,
-B = 0.3), time for the 24 eigenvalues nearest 0:
-
-=====  ===============================  ===============================
-N      (a) QR-eliminate phi, m + dense   (b) shift-invert ARPACK, one LU
-       QZ of the 2 x 6(N+1) companion    of Q(sigma), size 12(N+1)
-=====  ===============================  ===============================
-16     0.020 s                           0.012 s
-24     0.049 s                           0.013 s
-32     0.117 s                           0.018 s
-48     0.336 s                           0.031 s
-64     0.697 s                           0.067 s
-=====  ===============================  ===============================
-
-(b) wins from N = 16 on and scales ~N^2 instead of N^3, and it never forms
-the infinite eigenvalues (singular A2: theta = 1/(lambda - sigma) = 0 for
-them). The shift sigma is a small real number (``SIGMA``), not 0, so the LU
-exists at divergence points where lambda = 0 is an eigenvalue. (a) is kept in
+**Eigen-strategy: shift-invert ARPACK on the full 12(N+1) system**, (b) one
+LU of Q(sigma), size 12(N+1), rather than (a) QR-eliminating phi, m and dense
+QZ of the 2 x 6(N+1) companion. For the few eigenvalues nearest 0 that a check
+wants, (b) is the cheaper at every resolution used (N >= 16), its cost grows
+~N^2 instead of N^3, and it never forms the infinite eigenvalues (singular A2:
+theta = 1/(lambda - sigma) = 0 for them). The shift sigma is a small real
+number (``SIGMA``), not 0, so the LU exists at divergence points where
+lambda = 0 is an eigenvalue. (a) is kept in
 :mod:`etcheck.numerics.eigen` (``eliminate_static`` + ``qep_dense``) and is
 used as an independent check in the tests.
 
@@ -201,8 +190,8 @@ def nearest_eigenvalues(A0, A1, A2, nev: int, gamma: float, vectors: bool = Fals
     until nev lie outside the cluster. When the cluster lies among the wanted
     eigenvalues (``dense``, see :func:`prefers_dense`) ARPACK converges slowly
     on its degenerate members: then all eigenvalues are computed densely (QZ
-    after eliminating the lambda-free unknowns phi, m), ~0.05 s at N = 24 and
-    ~0.3 s at N = 48. ``reduced``: phi, m are already eliminated (no vectors then).
+    after eliminating the lambda-free unknowns phi, m; several times
+    slower). ``reduced``: phi, m are already eliminated (no vectors then).
     """
     if dense:
         lam, V = (qep_dense(A0, A1, A2), None) if reduced else _dense(A0, A1, A2, vectors)

@@ -83,7 +83,7 @@ def accuracy_table(params: RodParameters, Ns=(8, 12, 16, 24, 32), k: int = 10,
     nev = 2 * k + 8
     rows = []
     # one after the other, after the reference: a solve timed while other work shares the cores (or as the
-    # first of a process) reads up to 3x slower, and the table is the scene's measured trade of time for accuracy
+    # first of a process) reads several times slower, and the table is the scene's measured trade of time for accuracy
     with one_blas_thread():
         ref = lowest_eigenvalues(params, base, N_ref, nev)
         want = ref[select_pairs(ref, k)]

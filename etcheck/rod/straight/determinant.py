@@ -1,9 +1,9 @@
 """The exact characteristic function of the straight tether (dimensionless): the
 determinant kernel that the exact (damped) and undamped routes of rung 1 share.
 
-The linearisation about the straight, untwisted rod (paper Sec. 6.1, the
+The linearisation about the straight, untwisted rod (paper Sec. VI A, the
 trivial solution eq. (86) with the tension sign of the boundary condition
-eq. (25), F = +T e3) has constant coefficients. In the f-scaling of Sec. 4
+eq. (25), F = +T e3) has constant coefficients. In the f-scaling of Sec. IV
 (eq. (36)), rotating frame, u along the weak axis e1 (stiffness R/f), v along
 e2 (stiffness 1/f), its static (lambda = 0) part is
 
@@ -61,7 +61,7 @@ problem is isotropic: with w = u + i v (R = 1) or w = u + i v / sqrt(R)
 i c1 w' = 0, whose clamped determinant is real (the map w(s) ->
 conj(w(1 - s)) preserves the problem) and has simple zeros; D is a positive
 multiple of its square, so every zero of D is double (touching, no sign
-change; the kernel is two-dimensional, Sec. 6.1). Roots in these cases come
+change; the kernel is two-dimensional, Sec. VI A). Roots in these cases come
 from the complex determinant. Elsewhere zeros are simple; close pairs (the
 split double root at small T, omega or 1 - R, and the u and v string modes
 near B = 2 pi T) are found by minimising |D| between samples.
@@ -458,7 +458,7 @@ def _exponential(params: RodParameters, ku: float, kv: float, shift: int = 0) ->
 
 def is_isotropic(params: RodParameters) -> bool:
     """True where the linear static problem is isotropic (R = 1, or omega = T = 0):
-    every zero of D is then double (Sec. 6.1)."""
+    every zero of D is then double (Sec. VI A)."""
     return params.R == 1.0 or (params.omega == 0.0 and params.T == 0.0)
 
 

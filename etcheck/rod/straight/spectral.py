@@ -554,7 +554,7 @@ def stability_map(params: RodParameters, B_grid, omega_grid, N: int = 16, k: int
     N = 16 by default (the lowest ~8 pairs are accurate to ~1e-8 there at
     SET-like parameters); the operator is assembled once and recombined
     per point (it is polynomial in B and omega), so each point costs one
-    shift-invert solve (~5-10 ms). T, gamma, P, R, Gamma from ``params``.
+    shift-invert solve (milliseconds). T, gamma, P, R, Gamma from ``params``.
     """
     fam = _family(params, N)
     B_grid = np.asarray(B_grid, dtype=float)

@@ -1,7 +1,7 @@
 """Rung 1u for R = 1: the undamped straight isotropic tether as one complex scalar problem.
 
 For R = 1 the bending equations of :mod:`etcheck.rod.straight.undamped`
-(paper Sec. 6.1, eq. (86) with F = +T e3, rotating frame; docs/model.md,
+(paper Sec. VI A, eq. (86) with F = +T e3, rotating frame; docs/model.md,
 section 6) decouple in w = u + i v and w~ = u - i v. With normal modes
 exp(lambda t), lambda = i Omega (Omega the frequency in the rotating frame):
 

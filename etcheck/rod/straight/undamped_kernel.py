@@ -2,7 +2,7 @@
 and the bounds that confine its real roots.
 
 Without damping (gamma = 0) the linearisation about the straight rod (paper
-Sec. 6.1, eq. (86) with F = +T e3; docs/model.md, section 6) is gyroscopic,
+Sec. VI A, eq. (86) with F = +T e3; docs/model.md, section 6) is gyroscopic,
 M q'' + G q' + K q = 0 with G skew: it loses stability by divergence (a pair
 lambda = +-i Omega through 0) or by flutter (two imaginary pairs collide and
 leave the axis), and it can regain it (stable windows). With normal modes
@@ -129,7 +129,7 @@ def _exponents(c: np.ndarray) -> np.ndarray:
     are certified: eight roots, pairwise apart by more than :data:`_CONFLUENT` of their size, each with a
     backward error below 1e-13 (eight distinct roots of a degree-8 polynomial are all of them). Uncertified rows
     are solved by :func:`_exponents_qr` at once (the next row starts from them), and so is every row of a short
-    run (fewer than :data:`_QR_BELOW`). E on the lines of SET 237 -> ~190 ms CPU; the same roots to round-off."""
+    run (fewer than :data:`_QR_BELOW`). The same roots as QR of every row, to round-off, for less work."""
     n = c.shape[0]
     if n < _QR_BELOW:
         return _exponents_qr(c)
@@ -149,11 +149,11 @@ def _exponents(c: np.ndarray) -> np.ndarray:
 
 #: The 28 pairs (i < j) of the eight exponents.
 _PAIRS = np.triu_indices(8, 1)
-#: Every how many rows :func:`_exponents` solves one by QR (the rows between follow from it by Newton; 4 -> 8
-#: with uncertified rows re-solved at once: 58 -> 50 ms on the 8228 rows of SET's spin line).
+#: Every how many rows :func:`_exponents` solves one by QR (the rows between follow from it by Newton, uncertified
+#: rows are re-solved by QR at once).
 _STRIDE = 8
 #: Fewer rows than this are all solved by QR: below it the Newton sweeps cost more in numpy's per-call overhead
-#: than they save (measured on a spin line of SET: 65 rows 2.0 -> 1.3 ms, 121 rows 4.0 -> 3.0 ms; equal at ~200).
+#: than they save (on a spin line of SET the two cost the same near 200 rows).
 _QR_BELOW = 192
 
 
@@ -199,7 +199,7 @@ def _newton(c: np.ndarray, z: np.ndarray, steps: int = 6) -> tuple[np.ndarray, n
 def _exponents_qr(c: np.ndarray) -> np.ndarray:
     """Roots k of the degree-8 rows c (highest first). p(i z) is a real polynomial in z for
     lambda imaginary and p(k) is real for lambda real, so the roots come from a real companion
-    matrix (4x cheaper than a complex one), then Newton steps on p (as :func:`_roots`)."""
+    matrix (a fraction of the work of a complex one), then Newton steps on p (as :func:`_roots`)."""
     n = c.shape[0]
     powers = 1j ** np.arange(8, -1, -1)
     rot = np.abs(c[:, 7].imag) > np.abs(c[:, 7].real)  # lambda imaginary: the k^1 coefficient is imaginary
@@ -317,7 +317,7 @@ def _uncoupled(params: RodParameters, mu: np.ndarray, T: np.ndarray, factor: flo
     Rayleigh beams (c4 w^(4) - (T - pc mu) w'' - mu w = 0 for u and v). Where a beam's exponential basis does not
     apply (mu = 0: the double exponent 0) its own Schur route, in the same scaled state, so that the positive
     factor stays continuous along mu (the coupled Schur route there has another: a jump of two decades at
-    mu = 0 looked like two dips of |E| on a line under compression and was taken for a double root)."""
+    mu = 0 would look like two dips of |E| on a line under compression and be taken for a double root)."""
     out = np.ones(mu.size, dtype=complex)
     for c4, pc in ((params.R / params.f, params.P * params.R), (1.0 / params.f, params.P)):
         c2 = T - pc * mu
@@ -346,9 +346,9 @@ def rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min:
     |v'|^2 <= |v| |v''| the last term is at least -2 |B| |u| |v|^(1/2) |v''|^(1/2) >= -c |B| |v''|^(1/2),
     c = 2 max (1 - s)^(1/2) s^(1/4) = 2 (2/3)^(1/2) (1/3)^(1/4) = 1.2408 (at |v|^2 = s = 1/3):
     minimised over X = |v''| and Y = |u''| in closed form or on a grid. Under tension T > 0 the
-    term T (|u'|^2 + |v'|^2) >= T pi^2 (|u|^2 + |v|^2) (u, v vanish at both ends) is added. (The load's term was
-    once taken as |B| |u| |v'|: for R = 0.01 at ten times the static load the lowest real root, -73.1, lay
-    below that floor, -64.6, and outside the line.)"""
+    term T (|u'|^2 + |v'|^2) >= T pi^2 (|u|^2 + |v|^2) (u, v vanish at both ends) is added. (The factor 2 of the
+    load's term matters: with |B| |u| |v'| alone, for R = 0.01 at ten times the static load the lowest real root,
+    -73.1, would lie below the floor, -64.6, and outside the line.)"""
     R, f = params.R, params.f
     t = max(-T_min, 0.0)
     c = 2.0 * math.sqrt(2.0 / 3.0) * (1.0 / 3.0) ** 0.25

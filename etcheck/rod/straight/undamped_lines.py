@@ -205,8 +205,7 @@ class Line:
     def samples(self, ps) -> list[_Sample]:
         """The real roots of E on the mu grid at each p of ps (one vectorised evaluation, then
         the close pairs of all rows refined together). Where the stiffness is proven positive
-        (:func:`stiffness_positive`: every root real and positive) only the grid from mu = 0 up is sampled
-        (SET's spin line to omega = 2: 37 % of its samples; the load line at its operating spin: 26 %)."""
+        (:func:`stiffness_positive`: every root real and positive) only the grid from mu = 0 up is sampled."""
         ps = np.atleast_1d(np.asarray(ps, dtype=float))
         start = np.zeros(ps.size, dtype=int)
         if self.signed and self.mu[0] < 0.0:
@@ -238,7 +237,7 @@ class Line:
     def rechecked(self, poor: _Sample, rich: _Sample) -> _Sample:
         """``poor`` with the pair of real roots that ``rich`` (a neighbouring sample) has and ``poor`` lacks, where a
         fine scan at poor.p finds it, else ``poor``: the u and v roots of a nearly round wire come in pairs closer
-        than the grid's samples, and a pair between two samples with no dip at either looked like a fold, two real
+        than the grid's samples, and a pair between two samples with no dip at either would look like a fold, two real
         roots turned into a complex pair (R = 0.97 spun at 2.6: a flutter load 0.772 where the collocation spectrum
         first grows past 0.775). The scan: 257 points and the grid's own between the grid points next outside the
         pair's neighbours in ``rich`` (so that poor's roots there, each between two grid points, are counted alike),
@@ -287,8 +286,8 @@ class Line:
             r, j = np.nonzero(np.sign(top[:, :-1]) * np.sign(top[:, 1:]) < 0)
             lo, hi, rows = list(ps[r, j]), list(ps[r, j + 1]), list(r)
             # two roots through the cut between two points (the dense high modes of a fast spin: 209 roots
-            # below the cut at omega = 17 of a taut tether, where they went uncounted and a stability change
-            # with no root on the move could not be isolated): a dip of |E|, each root of the pair bracketed by
+            # below the cut at omega = 17 of a taut tether; left uncounted, they leave a stability change
+            # with no root on the move that cannot be isolated): a dip of |E|, each root of the pair bracketed by
             # the dip's ends and the pair's middle
             candidates = [c for row in range(ps.shape[0]) for c in dips(row, ps[row], top[row])]
             split, _ = _pair_brackets(lambda _, t, x=x: self.E(t, np.full(t.shape, x)), np.zeros(ps.shape[0]), candidates)
