@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 from helpers import set_like
 
+from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.pipeline import check
 from etcheck.errors import MissionError
 from etcheck.input.mission import load_mission, mission_from_dict
-from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.input.orbit_table import parse_orbit
 from etcheck.input.sweep_axes import parse_option
 from etcheck.orbit import axial_field_envelope
@@ -65,7 +65,7 @@ def test_loading_an_orbit_mission_only_reads_it(mission):
     assert echo["orbit"]["inclination_deg"] == pytest.approx(51.6) and echo["orbit"]["period_s"] == pytest.approx(5677, rel=1e-3)
     assert "statement" not in echo["orbit"] and not any("worst case over the orbit" in n for n in mission.notes)
     with pytest.raises(ValueError, match="orbit stage"):
-        mission.worst_field
+        _ = mission.worst_field
 
 
 def test_orbit_mission_takes_the_envelopes_worst_case(mission, envelope, results):
