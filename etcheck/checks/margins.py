@@ -23,6 +23,12 @@ class Verdict(StrEnum):
 
 PASS, FAIL, INCOMPLETE = Verdict.PASS, Verdict.FAIL, Verdict.INCOMPLETE
 
+#: the names of the margins of a check
+LOAD_AT_REST = "magnetic load |I B0|"
+LOAD_AT_SPIN = "magnetic load |I B0| at the operating spin and tension"
+SPIN = "spin rate at the operating load"
+BUCKLED = "buckled tether (b1): load to its secondary pitchfork"
+
 
 @dataclass(frozen=True)
 class Margin:
@@ -95,7 +101,7 @@ def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, 
     if chosen.rung == 0 and chosen.complete:
         return [
             ratio_margin(
-                "magnetic load |I B0|",
+                LOAD_AT_REST,
                 "N/m",
                 first["IB0_N_per_m"],
                 sc.load,
@@ -105,7 +111,7 @@ def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, 
                 "first (doubly degenerate) static buckling load of the straight welded tether, arXiv:0810.3668 eq. (91)",
             )
         ]
-    return [incomplete_margin("magnetic load |I B0|", "N/m", sc.load, required, chosen.rung, chosen.reason)]
+    return [incomplete_margin(LOAD_AT_REST, "N/m", sc.load, required, chosen.rung, chosen.reason)]
 
 
 def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSection) -> list[Margin]:
@@ -119,8 +125,8 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
             "(gyroscopic stabilisation, which damping removes): a window is not counted as margin"
         )
     margins = [
-        _margin_from_critical(
-            "magnetic load |I B0| at the operating spin and tension",
+        margin_from_critical(
+            LOAD_AT_SPIN,
             "N/m",
             load,
             load["IB0_N_per_m"],
@@ -133,8 +139,8 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
     ]
     if p.omega > 0:
         margins.append(
-            _margin_from_critical(
-                "spin rate at the operating load",
+            margin_from_critical(
+                SPIN,
                 "rpm",
                 spin,
                 spin["rpm"],
@@ -149,7 +155,11 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
     return [replace(m, route=linear.get("route", "")) for m in margins]
 
 
-def _margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
+def margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
+    """The margin critical / operating of one rung-1 critical point (``point``, dimensionless; ``critical`` and
+    ``operating`` in ``unit``, ``scale_to_si`` from dimensionless to it): 0 where the tether is unstable at the
+    start, unlimited (value None) where no value destabilises it, a lower bound where none was found in the
+    scanned range, incomplete where the value was not located."""
     kind = point["kind"]
     if point["value"] is None and kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND,
                                                CriticalKind.NEVER):
@@ -176,7 +186,7 @@ def buckled_margins(post: PostbucklingSection, sc: Scene, scaled: Scaled, requir
     op = post.get("operating")
     if op is None or not op.get("available"):
         return []
-    name = "buckled tether (b1): load to its secondary pitchfork"
+    name = BUCKLED
     if not op["stable"]:
         return [ratio_margin(name, "N/m", 0.0, sc.load, required, 3, 0.0,
                              "the buckled state at the operating load is unstable (rung 3)")]
@@ -193,7 +203,7 @@ def buckled_margins(post: PostbucklingSection, sc: Scene, scaled: Scaled, requir
         return [incomplete_margin(name, "N/m", sc.load, required, 3,
                                   f"{stable_to}: the margin is at least {bound / sc.load:.3g}, short of the required "
                                   f"{required:g}, and b1 was not followed further (rung 2's range)")]
-    return [ratio_margin("buckled tether (b1): load to its secondary pitchfork", "N/m",
+    return [ratio_margin(BUCKLED, "N/m",
                          post["secondary_pitchfork_IB0_N_per_m"], sc.load, required, 3,
                          post["secondary_pitchfork_error"],
                          "the buckled (coiled) tether on b1 stays stable up to its symmetry-breaking secondary "

@@ -66,7 +66,10 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     """Run the stability check of a mission (a Mission, a TOML path or a dict).
 
     ``options`` sets the resolution of the rung-1 answers (tolerances, map
-    and Campbell grids, accuracy table).
+    and Campbell grids, accuracy table). A mission with an ``[uncertainty]``
+    table also gets its uncertainty study (``results["uncertainty"]``:
+    :mod:`etcheck.checks.uncertainty`), its margins by the same route and
+    tolerances.
     """
     if isinstance(mission, (str, Path)):
         mission = load_mission(mission)
@@ -101,6 +104,11 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
+    study = None
+    if mission.uncertainty is not None:  # [uncertainty]: the margins again at other inputs, by the same route
+        from etcheck.checks.uncertainty import uncertainty_study
+
+        study = uncertainty_study(mission, sc, scaled, chosen, margins, options).as_dict()
     results: CheckResults = {
         **results_header(mission),
         "scene": _scene_dict(mission, sc),
@@ -124,6 +132,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
     }
+    if study is not None:
+        results["uncertainty"] = study
     return CheckResult(results=results)
 
 

@@ -13,7 +13,7 @@ from etcheck.checks.sections import ResultsHeader
 from etcheck.input.mission import Mission
 
 #: version of the results.json layout (bump when a field changes meaning or moves)
-SCHEMA_VERSION = 2  # 2: fidelity, plan.route, margin route
+SCHEMA_VERSION = 3  # 2: fidelity, plan.route, margin route; 3: the uncertainty probabilities
 
 
 def results_header(mission: Mission, schema_version: int = SCHEMA_VERSION) -> ResultsHeader:

@@ -628,26 +628,39 @@ class MarginSensitivityRecord(TypedDict):
     swings: list[SwingRecord]
 
 
+class CrossCheckRecord(TypedDict):
+    """FORM and SORM (Breitung) at the design point (:class:`etcheck.checks.probability.CrossCheck`)."""
+
+    beta: float | None
+    form: float | None
+    sorm: float | None
+
+
 class ProbabilityRecord(TypedDict):
-    """P(margin < required) with its 95 % interval (:class:`etcheck.studies.uncertainty.Probability`)."""
+    """P(margin < required), its stated error or 95 % interval, or a bound (:class:`etcheck.checks.probability.Probability`)."""
 
     margin: str
     required: float
     value: float | None
+    bound: float | None
     low: float | None
     high: float | None
-    relative_half_width: float | None
-    samples: int
+    error: float | None
+    method: str  # exact, quadrature, sampling, not answered
+    how: str
     evaluations: int
-    model: str
-    method: str
+    points: int
     conditioned_on: str | None
-    settled: bool
+    inputs: list[str]
+    inert: list[str]
+    model: str
+    cross_check: CrossCheckRecord | None
     note: str
+    elapsed_s: float
 
 
 class UncertaintySection(TypedDict):
-    """``uncertainty`` (missions with an [uncertainty] table; :meth:`etcheck.studies.uncertainty.UncertaintyStudy.as_dict`)."""
+    """``uncertainty`` (missions with an [uncertainty] table; :meth:`etcheck.checks.uncertainty.UncertaintyStudy.as_dict`)."""
 
     route: str
     required_margin: float

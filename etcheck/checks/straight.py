@@ -133,15 +133,17 @@ def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
             "N": root.N, "within_tolerance": True}
 
 
-def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoint, CriticalPoint, bool, float]:
+def _damped_critical(p, options: WhirlOptions, route: str,
+                     spin: bool = True) -> tuple[CriticalPoint, CriticalPoint, bool, float]:
     """Critical load at the operating spin and critical spin at the operating load of a damped
     tether from the static pencils or the exact determinant (milliseconds; the determinant also where a pencil
     root next to the end of its line missed the tolerance: :func:`~etcheck.rod.straight.exact.pencil_or_exact`),
-    whether the operating point is stable, and the spin that destabilises the unloaded tether (dimensionless)."""
+    whether the operating point is stable, and the spin that destabilises the unloaded tether (dimensionless).
+    ``spin=False``: the critical spin is not asked (its point is then "not located")."""
     if route == EXACT:  # root located to round-off; its estimate (two formulations) is judged by the mission's tolerance
-        dc = exact_critical(p, tol=max(options.tol, options.eig_tol))
+        dc = exact_critical(p, tol=max(options.tol, options.eig_tol), spin=spin)
     else:
-        dc = pencil_or_exact(p, tol=options.tol, ladder=DRAFT_LADDER if options.draft else LADDER)
+        dc = pencil_or_exact(p, tol=options.tol, ladder=DRAFT_LADDER if options.draft else LADDER, spin=spin)
     B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)
     w_hi = 1.6 * max(p.omega, math.sqrt(p.R))
     load = _pencil_critical(dc.critical_load, "critical load at the operating spin", B_hi)
@@ -149,14 +151,15 @@ def _damped_critical(p, options: WhirlOptions, route: str) -> tuple[CriticalPoin
     return load, spin, dc.stable, dc.spin_at_rest.value
 
 
-def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool):
+def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool, windows: bool = True, spin: bool = True):
     """Critical load, critical spin point, stable spin windows, the spin they were sought up to and the
     operating point's stability of an undamped tether (dimensionless): from the exact undamped determinant
     (:func:`etcheck.rod.straight.undamped.undamped_critical`); where that cannot isolate a change of
     stability (a tangency of two roots), from the spectral scans of :mod:`etcheck.rod.straight.spectral` on the
-    collocation route, and "not located" on the exact route (its margins are then incomplete)."""
+    collocation route, and "not located" on the exact route (its margins are then incomplete).
+    ``windows=False``: the stable spin windows are not sought; ``spin=False``: nor the critical spin."""
     try:
-        u = undamped_critical(p, tol=options.tol)
+        u = undamped_critical(p, tol=options.tol, windows=windows, spin=spin)
         return u.critical_load, u.critical_spin, list(u.windows), u.scanned_to, u.stable
     except (ArithmeticError, ValueError) as exc:
         why = f"the exact undamped determinant gave no answer: {exc}"
@@ -168,6 +171,22 @@ def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool):
     spin_point, windows, scanned_to = scan_line(p.with_(omega=0.0), "omega", tol=options.tol, N=N)
     op = op or spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
     return load, spin_point, windows, scanned_to, bool(op.stable)
+
+
+def critical_values(p, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL,
+                    spin: bool = True) -> tuple[CriticalPoint, CriticalPoint]:
+    """The critical load at the operating spin and the critical spin at the operating load (dimensionless
+    critical points) exactly as :func:`linear_stability` computes them for its margins, by the same route and
+    tolerances: the static pencils or the exact determinant with damping, the exact undamped determinant
+    without (its spectral fallback at ``options.N`` or N = 24). ``spin=False``: the critical spin is not asked
+    (then "not located"). The uncertainty study evaluates its samples' margins here."""
+    if p.gamma > 0:
+        load, spin_point, _, _ = _damped_critical(p, options, route, spin)
+        return load, spin_point
+    load_point, spin_point, *_ = _undamped_critical(p, options, options.N or 24, None, route == EXACT, windows=False,
+                                                    spin=spin or not p.B > 0)
+    return (_critical(load_point, "critical load at the operating spin"),
+            _critical(spin_point, "critical spin at the operating load"))
 
 
 def _operating_spectrum(op, wc: float) -> OperatingSpectrum:

@@ -45,10 +45,6 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         # while a report process loads the report stack, the accuracy table's timed solves run after the rest
         result = check(mission, replace(DEFAULT_OPTIONS, accuracy_beside=render is in_process))
-        if mission.uncertainty is not None:  # the [uncertainty] table: sensitivities and probabilities
-            from etcheck.studies.uncertainty import attach
-
-            attach(result.results, mission)
         return result, write_reports(result.results, Path(args.out) / mission.slug, fmts, renderer=render)
 
     with renderer(fmts) as render:  # started first: the report stack loads while the check runs
@@ -69,9 +65,23 @@ def summary(results: dict, paths: list[Path]) -> None:
         print(f"  {m['name']}: margin {value} (required {m['required']:g}) -> {m['verdict']} [{m['model']}]")
         if m["verdict"] == "incomplete":
             print(f"    incomplete: {m['why']}")
-    if results.get("uncertainty"):
-        from etcheck.studies.uncertainty import summary_lines
-
-        print("\n".join(summary_lines(results)))
+    for line in probability_lines(results):
+        print(line)
     for path in paths:
         print(f"  wrote {path}")
+
+
+def probability_lines(results: dict) -> list[str]:
+    """The uncertainty study's probability of each margin falling short, one line each (empty without it)."""
+    lines = []
+    for p in (results.get("uncertainty") or {}).get("probabilities", []):
+        head = f"  P({p['margin']} < {p['required']:g})"
+        if p["value"] is None and p["bound"] is None:
+            lines.append(f"{head}: not answered: {p['how']}")
+        elif p["value"] is None:
+            lines.append(f"{head} < {p['bound']:.2g} [{p['method']}, {p['evaluations']} margin evaluations]")
+        else:
+            err = (f"95 % interval {p['low']:.4g} … {p['high']:.4g}" if p["method"] == "sampling" else
+                   f"error ≤ {p['error']:.1e} relative" if p["error"] is not None else "exact")
+            lines.append(f"{head} = {p['value']:.4g} ({err}) [{p['method']}, {p['evaluations']} margin evaluations]")
+    return lines

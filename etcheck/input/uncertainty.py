@@ -65,6 +65,14 @@ _TOL = re.compile(r"^\s*(±|\+-|\+/-)\s*(.+?)\s*$")
 _PCT = re.compile(r"^\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*%\s*$")
 
 
+def _log_diff(la, lb) -> np.ndarray:
+    """ln(exp(la) - exp(lb)) for la >= lb (vectorised; -inf where they are equal)."""
+    la, lb = np.asarray(la, dtype=float), np.asarray(lb, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = la + np.log(-np.expm1(lb - la))
+    return np.where(np.isneginf(lb), la, np.where(la <= lb, -np.inf, out))
+
+
 @dataclass(frozen=True)
 class Distribution:
     """One uncertain input as a distribution of SI floats (or of a factor).
@@ -88,47 +96,120 @@ class Distribution:
     unit: str = ""
     text: str = ""
 
-    def _base(self):
-        from scipy import stats
+    # ------------------------------------------------------------------ the standard-normal coordinate
+    # Every shape is a monotone map of a base variable s: standard normal for normal (s = (x - a) / b) and
+    # lognormal (s = (ln x - a) / b), uniform on [0, 1] for uniform (s = (x - a) / (b - a)) and log-uniform
+    # (s = ln(x / a) / ln(b / a)); the bounds truncate s to [s_lo, s_hi]. Distribution functions are computed
+    # in logarithms from the near tail, so that z = Phi^-1(F(x)) keeps its relative accuracy at F ~ 1e-300.
 
-        if self.shape == "uniform":
-            return stats.uniform(loc=self.a, scale=self.b - self.a)
+    @property
+    def _gaussian(self) -> bool:
+        return self.shape in ("normal", "lognormal")
+
+    def _s(self, x) -> np.ndarray:
+        """The base variable at x (vectorised; -inf/+inf outside the support)."""
+        x = np.asarray(x, dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if self.shape == "normal":
+                return (x - self.a) / self.b
+            if self.shape == "uniform":
+                return (x - self.a) / (self.b - self.a)
+            lx = np.where(x > 0, np.log(np.where(x > 0, x, 1.0)), -np.inf)
+            if self.shape == "lognormal":
+                return (lx - self.a) / self.b
+            return (lx - math.log(self.a)) / math.log(self.b / self.a)
+
+    def _x(self, s) -> np.ndarray:
+        """x at the base variable s (vectorised)."""
+        s = np.asarray(s, dtype=float)
         if self.shape == "normal":
-            return stats.norm(loc=self.a, scale=self.b)
+            return self.a + self.b * s
+        if self.shape == "uniform":
+            return self.a + (self.b - self.a) * s
         if self.shape == "lognormal":
-            return stats.lognorm(s=self.b, scale=math.exp(self.a))
-        return stats.loguniform(self.a, self.b)
+            return np.exp(self.a + self.b * s)
+        return self.a * np.exp(s * math.log(self.b / self.a))
 
-    def _cut(self):
-        d = self._base()
-        return d, float(d.cdf(self.lower)), float(d.sf(self.upper))
+    def _bounds(self) -> tuple[float, float]:
+        """The truncation of s: [s_lo, s_hi] (within [0, 1] for the uniform shapes)."""
+        lo, hi = (float(self._s(v)) for v in (self.lower, self.upper))
+        if not self._gaussian:
+            lo, hi = max(lo, 0.0), min(hi, 1.0)
+        return lo, hi
+
+    def _log_mass(self) -> float:
+        """ln of the base probability inside [s_lo, s_hi]."""
+        from scipy import special
+        lo, hi = self._bounds()
+        if not self._gaussian:
+            return math.log(hi - lo) if hi > lo else -math.inf
+        if lo > 0:  # both in the upper tail: from the upper side
+            lo, hi = -hi, -lo
+        return float(_log_diff(special.log_ndtr(hi), special.log_ndtr(lo)))
+
+    def log_cdf(self, x) -> np.ndarray:
+        """ln P(X <= x) (vectorised; accurate far into the lower tail)."""
+        from scipy import special
+        lo, hi = self._bounds()
+        s = np.clip(self._s(x), lo, hi)
+        if not self._gaussian:
+            with np.errstate(divide="ignore"):
+                return np.log(s - lo) - self._log_mass()
+        return _log_diff(special.log_ndtr(s), special.log_ndtr(lo)) - self._log_mass()
+
+    def log_sf(self, x) -> np.ndarray:
+        """ln P(X > x) (vectorised; accurate far into the upper tail)."""
+        from scipy import special
+        lo, hi = self._bounds()
+        s = np.clip(self._s(x), lo, hi)
+        if not self._gaussian:
+            with np.errstate(divide="ignore"):
+                return np.log(hi - s) - self._log_mass()
+        return _log_diff(special.log_ndtr(-s), special.log_ndtr(-hi)) - self._log_mass()
+
+    def to_normal(self, x) -> np.ndarray:
+        """The standard-normal coordinate z of x: Phi(z) = P(X <= x), from the near tail (vectorised;
+        -inf/+inf at or beyond the ends of the support)."""
+        from scipy import special
+        if self._gaussian and self._bounds() == (-math.inf, math.inf):
+            return self._s(x)
+        lc, ls = self.log_cdf(x), self.log_sf(x)
+        return np.where(lc < ls, special.ndtri_exp(np.minimum(lc, 0.0)), -special.ndtri_exp(np.minimum(ls, 0.0)))
+
+    def from_normal(self, z) -> np.ndarray:
+        """x at the standard-normal coordinate z (the inverse of :meth:`to_normal`; vectorised)."""
+        from scipy import special
+        z = np.asarray(z, dtype=float)
+        lo, hi = self._bounds()
+        if self._gaussian and (lo, hi) == (-math.inf, math.inf):
+            return self._x(z)
+        lm = self._log_mass()
+        if not self._gaussian:
+            w = math.exp(lm)
+            s = np.where(z <= 0, lo + special.ndtr(z) * w, hi - special.ndtr(-z) * w)
+        else:
+            with np.errstate(divide="ignore"):
+                low = special.ndtri_exp(np.logaddexp(special.log_ndtr(lo), special.log_ndtr(z) + lm))
+                high = -special.ndtri_exp(np.logaddexp(special.log_ndtr(-hi), special.log_ndtr(-z) + lm))
+            s = np.where(z <= 0, low, high)
+        return np.clip(self._x(np.clip(s, lo, hi)), self.lower, self.upper)
 
     def mass(self) -> float:
         """Probability mass of the untruncated distribution inside [lower, upper]."""
-        _, lo, hi = self._cut()
-        return 1.0 - lo - hi
+        return math.exp(self._log_mass())
 
     def ppf(self, u) -> np.ndarray:
-        """Quantile function (vectorised over u in [0, 1]); tails computed from the near side."""
-        d, lo, hi = self._cut()
-        u = np.asarray(u, dtype=float)
-        z = 1.0 - lo - hi
-        low = d.ppf(lo + u * z)
-        high = d.isf(hi + (1.0 - u) * z)
-        x = np.where(u < 0.5, low, high)
-        return np.clip(x, self.lower, self.upper)
+        """Quantile function (vectorised over u in [0, 1])."""
+        from scipy import special
+        return self.from_normal(special.ndtri(np.asarray(u, dtype=float)))
 
     def cdf(self, x) -> np.ndarray:
         """P(X <= x) (vectorised)."""
-        d, lo, hi = self._cut()
-        x = np.clip(np.asarray(x, dtype=float), self.lower, self.upper)
-        return np.clip((d.cdf(x) - lo) / (1.0 - lo - hi), 0.0, 1.0)
+        return np.exp(self.log_cdf(x))
 
     def sf(self, x) -> np.ndarray:
         """P(X > x) (vectorised; accurate far into the upper tail)."""
-        d, lo, hi = self._cut()
-        x = np.clip(np.asarray(x, dtype=float), self.lower, self.upper)
-        return np.clip((d.sf(x) - hi) / (1.0 - lo - hi), 0.0, 1.0)
+        return np.exp(self.log_sf(x))
 
     def interval(self) -> tuple[float, float]:
         """The tolerance range drawn in the tornado chart: the bounds of a uniform or
@@ -304,11 +385,24 @@ def _parse_one(key: str, value: Any, source: str, nominal: dict[str, Any], fld: 
         raise e.err(f"expected a tolerance such as \"±10 %\" or a distribution table, got {value!r}",
                     'e.g. { distribution = "normal", sigma = "10 %" }')
     lower, note = _physical_limit(e, shape, a, b, lower)
-    text = value if isinstance(value, str) else repr(value)
+    text = value if isinstance(value, str) else as_written(value)
     d = Distribution(key, shape, e.x0, float(a), float(b), float(lower), float(upper), e.as_factor, e.unit, text)
     if not d.mass() > 0:
         raise e.err("the bounds leave no probability", "widen the bounds")
     return d, note
+
+
+def as_written(value: Any) -> str:
+    """An entry as the user wrote it in TOML: ``{ distribution = "normal", sigma = "15 %" }``."""
+    if isinstance(value, dict):
+        return "{ " + ", ".join(f"{k} = {as_written(v)}" for k, v in value.items()) + " }"
+    if isinstance(value, list):
+        return "[" + ", ".join(as_written(v) for v in value) + "]"
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
 
 
 def _tolerance(e: _Entry, value: str) -> _Shape:

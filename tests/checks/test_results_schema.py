@@ -14,6 +14,7 @@ import copy
 import dataclasses
 import json
 import math
+import tomllib
 import types
 import typing
 from pathlib import Path
@@ -28,7 +29,7 @@ from etcheck.checks import sections as S
 from etcheck.checks.pipeline import check
 from etcheck.checks.results import SCHEMA_VERSION
 from etcheck.input import echo as E
-from etcheck.input.mission import load_mission
+from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.report import render
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -103,6 +104,7 @@ SECTIONS = {
     "uncertainty.margins[].elasticities[]": S.ElasticityRecord,
     "uncertainty.margins[].swings[]": S.SwingRecord,
     "uncertainty.probabilities[]": S.ProbabilityRecord,
+    "uncertainty.probabilities[].cross_check": S.CrossCheckRecord,
 }
 
 
@@ -242,12 +244,18 @@ def test_orbit_mission_validates():
 
 
 def test_uncertainty_section_validates():
-    from etcheck.studies.uncertainty import attach
-
-    mission = dataclasses.replace(load_mission(MISSIONS / "set-tolerances.toml"), fidelity="draft")
-    results = attach(check(mission).results, mission, probabilities=False)  # sensitivities only: fast
-    assert "uncertainty" in results
-    assert_valid(results)
+    """Draft checks with [uncertainty] tables: the spinning SET (pencils, a root per point) and the static SET at
+    a small margin (closed form, with its FORM/SORM cross-check) and at a large one (a bound)."""
+    for name, current in (("set-tolerances.toml", None), ("set-static.toml", "20 A"), ("set-static.toml", "4 A")):
+        data = tomllib.loads((MISSIONS / name).read_text())
+        data["check"]["fidelity"] = "draft"
+        data["uncertainty"] = data.get("uncertainty") or {"bending_stiffness": {"distribution": "normal", "sigma": "15 %"},
+                                                          "axial_field": {"distribution": "lognormal", "sigma": "30 %"}}
+        if current:
+            data["operation"]["current"] = current
+        results = check(mission_from_dict(data)).results
+        assert results["uncertainty"]["probabilities"]
+        assert_valid(results)
 
 
 @pytest.mark.parametrize(

@@ -17,8 +17,9 @@ def tornado_plot(results: dict) -> str:
         len(p["swings"]) or len(p["elasticities"]) for p in panels) * len(panels)), squeeze=False)
     for ax, p in zip(axes[:, 0], panels):
         nominal = p["nominal"]
-        if p["swings"]:
-            rows = sorted(p["swings"], key=lambda w: abs((w["margin_high"] or 0) - (w["margin_low"] or 0)))
+        swung = [w for w in p["swings"] if w["margin_low"] is not None and w["margin_high"] is not None]
+        if swung and nominal is not None:  # (a margin that is not re-evaluated has no swings)
+            rows = sorted(swung, key=lambda w: abs(w["margin_high"] - w["margin_low"]))
             for i, w in enumerate(rows):
                 lo, hi = w["margin_low"], w["margin_high"]
                 ax.barh(i, (lo - nominal), left=nominal, color="#c0392b", height=0.6,

@@ -1,0 +1,352 @@
+"""The probability that a margin falls below the required margin, with a stated error or interval.
+
+The uncertain inputs are independent; each is one standard-normal coordinate
+(:mod:`etcheck.checks.limit_state`, which also integrates one coordinate
+exactly by conditioning). What remains, D coordinates, is
+
+* **D = 0**: nothing: the answer is one conditional probability, in closed
+  form or at one root of the margin along the input (``exact``);
+* **D = 1, or D = 2 when no more than one of them needs the margin solved
+  again** (the rest enter as exact powers): adaptive Gauss-Kronrod quadrature
+  against the normal density (:func:`etcheck.numerics.quadrature.normal_integrals`),
+  nested for D = 2, to a relative error RTOL = 1e-8 (``quadrature``). The
+  stated error adds the quadrature's estimate, the margins' own errors carried
+  through, the cut of the integration range at +-8.3 standard deviations
+  (1e-16 absolute per coordinate) and the root tolerance;
+* **otherwise**: randomised quasi-Monte Carlo, with defensive importance
+  sampling at the design point where FORM puts the probability at or below
+  0.1 (:mod:`etcheck.checks.sampling`; ``sampling``): the 95 % interval of 32
+  replicates with a Student t quantile; the number of points is fixed
+  beforehand by an evaluation budget.
+
+At or below SMALL = 1e-4, FORM and SORM (Breitung) are computed as a
+cross-check. A probability whose upper end (value + error, or the interval's
+upper end) lies below FLOOR = 1e-9 is reported as the bound "P < 1e-9": below
+what the inputs' distributions mean, and below what the sampling resolves.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from etcheck.checks.limit_state import Coordinate, LimitState, NotAnswered
+from etcheck.checks.margin_model import MarginModel
+from etcheck.checks.sampling import REPLICATES, SMALL_FORM, design_point, sample
+from etcheck.checks.sensitivity import MarginSensitivity
+from etcheck.input.uncertainty import Uncertainty
+from etcheck.numerics.quadrature import normal_integrals
+
+#: Probabilities whose upper end lies below this are reported as the bound P < FLOOR.
+FLOOR = 1e-9
+#: At and below this, FORM and SORM are computed as a cross-check.
+SMALL = 1e-4
+#: Target relative error of the quadrature.
+RTOL = 1e-8
+#: Chebyshev-Lobatto degrees of the interpolated margin along one shape input (nested).
+SURROGATE_POINTS = (8, 16, 32, 64)
+_TRUNCATION = math.erfc(8.3 / math.sqrt(2))  # 2 Phi(-8.3): the cut of one integration range
+#: Default budgets of sampling where each sample needs the check's route: margin evaluations, and seconds of them.
+BUDGET = 4096
+SECONDS = 10.0
+#: Points per replicate for sampling a closed-form margin (32 x 2^15: ~1e6 points, about a second).
+CLOSED_POINTS = 2**15
+EXACT, QUADRATURE, SAMPLING, NOT_ANSWERED = "exact", "quadrature", "sampling", "not answered"
+
+
+@dataclass(frozen=True)
+class CrossCheck:
+    """FORM and SORM at the design point (asymptotic approximations, for comparison)."""
+
+    beta: float
+    form: float
+    sorm: float | None
+
+
+@dataclass(frozen=True)
+class Probability:
+    """P(margin < required) (dimensionless) and how good it is.
+
+    ``value``: the estimate (None when below FLOOR, then ``bound`` holds P < bound, or when not answered);
+    ``low``, ``high``: the 95 % interval (sampling) or value -+ the stated error (exact, quadrature);
+    ``error``: relative: the stated error bound (exact, quadrature) or the 95 % half-width (sampling);
+    ``method``: exact, quadrature, sampling or not answered; ``how``: what was done, in words;
+    ``evaluations``: margin evaluations by the check's route (closed-form ones counted too);
+    ``points``: points at which the conditional probability was evaluated (quadrature nodes or samples);
+    ``conditioned_on``: the input integrated exactly;
+    ``inputs``: the uncertain inputs that move the margin; ``inert``: those that provably do not.
+    """
+
+    margin: str
+    required: float
+    value: float | None
+    bound: float | None
+    low: float | None
+    high: float | None
+    error: float | None
+    method: str
+    how: str
+    evaluations: int
+    points: int
+    conditioned_on: str | None
+    inputs: tuple[str, ...]
+    inert: tuple[str, ...]
+    model: str
+    cross_check: CrossCheck | None = None
+    note: str = ""
+    elapsed_s: float = 0.0
+
+
+def failure_probability(model: MarginModel, kind: str, unc: Uncertainty, sens: MarginSensitivity | None = None,
+                        seed: int = 20240615, budget: int = BUDGET, method: str | None = None,
+                        points: int | None = None, seconds: float | None = SECONDS) -> Probability:
+    """P(margin ``kind`` < required) over the uncertain inputs ``unc`` (module docstring).
+
+    ``sens``: the margin's elasticities (they choose the input to condition on
+    when every input needs the margin solved again); ``seed``: of the
+    sampling; ``budget``: margin evaluations the sampling may spend;
+    ``method``: force "sampling" (tests of the interval), else chosen;
+    ``points``: sampled points per replicate (default: from the budgets, or
+    CLOSED_POINTS for a closed form); ``seconds``: a time budget for the
+    sampled margins (None: ``budget`` alone decides; the points then do not
+    depend on the machine).
+    """
+    started = time.perf_counter()
+    base = dict(margin=kind, required=model.required, model=model.name)
+    inert = model.inert(kind, unc.names)
+    moving = [d for d in unc.inputs if d.input not in inert]
+    powers = model.powers(kind)
+    shape = tuple(d.input for d in moving if d.input not in powers)
+    why = model.unanswered(kind, shape)
+    if why:
+        return _not_answered(base, why, moving, inert, started)
+    ls = _limit_state(model, kind, moving, powers, sens)
+    info = dict(base, inputs=tuple(d.input for d in moving), inert=tuple(d.input for d in unc.inputs
+                                                                           if d.input in inert))
+    try:
+        if ls is None:  # nothing moves it
+            m = model.margin(model.values(), kind)
+            p = float(m.value < model.required)
+            return Probability(**info, value=p, bound=None, low=p, high=p, error=0.0, method=EXACT,
+                               how="exact: no uncertain input moves this margin", evaluations=1, points=0,
+                               conditioned_on=None, elapsed_s=time.perf_counter() - started)
+        chosen = method or _method(ls)
+        out = _sampled(ls, info, seed, budget, points, seconds) if chosen == SAMPLING else _integrated(ls, info)
+    except NotAnswered as exc:
+        return _not_answered(base, f"a sample's margin was not answered by the check's route: {exc}", moving, inert,
+                             started)
+    return _finish(out, ls, started)
+
+
+def _not_answered(base: dict, why: str, moving, inert, started: float) -> Probability:
+    return Probability(**base, value=None, bound=None, low=None, high=None, error=None, method=NOT_ANSWERED,
+                       how=why, evaluations=0, points=0, conditioned_on=None,
+                       inputs=tuple(d.input for d in moving), inert=tuple(inert), elapsed_s=time.perf_counter() - started)
+
+
+def _limit_state(model: MarginModel, kind: str, moving, powers: dict[str, float],
+                 sens: MarginSensitivity | None) -> LimitState | None:
+    """The coordinates (lognormal power inputs merged), the one conditioned on and the order of the rest:
+    inputs whose margin must be solved again outermost (one solve serves a whole inner integral)."""
+    if not moving:
+        return None
+    coords, merged = [], []
+    for d in moving:
+        a = powers.get(d.input)
+        if a is not None and d.shape == "lognormal" and d.mass() == 1.0:
+            merged.append((d.input, a * d.b))
+        else:
+            coords.append(Coordinate(d.input, d, a, 0.0, model.nominal.get(d.input, 1.0)))
+    if merged:
+        sigma = math.sqrt(sum(s * s for _, s in merged))
+        coords.append(Coordinate(" and ".join(n for n, _ in merged) + (" (lognormal, one term)" if len(merged) > 1
+                                                                         else ""), None, None, sigma))
+    coords.sort(key=lambda c: not c.shape)  # shape coordinates first: outermost in the nesting
+    closed = [i for i, c in enumerate(coords) if not c.shape]
+    if closed:
+        cond = max(closed, key=lambda i: coords[i].spread)
+        return LimitState(model, kind, coords, cond)
+    els = {e.input: e.value for e in sens.elasticities} if sens else {}
+    cond = max(range(len(coords)), key=lambda i: abs(els.get(coords[i].name) or 0.0) * coords[i].dist.log_spread())
+    ls = LimitState(model, kind, coords, cond)
+    ls.rising = ls.rises_along_cond() if els.get(coords[cond].name) is None else els[coords[cond].name] > 0
+    return ls
+
+
+def _method(ls: LimitState) -> str:
+    """Quadrature where at most one outer coordinate needs the margin solved again (and D <= 2; with a root
+    found per point only D <= 1), sampling otherwise."""
+    D = len(ls.outer)
+    shape_outer = sum(ls.coords[i].shape for i in ls.outer)
+    root = ls.coords[ls.cond].shape
+    if D == 0 or D == 1 or (D == 2 and shape_outer <= 1 and not root):
+        return QUADRATURE
+    return SAMPLING
+
+
+def _integrated(ls: LimitState, info: dict) -> Probability:
+    """D = 0: the conditional probability at the outer point; D = 1, 2: nested quadrature."""
+    cond = ls.coords[ls.cond]
+    how_cond = (f"{cond.name} integrated in closed form (the margin is an exact power of it)" if not cond.shape else
+                f"{cond.name} integrated exactly at the root of margin = required along it (Brent)")
+    D = len(ls.outer)
+    if D == 0:
+        lp, le = ls.log_conditional(np.zeros((1, 0)))
+        value, err = float(np.exp(lp[0])), float(np.exp(le[0]))
+        return Probability(**info, value=value, bound=None, low=max(0.0, value - err), high=min(1.0, value + err),
+                           error=err / value if value > 0 else None, method=EXACT,
+                           how=f"exact: one input; {how_cond}", evaluations=ls.evaluations, points=1,
+                           conditioned_on=cond.name)
+    log_value, abs_err, evaluations, peak, N = _interpolated(ls)
+    if N is None:
+        log_value, abs_err, evaluations, peak = _nested(ls)
+    value = math.exp(log_value)
+    names = ", ".join(ls.coords[i].name for i in ls.outer)
+    how = (f"quadrature: adaptive Gauss-Kronrod (15 points, nested {D}-D) over {names} in standard-normal "
+           f"coordinates to a relative {RTOL:.0e}; {how_cond}")
+    if N is not None:
+        shape = next(c.name for c in ls.coords if c.shape)
+        how += (f"; the margin along {shape} interpolated at {N + 1} Chebyshev points over +-8.3 standard "
+                f"deviations (its interpolation error carried into the error stated)")
+    return Probability(**info, value=value, bound=None, low=max(0.0, value - abs_err), high=min(1.0, value + abs_err),
+                       error=abs_err / value if value > 0 else None, method=QUADRATURE, how=how,
+                       evaluations=ls.evaluations, points=evaluations, conditioned_on=cond.name,
+                       cross_check=_cross_check(ls, value, peak))
+
+
+def _cross_check(ls: LimitState, value: float, start: np.ndarray | None = None) -> CrossCheck | None:
+    """FORM and SORM for a small probability (from ``start``, e.g. where the integrand peaked)."""
+    if not value <= SMALL or not ls.outer:
+        return None
+    dp = design_point(ls, start)
+    return CrossCheck(dp.beta, dp.form, dp.sorm) if dp.safe_origin and dp.found else None
+
+
+def _interpolated(ls: LimitState) -> tuple[float, float, int, np.ndarray, int | None]:
+    """With one shape coordinate, not the one conditioned on: ln M along it interpolated at 9, 17, 33, 65
+    Chebyshev-Lobatto points over +-CAP (nested: each level reuses the last's margins) until the interpolant's
+    error bound (:meth:`LimitState.lobatto_margins`), carried through the integral like a margin error, is below
+    RTOL x P. N None where that does not happen (or a margin is zero or unbounded at a point): the margin is then
+    solved at every quadrature point."""
+    shape = [c for c in ls.coords if c.shape]
+    if len(shape) != 1 or ls.coords[ls.cond].shape:
+        return 0.0, 0.0, 0, np.zeros(0), None
+    for N in SURROGATE_POINTS:
+        surrogate = ls.lobatto_margins(N)
+        if not math.isfinite(surrogate[2]):
+            break
+        ls.surrogate = surrogate
+        try:
+            log_value, abs_err, count, peak = _nested(ls)
+        finally:
+            ls.surrogate = None
+        if abs_err <= 10 * RTOL * math.exp(log_value) + 2 * _TRUNCATION:
+            return log_value, abs_err, count, peak, N
+    return 0.0, 0.0, 0, np.zeros(0), None
+
+
+def _nested(ls: LimitState) -> tuple[float, float, int, np.ndarray]:
+    """ln P, its absolute error bound, the integrand evaluations and where the outermost integrand peaked
+    (the others at 0), by nested quadrature over the outer coordinates (outermost first)."""
+    outer = ls.outer
+    count = [0]
+    peaks = []
+
+    def level(prefix: np.ndarray, depth: int):
+        """ln of the integral over coordinates depth.. for every row of ``prefix`` (the coordinates before),
+        and ln of its absolute error."""
+        n = len(prefix)
+
+        def log_f(i, z):
+            Z = np.column_stack([prefix[i], z]) if prefix.shape[1] else z[:, None]
+            if depth == len(outer) - 1:
+                count[0] += len(z)
+                return ls.log_conditional(Z)
+            return level(Z, depth + 1)
+
+        r = normal_integrals(log_f, n, rtol=RTOL, panels=_panels(ls, depth))
+        if depth == 0:
+            peaks.append(r.peak[0])
+        value = np.exp(r.log_value)
+        err = (r.quadrature + r.own) * value + r.truncation
+        with np.errstate(divide="ignore"):
+            return r.log_value, np.log(err)
+
+    log_value, log_err = level(np.zeros((1, 0)), 0)
+    start = np.zeros(len(outer))
+    start[0] = peaks[0]
+    return float(log_value[0]), float(np.exp(log_err[0])), count[0], start
+
+
+def _panels(ls: LimitState, depth: int) -> int:
+    """Initial panels on [-8.3, 8.3]: 3 where each point costs a margin solve, 16 for closed forms."""
+    return 3 if ls.coords[ls.outer[depth]].shape or ls.coords[ls.cond].shape else 16
+
+
+def _sampled(ls: LimitState, info: dict, seed: int, budget: int, points: int | None,
+             seconds: float | None) -> Probability:
+    """Randomised QMC, half the points at the design point when FORM puts P at or below SMALL_FORM; the points
+    per replicate fixed before sampling (``points``, else from the budgets)."""
+    dp = design_point(ls)
+    points = points or _points(ls, budget, seconds)
+    shifted = dp.safe_origin and dp.found and dp.form <= SMALL_FORM
+    s = sample(ls, points, seed, dp.z if shifted else None)
+    names = ", ".join(ls.coords[i].name for i in ls.outer)
+    cond = ls.coords[ls.cond]
+    how = (f"sampling: randomised quasi-Monte Carlo, {REPLICATES} scrambled Sobol sequences of {points} points over "
+           f"{names}" + (f", half of them around the design point (defensive importance sampling, FORM beta = "
+                         f"{dp.beta:.3g})" if shifted else "") + "; 95 % interval from the replicates with a Student t "
+           f"quantile ({REPLICATES - 1} degrees of freedom); {cond.name} integrated exactly")
+    total = REPLICATES * points
+    cross = CrossCheck(dp.beta, dp.form, dp.sorm) if dp.safe_origin and dp.found else None
+    common = dict(info, method=SAMPLING, how=how, evaluations=ls.evaluations, points=total,
+                  conditioned_on=cond.name, cross_check=cross)
+    if s.value == 0:  # no point came near failing: the rule of three over the points drawn from the inputs' own law
+        unshifted = total // 2 if shifted else total
+        return Probability(**common, value=None, bound=min(1.0, 3.0 / unshifted), low=None, high=None, error=None,
+                           note=f"no sampled point came near failing: P < 3/{unshifted} (the rule of three, 95 %)")
+    low, high = max(0.0, s.value - s.half_width), min(1.0, s.value + s.half_width)
+    return Probability(**common, value=s.value, bound=None, low=low, high=high, error=s.half_width / s.value)
+
+
+def _points(ls: LimitState, budget: int, seconds: float | None) -> int:
+    """Points per replicate: CLOSED_POINTS for a closed form; otherwise the largest power of two whose margin
+    evaluations fit in what is left of ``budget`` and (if given) of ``seconds`` at the time per evaluation
+    measured so far; at least one."""
+    per_sample = _cost_per_sample(ls)
+    if per_sample == 0:
+        return CLOSED_POINTS
+    spare = float(budget - ls.evaluations)
+    if seconds is not None and ls.evaluations:
+        spare = min(spare, seconds / (ls.seconds / ls.evaluations))
+    n = spare / (REPLICATES * per_sample)
+    return 2 ** max(0, int(math.floor(math.log2(n)))) if n >= 1 else 1
+
+
+def _cost_per_sample(ls: LimitState) -> float:
+    """Margin evaluations one sampled point costs: 0 for a closed form, 1 with a closed-form conditioning, the
+    mean of the root searches so far otherwise."""
+    if not any(c.shape for c in ls.coords):
+        return 0
+    if not ls.coords[ls.cond].shape:
+        return 1
+    return max(1.0, ls.evaluations / max(1, ls.roots_found))
+
+
+def _finish(p: Probability, ls: LimitState, started: float) -> Probability:
+    """The cross-check for small probabilities, the bound below FLOOR, notes and the time."""
+    from dataclasses import replace
+
+    notes = []
+    if ls.not_monotone:
+        notes.append(f"the margin is not monotone along {ls.coords[ls.cond].name} over the points visited: the "
+                     "conditional probability takes its first crossing")
+    p = replace(p, evaluations=max(p.evaluations, ls.evaluations))
+    top = p.high if p.high is not None else p.value
+    if p.value is not None and top is not None and top < FLOOR:
+        notes.append(f"below {FLOOR:g}: reported as a bound (the estimate {p.value:.3g})")
+        p = replace(p, value=None, bound=FLOOR)
+    return replace(p, note="; ".join(n for n in (p.note, *notes) if n), elapsed_s=time.perf_counter() - started)

@@ -1,0 +1,145 @@
+"""The uncertainty study of a check: which input each margin hinges on, and the probability of falling short.
+
+Run by :func:`etcheck.checks.pipeline.check` when the mission has an
+``[uncertainty]`` table; its results are the check's ``uncertainty`` section.
+The margins are re-evaluated by the check's own route and tolerances
+(:mod:`etcheck.checks.margin_model`); the elasticities and tolerance swings
+come from :mod:`etcheck.checks.sensitivity`, the probabilities from
+:mod:`etcheck.checks.probability`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+from typing import cast
+
+from etcheck.checks.margin_model import LABELS, MarginModel, margin_model
+from etcheck.checks.margins import INCOMPLETE, Margin
+from etcheck.checks.plan import Plan
+from etcheck.checks.probability import BUDGET, NOT_ANSWERED, Probability, failure_probability
+from etcheck.checks.sections import MarginSensitivityRecord, ProbabilityRecord, UncertaintySection
+from etcheck.checks.sensitivity import STEP, MarginSensitivity, sensitivities, swings
+from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions
+from etcheck.input.echo import UncertaintyInputs
+from etcheck.input.mission import Mission
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.scaling import Scaled, Scene
+
+SEED = 20240615
+#: Relative tolerance of every margin the study computes (the check's own where tighter): a margin error eps moves
+#: P by about eps |d ln P / d ln margin|, which the probability's stated error carries; at 1e-8 it is below the
+#: 1e-6 the probabilities are stated to, and the pencils' round-off next to the end of a line (1e-9) meets it
+#: without the exact determinant's second opinion (1.5 ms a margin instead of 15-60 ms).
+MARGIN_TOL = 1e-8
+
+
+@dataclass(frozen=True)
+class UncertaintyStudy:
+    """Sensitivities of every margin, and the probabilities of falling short."""
+
+    model: MarginModel
+    sensitivities: tuple[MarginSensitivity, ...]
+    probabilities: tuple[Probability, ...] = ()
+    inputs: UncertaintyInputs = field(default_factory=lambda: cast(UncertaintyInputs, {"inputs": [], "notes": []}))
+    elapsed_s: float = 0.0
+    sensitivity_time_s: float = 0.0
+
+    def as_dict(self) -> UncertaintySection:
+        """JSON-able (None where not finite)."""
+        margins: list[MarginSensitivityRecord] = []
+        for s in self.sensitivities:
+            ranked = sorted((e for e in s.elasticities if e.value is not None), key=lambda e: -abs(e.value))
+            margins.append({
+                "margin": s.margin, "nominal": _num(s.nominal),
+                "elasticities": [{"input": e.input, "label": LABELS[e.input], "value": _num(e.value),
+                                  "method": e.method} for e in s.elasticities],
+                "hinges_on": [e.input for e in ranked if abs(e.value) >= 0.1],
+                "does_not_matter": [e.input for e in ranked if abs(e.value) < 1e-3],
+                "swings": [{"input": w.input, "label": LABELS.get(w.input, w.input), "low": _num(w.low),
+                            "high": _num(w.high), "margin_low": _num(w.margin_low),
+                            "margin_high": _num(w.margin_high)} for w in s.swings],
+            })
+        return {
+            "route": self.model.name,
+            "required_margin": self.model.required,
+            "step": STEP,
+            "nominal_inputs_SI": dict(self.model.nominal),
+            "inputs": self.inputs,
+            "margins": margins,
+            "probabilities": [_probability_record(p) for p in self.probabilities],
+            "sensitivity_time_s": self.sensitivity_time_s,
+            "elapsed_s": self.elapsed_s,
+        }
+
+
+def _num(x) -> float | None:
+    return None if x is None or not math.isfinite(x) else float(x)
+
+
+def _probability_record(p: Probability) -> ProbabilityRecord:
+    cross = None if p.cross_check is None else {"beta": _num(p.cross_check.beta), "form": _num(p.cross_check.form),
+                                                "sorm": _num(p.cross_check.sorm)}
+    return {"margin": p.margin, "required": p.required, "value": _num(p.value), "bound": _num(p.bound),
+            "low": _num(p.low), "high": _num(p.high), "error": _num(p.error), "method": p.method, "how": p.how,
+            "evaluations": p.evaluations, "points": p.points, "conditioned_on": p.conditioned_on,
+            "inputs": list(p.inputs), "inert": list(p.inert), "model": p.model, "cross_check": cross,
+            "note": p.note, "elapsed_s": p.elapsed_s}
+
+
+@single_blas_thread
+def uncertainty_study(mission: Mission, scene: Scene, scaled: Scaled, chosen: Plan, margins: list[Margin],
+                      options: WhirlOptions = DEFAULT_OPTIONS, probabilities: bool = True, seed: int = SEED,
+                      budget: int = BUDGET) -> UncertaintyStudy:
+    """The study of a checked mission with an [uncertainty] table: elasticities of every margin, the tolerance
+    swings and (``probabilities``) the probability of each margin falling below the required margin, on the
+    route and at the tolerances the check used (``chosen``, ``options``; ``margins`` are the check's)."""
+    started = time.perf_counter()
+    unc = mission.uncertainty
+    answered = [m for m in margins if m.verdict != INCOMPLETE]
+    model = margin_model(mission, scene, scaled, chosen, answered, options)
+    sens = sensitivities(model)  # at the check's tolerance: the differences divide the margins' errors by 1e-3
+    model = replace(model, options=replace(options, tol=max(options.tol, MARGIN_TOL)))
+    t_sens = time.perf_counter() - started
+    sw = swings(model, unc)
+    sens = tuple(replace(s, swings=sw.get(s.margin, ())) for s in sens)
+    probs: list[Probability] = []
+    if probabilities:
+        by_name = {s.margin: s for s in sens}
+        for m in margins:
+            if m.verdict == INCOMPLETE or m.name not in model.kinds:
+                probs.append(_unanswered_margin(m, model))
+            else:
+                probs.append(failure_probability(model, m.name, unc, by_name.get(m.name), seed=seed, budget=budget))
+    return UncertaintyStudy(model, sens, tuple(probs), unc.as_dict(), time.perf_counter() - started, t_sens)
+
+
+def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> MarginModel:
+    """The margin model of a mission's straight-tether margins as its check builds it (the critical values of a
+    draft check, none of its other answers), at the study's margin tolerance: for scripts and tests that ask
+    for probabilities on their own (:func:`etcheck.checks.probability.failure_probability`)."""
+    from etcheck.checks.margins import straight_margins
+    from etcheck.checks.orbit_field import with_orbit_field
+    from etcheck.checks.plan import plan
+    from etcheck.checks.static_buckling import static_buckling, static_limits
+    from etcheck.checks.straight import linear_stability
+    from etcheck.scaling import scale, scene
+
+    mission = with_orbit_field(mission)
+    sc = scene(mission)
+    scaled = scale(sc)
+    chosen = plan(scaled.params, mission.fidelity)
+    rung0 = static_buckling(scaled)
+    static = {**rung0, "limits": static_limits(rung0, mission, sc)}
+    linear = linear_stability(scaled, replace(options, draft=True), chosen.route) \
+        if chosen.rung == 1 and chosen.complete else None
+    margins = [m for m in straight_margins(mission, sc, scaled, chosen, static, linear) if m.verdict != INCOMPLETE]
+    model = margin_model(mission, sc, scaled, chosen, margins, options)
+    return replace(model, options=replace(options, tol=max(options.tol, MARGIN_TOL)))
+
+
+def _unanswered_margin(m: Margin, model: MarginModel) -> Probability:
+    why = "the check did not answer this margin" if m.verdict == INCOMPLETE else "this margin is not re-evaluated"
+    return Probability(m.name, m.required, None, None, None, None, None, NOT_ANSWERED, why, 0, 0, None, (), (),
+                       model.name)
