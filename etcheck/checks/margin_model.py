@@ -35,8 +35,8 @@ import numpy as np
 from etcheck.checks.margins import BUCKLED, INCOMPLETE, LOAD_AT_REST, LOAD_AT_SPIN, SPIN, margin_from_critical
 from etcheck.checks.plan import EXACT, SPECTRAL, straight_route
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, critical_values
-from etcheck.rod.straight.analytic import characteristic_roots
 from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.analytic import characteristic_roots
 
 #: Physical inputs, their SI unit and label.
 PHYSICAL = {

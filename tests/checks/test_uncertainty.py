@@ -18,6 +18,7 @@ from scipy.optimize import brentq
 
 from etcheck import check, mission_from_dict
 from etcheck.checks.margins import LOAD_AT_REST, LOAD_AT_SPIN, SPIN
+from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.plan import EXACT
 from etcheck.checks.probability import FLOOR, failure_probability
 from etcheck.checks.sensitivity import sensitivities
@@ -196,7 +197,7 @@ def test_one_input_on_the_exact_determinant_route_against_its_margin_root():
     model = study_model(m)
     assert model.route == EXACT
     p = failure_probability(model, LOAD_AT_SPIN, m.uncertainty)
-    sc = scene(m)
+    sc = scene(with_orbit_field(m))
 
     def margin(L):
         s = replace(sc, length=L, P=sc.P * (sc.length / L) ** 2)
@@ -319,7 +320,7 @@ def test_elasticities_match_an_independent_physical_difference():
 def test_torsion_provably_does_not_move_the_critical_values():
     """GJ is an inert input on every rung-1 route (torsion decouples from bending about the straight tether)."""
     for name, route in (("set.toml", "spectral"), ("tape-tether.toml", EXACT)):
-        p = scale(scene(mission(name))).params
+        p = scale(scene(with_orbit_field(mission(name)))).params
         for q in (p, p.with_(gamma=0.0)):
             a, b = (critical_values(x, DEFAULT_OPTIONS, route) for x in (q, q.with_(Gamma=3.7 * q.Gamma)))
             assert b[0]["value"] == pytest.approx(a[0]["value"], rel=1e-13)
