@@ -102,9 +102,8 @@ class LimitState:
     ``cond`` indexes the coordinate integrated exactly, the others (``outer``, in order) are integrated or
     sampled. ``rising``: for a shape conditioning coordinate, whether the margin grows with it.
     ``evaluations``: margin evaluations so far (each one solve of the check's route; ``seconds`` their wall
-    time). ``surrogate``: with one
-    shape coordinate, (its Chebyshev-Lobatto points z, ln M there, the largest relative error of those margins):
-    ln M is then their polynomial interpolant (:func:`lobatto_margins` makes it)."""
+    time). ``surrogate``: with one shape coordinate, a degree N: ln M is then the polynomial interpolant of its
+    values at the N + 1 Chebyshev-Lobatto points over +-CAP (:meth:`lobatto_margins`)."""
 
     model: MarginModel
     kind: str
@@ -114,7 +113,7 @@ class LimitState:
     evaluations: int = 0
     seconds: float = 0.0
     not_monotone: bool = False
-    surrogate: tuple[np.ndarray, np.ndarray, float] | None = None
+    surrogate: int | None = None
     _memo: dict = field(default_factory=dict)
     _roots: dict = field(default_factory=dict)
 
@@ -145,13 +144,11 @@ class LimitState:
         """ln M and its relative error at the shape coordinates of every row of Z (full coordinates; power
         inputs at their nominal values), each distinct point computed once (remembered)."""
         if self.surrogate is not None:
-            from etcheck.numerics.chebyshev import resample_matrix
+            return self._interpolated(Z[:, next(i for i, c in enumerate(self.coords) if c.shape)], self.surrogate)
+        return self._solved(Z)
 
-            nodes, values, err = self.surrogate
-            z = Z[:, next(i for i, c in enumerate(self.coords) if c.shape)]
-            s = (nodes - nodes[0]) / (nodes[-1] - nodes[0])
-            at = (z - nodes[0]) / (nodes[-1] - nodes[0])
-            return resample_matrix(s, at, lobatto_weights(len(nodes) - 1)) @ values, np.full(len(z), err)
+    def _solved(self, Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """ln M and its relative error solved by the check's route at every row of Z (remembered)."""
         if not any(c.shape for c in self.coords):  # one margin for every row
             lnM, e = self._memo[()] if () in self._memo else self._remember([()])[()]
             return np.full(len(Z), lnM), np.full(len(Z), e)
@@ -173,25 +170,27 @@ class LimitState:
                 self._memo[k] = (_log(m.value), m.error)
         return self._memo
 
-    def lobatto_margins(self, N: int, cap: float = CAP) -> tuple[np.ndarray, np.ndarray, float]:
-        """ln M at the N + 1 Chebyshev-Lobatto points of the one shape coordinate on [-cap, cap] (computed, or
-        remembered: the points of N are among those of 2N), and a bound on the error of its interpolant: the
-        largest error of those margins plus twice the largest of the last quarter of its Chebyshev coefficients
-        (inf where a margin is zero or unbounded)."""
-        from scipy.fft import dct
+    def lobatto_margins(self, N: int) -> bool:
+        """Solve ln M at the N + 1 Chebyshev-Lobatto points of the one shape coordinate on [-CAP, CAP] (those of
+        N / 2 among them); whether all are finite (a margin zero or unbounded at a point: no interpolant)."""
+        values, _ = self._solved(self._lobatto_rows(N))
+        return bool(np.all(np.isfinite(values)))
 
+    def _lobatto_rows(self, N: int) -> np.ndarray:
         from etcheck.numerics.chebyshev import lobatto_nodes
 
-        i = next(i for i, c in enumerate(self.coords) if c.shape)
-        nodes = -cap + 2 * cap * lobatto_nodes(N)
         Z = np.zeros((N + 1, len(self.coords)))
-        Z[:, i] = nodes
-        values, errors = self.log_margins(Z)
-        if not np.all(np.isfinite(values)):
-            return nodes, values, math.inf
-        coef = dct(values, type=1) / N  # Chebyshev coefficients (the ends halved; the sign pattern is irrelevant)
-        coef[[0, -1]] *= 0.5
-        return nodes, values, float(np.max(errors)) + 2.0 * float(np.max(np.abs(coef[(3 * N) // 4:])))
+        Z[:, next(i for i, c in enumerate(self.coords) if c.shape)] = -CAP + 2 * CAP * lobatto_nodes(N)
+        return Z
+
+    def _interpolated(self, z: np.ndarray, N: int) -> tuple[np.ndarray, np.ndarray]:
+        """ln M by the degree-N interpolant (the margins solved by :meth:`lobatto_margins`), and the largest error
+        of those margins."""
+        from etcheck.numerics.chebyshev import lobatto_nodes, resample_matrix
+
+        values, err = self._solved(self._lobatto_rows(N))
+        at = (np.asarray(z, float) + CAP) / (2 * CAP)
+        return resample_matrix(lobatto_nodes(N), at, lobatto_weights(N)) @ values, np.full(len(at), np.max(err))
 
     def _one(self, key: tuple):
         return self.model.margin(self._inputs(key), self.kind)

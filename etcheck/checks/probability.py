@@ -46,12 +46,14 @@ FLOOR = 1e-9
 SMALL = 1e-4
 #: Target relative error of the quadrature.
 RTOL = 1e-8
-#: Chebyshev-Lobatto degrees of the interpolated margin along one shape input (nested).
-SURROGATE_POINTS = (8, 16, 32, 64)
+#: Chebyshev-Lobatto degrees of the interpolated margin along one shape input (nested), and the stated relative
+#: error at which it is used (the margins are solved at the quadrature points where it does not reach it).
+SURROGATE_POINTS = (16, 32, 64)
+SURROGATE_RTOL = 1e-6
 _TRUNCATION = math.erfc(8.3 / math.sqrt(2))  # 2 Phi(-8.3): the cut of one integration range
 #: Default budgets of sampling where each sample needs the check's route: margin evaluations, and seconds of them.
 BUDGET = 4096
-SECONDS = 10.0
+SECONDS = 5.0
 #: Points per replicate for sampling a closed-form margin (32 x 2^15: ~1e6 points, about a second).
 CLOSED_POINTS = 2**15
 EXACT, QUADRATURE, SAMPLING, NOT_ANSWERED = "exact", "quadrature", "sampling", "not answered"
@@ -210,7 +212,7 @@ def _integrated(ls: LimitState, info: dict) -> Probability:
     if N is not None:
         shape = next(c.name for c in ls.coords if c.shape)
         how += (f"; the margin along {shape} interpolated at {N + 1} Chebyshev points over +-8.3 standard "
-                f"deviations (its interpolation error carried into the error stated)")
+                f"deviations (the change of P from {N // 2 + 1} points added to the error stated)")
     return Probability(**info, value=value, bound=None, low=max(0.0, value - abs_err), high=min(1.0, value + abs_err),
                        error=abs_err / value if value > 0 else None, method=QUADRATURE, how=how,
                        evaluations=ls.evaluations, points=evaluations, conditioned_on=cond.name,
@@ -226,25 +228,27 @@ def _cross_check(ls: LimitState, value: float, start: np.ndarray | None = None) 
 
 
 def _interpolated(ls: LimitState) -> tuple[float, float, int, np.ndarray, int | None]:
-    """With one shape coordinate, not the one conditioned on: ln M along it interpolated at 9, 17, 33, 65
-    Chebyshev-Lobatto points over +-CAP (nested: each level reuses the last's margins) until the interpolant's
-    error bound (:meth:`LimitState.lobatto_margins`), carried through the integral like a margin error, is below
-    RTOL x P. N None where that does not happen (or a margin is zero or unbounded at a point): the margin is then
-    solved at every quadrature point."""
+    """With one shape coordinate, not the one conditioned on: ln M along it interpolated at 17, 33, 65
+    Chebyshev-Lobatto points over +-CAP (nested: each level reuses the last's margins) until the stated error,
+    with the change of P from the last level added (an estimate of the last level's error, and so a generous
+    one of this level's), is below SURROGATE_RTOL x P. N None where that does not happen (or a margin is zero or
+    unbounded at a point): the margin is then solved at every quadrature point."""
     shape = [c for c in ls.coords if c.shape]
     if len(shape) != 1 or ls.coords[ls.cond].shape:
         return 0.0, 0.0, 0, np.zeros(0), None
+    last = None
     for N in SURROGATE_POINTS:
-        surrogate = ls.lobatto_margins(N)
-        if not math.isfinite(surrogate[2]):
+        if not ls.lobatto_margins(N):
             break
-        ls.surrogate = surrogate
+        ls.surrogate = N
         try:
             log_value, abs_err, count, peak = _nested(ls)
         finally:
             ls.surrogate = None
-        if abs_err <= 10 * RTOL * math.exp(log_value) + 2 * _TRUNCATION:
-            return log_value, abs_err, count, peak, N
+        value = math.exp(log_value)
+        if last is not None and abs_err + abs(value - last) <= SURROGATE_RTOL * value + 2 * _TRUNCATION:
+            return log_value, abs_err + abs(value - last), count, peak, N
+        last = value
     return 0.0, 0.0, 0, np.zeros(0), None
 
 
