@@ -154,14 +154,17 @@ class MarginModel:
         margin = M(others) (x / x0)^a. Rung 0: every input of eq. (91); rung 1 and the buckled tether: the current
         and the field (they enter only the operating load) for the load margins, the spin rate for the spin margin
         (it enters only the operating spin)."""
-        if self.route == CLOSED:
+        if self.route == CLOSED and kind != BUCKLED:
             return dict(RUNG0_POWERS)
         if kind == SPIN:
             return {"spin_rate": -1.0}
         return {"current": -1.0, "axial_field": -1.0}
 
     def inert(self, kind: str, uncertain: tuple[str, ...] = ()) -> dict[str, str]:
-        """Inputs that provably do not move the margin ``kind`` (input -> why), given the ``uncertain`` inputs."""
+        """Inputs that provably do not move the margin ``kind`` (input -> why), given the ``uncertain`` inputs
+        (none for the buckled tether: its torsion, mass and damping all act)."""
+        if kind == BUCKLED:
+            return {}
         if self.route == CLOSED:
             return {k: "rung 0: the static load of eq. (91) does not contain it" for k in INPUTS
                     if k not in RUNG0_POWERS}
@@ -187,14 +190,14 @@ class MarginModel:
     def evaluate(self, v: dict[str, float], kinds: tuple[str, ...] | None = None) -> dict[str, MarginValue]:
         """The margins ``kinds`` (default all) at physical inputs v."""
         kinds = kinds or self.kinds
-        if self.route == CLOSED:
-            m = closed_form_margin({k: np.asarray(x) for k, x in v.items()})
-            return {k: MarginValue(float(m), _RUNG0_ERROR) for k in kinds}
         out = {}
         if BUCKLED in kinds:
             scale = self.nominal["current"] * self.nominal["axial_field"] / (v["current"] * v["axial_field"])
             out[BUCKLED] = MarginValue(self.at_nominal[BUCKLED] * scale)
         straight = tuple(k for k in kinds if k != BUCKLED)
+        if straight and self.route == CLOSED:
+            m = float(closed_form_margin({k: np.asarray(x) for k, x in v.items()}))
+            return out | {k: MarginValue(m, _RUNG0_ERROR) for k in straight}
         return out | (self.at_params(self.params(v), straight) if straight else {})
 
     def at_params(self, p: RodParameters, kinds: tuple[str, ...]) -> dict[str, MarginValue]:

@@ -91,7 +91,8 @@ def sensitivities(model: MarginModel, step: float = STEP) -> tuple[MarginSensiti
     v = model.values()
     if model.route == CLOSED:
         how = "exact (closed form: margin ∝ sqrt(EI1 EI2) L^-3 / |I B0|)"
-        return tuple(MarginSensitivity(kind, model.margin(v, kind).value,
+        return tuple(_buckled(model) if kind == BUCKLED else
+                     MarginSensitivity(kind, model.margin(v, kind).value,
                                        tuple(Elasticity(k, RUNG0_POWERS.get(k, 0.0), how) for k in INPUTS))
                      for kind in model.kinds)
     straight = tuple(k for k in model.kinds if k != BUCKLED)

@@ -114,10 +114,9 @@ class Distribution:
                 return (x - self.a) / self.b
             if self.shape == "uniform":
                 return (x - self.a) / (self.b - self.a)
-            lx = np.where(x > 0, np.log(np.where(x > 0, x, 1.0)), -np.inf)
-            if self.shape == "lognormal":
-                return (lx - self.a) / self.b
-            return (lx - math.log(self.a)) / math.log(self.b / self.a)
+            ref = math.exp(self.a) if self.shape == "lognormal" else self.a  # ln(x / ref): no cancellation near ref
+            lx = np.where(x > 0, np.log(np.where(x > 0, x, 1.0) / ref), -np.inf)
+            return lx / (self.b if self.shape == "lognormal" else math.log(self.b / self.a))
 
     def _x(self, s) -> np.ndarray:
         """x at the base variable s (vectorised)."""

@@ -359,5 +359,40 @@ def test_a_bound_is_shown_as_a_bound():
     assert "&lt; 1×10<sup>-9</sup>" in row
 
 
+def test_the_buckled_margin_is_scaled_exactly_by_current_and_field_and_otherwise_not_answered():
+    """The buckled tether's margin (rungs 2-3, seconds per point) is not re-evaluated: a current tolerance scales
+    the check's value exactly (P = P(current factor > margin / required)); a length tolerance is refused with
+    the reason."""
+    from etcheck.checks.margin_model import margin_model
+    from etcheck.checks.margins import BUCKLED, Margin
+    from etcheck.checks.plan import plan
+
+    for table, answered in (({"current": {"distribution": "normal", "sigma": "10 %"}}, True),
+                            ({"current": "±10 %", "length": "±1 %"}, False)):
+        m = mission("set-600m.toml", table)
+        sc = scene(m)
+        scaled = scale(sc)
+        buckled = Margin(BUCKLED, "N/m", 2.44 * sc.load, sc.load, 2.44, 2.0, "pass", 3, 1e-8, "")
+        model = margin_model(m, sc, scaled, plan(scaled.params), [buckled])
+        p = failure_probability(model, BUCKLED, m.uncertainty)
+        if answered:
+            assert p.method == "exact" and p.evaluations == 1
+            assert p.value == pytest.approx(stats.truncnorm(-10.0, np.inf, 1.0, 0.1).sf(2.44 / 2.0), rel=1e-9)
+        else:
+            assert p.method == "not answered" and "rungs 2-3" in p.how and "length" in p.how
+
+
+def test_the_cli_prints_the_probabilities(tmp_path, capsys):
+    from etcheck.cli.main import main
+
+    path = tmp_path / "m.toml"
+    text = (MISSIONS / "set-static.toml").read_text().replace('current = "1 A"', 'current = "20 A"')
+    path.write_text(text + '\n[uncertainty]\nbending_stiffness = "±15 %"\n'
+                    'axial_field = { distribution = "lognormal", sigma = "30 %" }\n')
+    assert main([str(path), "--format", "json", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert f"P({LOAD_AT_REST} < 2) = " in out and "[quadrature, 1 margin evaluations]" in out
+
+
 def test_check_without_table_has_no_study():
     assert "uncertainty" not in check(mission("set-static.toml")).results

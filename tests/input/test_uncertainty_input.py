@@ -84,3 +84,52 @@ def test_bad_entries_name_the_field(table, field, words):
         mission_from_dict(with_uncertainty(table))
     assert exc.value.field == field
     assert words in str(exc.value)
+
+
+def test_entries_are_echoed_as_written():
+    m = mission_from_dict(with_uncertainty({"bending_stiffness": {"distribution": "normal", "sigma": "15 %"},
+                                            "length": "±0.5 m",
+                                            "end_tension": {"distribution": "normal", "sigma": "0.2 N",
+                                                            "bounds": ["-0.1 N", "0.5 N"]},
+                                            "damping_time": {"distribution": "log-uniform", "factor": 10}}))
+    assert [d["written"] for d in m.uncertainty.as_dict()["inputs"]] == [
+        '{ distribution = "normal", sigma = "15 %" }', "±0.5 m",
+        '{ distribution = "normal", sigma = "0.2 N", bounds = ["-0.1 N", "0.5 N"] }',
+        '{ distribution = "log-uniform", factor = 10 }']
+
+
+@pytest.mark.parametrize("table, key", [
+    ({"bending_stiffness": {"distribution": "normal", "sigma": "15 %"}}, "bending_stiffness"),  # truncated at 0
+    ({"axial_field": {"distribution": "lognormal", "sigma": "30 %", "bounds": ["-50 %", "+200 %"]}}, "axial_field"),
+    ({"length": "±2 %"}, "length"),
+    ({"damping_time": {"distribution": "log-uniform", "factor": 10}}, "damping_time"),
+])
+def test_standard_normal_coordinate_is_exact_into_the_far_tails(table, key):
+    """Phi(z) = F(x) from both tails against mpmath at 40 digits (F from the distribution's definition), and
+    from_normal inverts to_normal: to 1e-7 out to +-6 (where x, a float within 1e-9 of a bound, carries no more),
+    to 1e-9 to +-8 where the distribution is not cut there."""
+    import mpmath as mp
+
+    mp.mp.dps = 40
+    d = mission_from_dict(with_uncertainty(table)).uncertainty.get(key)
+
+    def F(x):  # the truncated distribution function, from its definition, at 40 digits
+        x = mp.mpf(x)
+        if d.shape == "uniform":
+            return (x - mp.mpf(d.a)) / (mp.mpf(d.b) - mp.mpf(d.a))
+        if d.shape == "log-uniform":
+            return mp.log(x / mp.mpf(d.a)) / mp.log(mp.mpf(d.b) / mp.mpf(d.a))
+        s = (mp.log(x) if d.shape == "lognormal" else x) - mp.mpf(d.a)
+        base = lambda v: mp.ncdf(((mp.log(v) if d.shape == "lognormal" else v) - mp.mpf(d.a)) / mp.mpf(d.b))  # noqa: E731
+        lo = base(mp.mpf(d.lower)) if math.isfinite(d.lower) and (d.lower > 0 or d.shape == "normal") else 0
+        hi = base(mp.mpf(d.upper)) if math.isfinite(d.upper) else 1
+        return (mp.ncdf(s / mp.mpf(d.b)) - lo) / (hi - lo)
+
+    far = (-8.0, 7.5) if key == "bending_stiffness" else ()
+    for z in (*far, -6.0, -2.0, -1e-3, 0.7, 4.0, 6.0):
+        x = float(d.from_normal(z))
+        p = F(x)
+        want = float(mp.sqrt(2) * mp.erfinv(2 * p - 1)) if z < 0 else -float(mp.sqrt(2) * mp.erfinv(1 - 2 * p))
+        tol = 1e-9 if z in far else 1e-7
+        assert float(d.to_normal(x)) == pytest.approx(want, rel=tol, abs=1e-12), (z, x)
+        assert float(d.to_normal(x)) == pytest.approx(z, rel=tol, abs=1e-9)  # the round trip
