@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -275,6 +275,11 @@ class LimitState:
         log_err = -0.5 * root**2 - 0.5 * math.log(2 * math.pi) + math.log(dz) if math.isfinite(dz) else 0.0
         return _Root(key, lp, log_err, self.evaluations - before, self.seconds - spent, _monotone(seen, self.rising),
                      root, slope)
+
+    def conditioned_on(self, cond: int, rising: bool) -> LimitState:
+        """The same limit state integrated exactly along coordinate ``cond`` instead (``rising``: whether the
+        margin grows along it), keeping the margins solved so far and their count."""
+        return replace(self, cond=cond, rising=rising, _roots={})
 
     def rises_along_cond(self) -> bool:
         """Whether the margin grows along the (shape) conditioning coordinate: compared at z = -+0.5 there, the

@@ -180,6 +180,8 @@ def sample(ls: LimitState, points: int, seed: int, shift: np.ndarray | None = No
 
     D = len(ls.outer)
     mu = None if shift is None else np.asarray(shift, float)
+    if mu is not None and points % 2:
+        raise ValueError("a shifted sample needs an even number of points per replicate (half from each density)")
     sums = np.zeros(replicates)
     for owner, z in _points_in_chunks(D, points, seed, replicates, mu):
         lp, _ = ls.log_conditional(z)
@@ -199,7 +201,7 @@ def _points_in_chunks(D: int, points: int, seed: int, replicates: int, mu: np.nd
     from scipy.stats import qmc
 
     centres = [np.zeros(D)] if mu is None else [np.zeros(D), mu]
-    sizes = [points] if mu is None else [points // 2, points - points // 2]
+    sizes = [points] if mu is None else [points // 2, points // 2]
     owner, rows, held = [], [], 0
     for r, child in enumerate(np.random.SeedSequence(seed).spawn(replicates)):
         for centre, n, stream in zip(centres, sizes, child.spawn(len(centres))):
