@@ -14,13 +14,17 @@ normal term sigma z (sigma^2 = sum a_j^2 sigma_j^2), one coordinate.
 
 **Conditioning.** One coordinate c is integrated exactly: given the others,
 P(fail | z_rest) = Phi(+-zeta), zeta the value of z_c where the margin equals
-the required margin: in closed form when c is a power input (the largest
-|a| x spread among them), by Brent's method along z_c when every input is a
-shape input (the margin taken monotone along the one it hinges on most,
-which the search checks on the points it visits). Conditional probabilities
-are returned in logarithms (log Phi) so that 1e-300 keeps its relative
-accuracy, with their own error: a relative margin error eps moves ln m by eps,
-and the root by eps / |d ln m / dz|.
+the required margin: in closed form when c is a power input, at a root of the
+margin along z_c when c is a shape input (the secant method from the root of
+the nearest point solved before, else a bracket and Brent's method, to 1e-10
+in z; the margin is taken monotone along c, which the search checks on the
+points it visits). Which coordinate: :mod:`etcheck.checks.probability`
+chooses. Conditional probabilities are returned in logarithms (log Phi) so
+that 1e-300 keeps its relative accuracy, with their own error: a relative
+margin error eps moves ln m by eps, and the root by eps / |d ln m / dz|.
+
+Margins at shape inputs are solved once per distinct point (remembered), a
+batch of many shared with a forked helper (:func:`etcheck.numerics.parallel.split_map`).
 """
 
 from __future__ import annotations
@@ -102,8 +106,9 @@ class LimitState:
     ``cond`` indexes the coordinate integrated exactly, the others (``outer``, in order) are integrated or
     sampled. ``rising``: for a shape conditioning coordinate, whether the margin grows with it.
     ``evaluations``: margin evaluations so far (each one solve of the check's route; ``seconds`` their wall
-    time). ``surrogate``: with one shape coordinate, a degree N: ln M is then the polynomial interpolant of its
-    values at the N + 1 Chebyshev-Lobatto points over +-CAP (:meth:`lobatto_margins`)."""
+    time). ``surrogate``: a degree N: with one shape coordinate, ln M is then the polynomial interpolant of its
+    values at the N + 1 Chebyshev-Lobatto points over +-CAP; with a shape coordinate conditioned on and one
+    outer coordinate, the root along it is the interpolant of its roots there (:meth:`lobatto_solve`)."""
 
     model: MarginModel
     kind: str
@@ -116,6 +121,8 @@ class LimitState:
     surrogate: int | None = None
     _memo: dict = field(default_factory=dict)
     _roots: dict = field(default_factory=dict)
+    _lobatto_roots: dict = field(default_factory=dict)
+    _found: dict = field(default_factory=dict)
 
     @property
     def outer(self) -> list[int]:
@@ -170,11 +177,19 @@ class LimitState:
                 self._memo[k] = (_log(m.value), m.error)
         return self._memo
 
-    def lobatto_margins(self, N: int) -> bool:
-        """Solve ln M at the N + 1 Chebyshev-Lobatto points of the one shape coordinate on [-CAP, CAP] (those of
-        N / 2 among them); whether all are finite (a margin zero or unbounded at a point: no interpolant)."""
-        values, _ = self._solved(self._lobatto_rows(N))
-        return bool(np.all(np.isfinite(values)))
+    def lobatto_solve(self, N: int) -> bool:
+        """At the N + 1 Chebyshev-Lobatto points over [-CAP, CAP] (those of N / 2 among them): with a power input
+        conditioned on, ln M along the one shape coordinate; with a shape input conditioned on, its roots along
+        the one outer coordinate. Whether all are finite (else no interpolant)."""
+        from etcheck.numerics.chebyshev import lobatto_nodes
+
+        if not self.coords[self.cond].shape:
+            values, _ = self._solved(self._lobatto_rows(N))
+            return bool(np.all(np.isfinite(values)))
+        Z = np.zeros((N + 1, len(self.coords)))
+        Z[:, self.outer[0]] = -CAP + 2 * CAP * lobatto_nodes(N)
+        self._lobatto_roots[N] = found = self._root_rows(Z)
+        return all(r.root is not None and math.isfinite(r.dz) for r in found)
 
     def _lobatto_rows(self, N: int) -> np.ndarray:
         from etcheck.numerics.chebyshev import lobatto_nodes
@@ -212,6 +227,14 @@ class LimitState:
         Z[:, self.outer] = Zo
         if not self.coords[self.cond].shape:
             return self._closed_conditional(Z)
+        if self.surrogate is not None:
+            return self._interpolated_boundary(Zo[:, 0], self.surrogate)
+        found = self._root_rows(Z)
+        return np.array([r.log_p for r in found]), np.array([r.log_error for r in found])
+
+    def _root_rows(self, Z: np.ndarray) -> list[_Root]:
+        """The conditional probabilities at the roots of every row of Z (full coordinates), shared with a forked
+        helper when there are many; what it learnt (roots, evaluations, seconds) is learnt here too."""
         rows = list(Z)
         evaluations, seconds = self.evaluations, self.seconds
         found = split_map(self._root_conditional, rows) if len(rows) >= _PARALLEL_FROM else \
@@ -220,9 +243,25 @@ class LimitState:
         self.seconds = seconds + sum(r.seconds for r in found)
         for r in found:
             self.not_monotone |= r.not_monotone
+            self._found[r.key] = r
             if r.root is not None:
                 self._roots[r.key] = (r.root, r.slope)
-        return np.array([r.log_p for r in found]), np.array([r.log_error for r in found])
+        return found
+
+    def _interpolated_boundary(self, z: np.ndarray, N: int) -> tuple[np.ndarray, np.ndarray]:
+        """ln P(fail | z) with the root along the conditioning coordinate interpolated in the one outer
+        coordinate z (degree N, :meth:`lobatto_solve`), and ln of its error (the largest root error)."""
+        from scipy import special
+
+        from etcheck.numerics.chebyshev import lobatto_nodes, resample_matrix
+
+        found = self._lobatto_roots[N]
+        roots = np.array([r.root for r in found])
+        zeta = resample_matrix(lobatto_nodes(N), (np.asarray(z, float) + CAP) / (2 * CAP), lobatto_weights(N)) @ roots
+        dz = max(r.dz for r in found)
+        with np.errstate(divide="ignore"):
+            log_err = -0.5 * zeta**2 - 0.5 * math.log(2 * math.pi) + math.log(dz)
+        return special.log_ndtr(zeta if self.rising else -zeta), log_err
 
     def _closed_conditional(self, Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         from scipy import special
@@ -246,6 +285,9 @@ class LimitState:
         nearest root found before, else a bracket and Brent's method), and ln of its error."""
         from scipy import special
 
+        key = tuple(float(row[i]) for i in self.outer)
+        if key in self._found:  # solved before (a quadrature's point, an interpolation node)
+            return replace(self._found[key], evaluations=0, seconds=0.0)
         before, spent = self.evaluations, self.seconds
         c = self.cond
         rest = float(self.power_sum(row[None, :])[0])
@@ -259,27 +301,26 @@ class LimitState:
             seen.append((z, val, float(e[0])))
             return val
 
-        key = tuple(float(row[i]) for i in self.outer)
         root = self._secant(g, key)
         if root is None:
-            bracket = self._bracket(g, seen[0][0] if seen else self._guess(key)[0])
+            bracket = self._bracket(g, self._guess(key)[0])
             if bracket is None:  # no root inside +-CAP: failing everywhere or nowhere, to within Phi(-CAP)
                 return _Root(key, 0.0 if seen[0][1] < 0 else -math.inf, math.log(0.5 * math.erfc(CAP / math.sqrt(2))),
                              self.evaluations - before, self.seconds - spent, _monotone(seen, self.rising))
             root = brentq(g, *bracket, xtol=ROOT_XTOL, rtol=4 * np.finfo(float).eps)
-        slope = _slope(seen, root)
+        slope = _slope(seen, root) or self._guess(key)[1]  # (one point seen: the root of a neighbour, reused)
         self._roots[key] = (root, slope)
         err = max(e for _, _, e in seen[-3:])
         dz = ROOT_XTOL + (err / abs(slope) if slope != 0 else math.inf)
         lp = float(special.log_ndtr(root if self.rising else -root))
         log_err = -0.5 * root**2 - 0.5 * math.log(2 * math.pi) + math.log(dz) if math.isfinite(dz) else 0.0
         return _Root(key, lp, log_err, self.evaluations - before, self.seconds - spent, _monotone(seen, self.rising),
-                     root, slope)
+                     root, slope, dz)
 
     def conditioned_on(self, cond: int, rising: bool) -> LimitState:
         """The same limit state integrated exactly along coordinate ``cond`` instead (``rising``: whether the
         margin grows along it), keeping the margins solved so far and their count."""
-        return replace(self, cond=cond, rising=rising, _roots={})
+        return replace(self, cond=cond, rising=rising, _roots={}, _lobatto_roots={}, _found={})
 
     def rises_along_cond(self) -> bool:
         """Whether the margin grows along the (shape) conditioning coordinate: compared at z = -+0.5 there, the
@@ -298,21 +339,23 @@ class LimitState:
         return self._roots[near]
 
     def _secant(self, g, key: tuple) -> float | None:
-        """The root by the secant method from the nearest root found before (a few evaluations where the
-        boundary moves smoothly with the outer point); None where it does not settle inside +-CAP."""
+        """The root by the secant method from the nearest root found before and the slope there (a few
+        evaluations where the boundary moves smoothly with the outer point); None where there is none to start
+        from or it does not settle inside +-CAP in 8 steps."""
         from scipy.optimize import root_scalar
 
         z0, slope = self._guess(key)
+        sign = 1.0 if self.rising else -1.0
+        if not sign * slope > 0:  # no neighbour's root (or slope) to start from: bracket instead
+            return None
         f0 = g(z0)
         if f0 == 0:
             return z0
-        sign = 1.0 if self.rising else -1.0
-        step = -f0 / slope if sign * slope > 0 else 0.05 * (-sign if f0 > 0 else sign)
         try:
             with np.errstate(all="ignore"), warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)  # a flat step: reported as not converged
-                res = root_scalar(g, method="secant", x0=z0, x1=z0 + float(np.clip(step, -0.5, 0.5)),
-                                  xtol=ROOT_XTOL, rtol=4 * np.finfo(float).eps, maxiter=12)
+                res = root_scalar(g, method="secant", x0=z0, x1=z0 + float(np.clip(-f0 / slope, -0.5, 0.5)),
+                                  xtol=ROOT_XTOL, rtol=4 * np.finfo(float).eps, maxiter=8)
         except (ArithmeticError, ValueError):
             return None
         return float(res.root) if res.converged and abs(res.root) <= CAP and math.isfinite(res.root) else None
@@ -349,6 +392,7 @@ class _Root:
     not_monotone: bool
     root: float | None = None
     slope: float = 0.0
+    dz: float = math.inf
 
 
 def _monotone(seen: list, rising: bool) -> bool:

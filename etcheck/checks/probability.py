@@ -2,22 +2,28 @@
 
 The uncertain inputs are independent; each is one standard-normal coordinate
 (:mod:`etcheck.checks.limit_state`, which also integrates one coordinate
-exactly by conditioning). What remains, D coordinates, is
+exactly by conditioning: the power input that moves the margin most, else
+the solved input with the largest elasticity times spread; the sampling
+switches to the one the FORM design point leans on most). What remains, D
+coordinates, is
 
 * **D = 0**: nothing: the answer is one conditional probability, in closed
   form or at one root of the margin along the input (``exact``);
 * **D = 1, or D = 2 when no more than one of them needs the margin solved
   again** (the rest enter as exact powers): adaptive Gauss-Kronrod quadrature
   against the normal density (:func:`etcheck.numerics.quadrature.normal_integrals`),
-  nested for D = 2, to a relative error RTOL = 1e-8 (``quadrature``). The
-  stated error adds the quadrature's estimate, the margins' own errors carried
-  through, the cut of the integration range at +-8.3 standard deviations
-  (1e-16 absolute per coordinate) and the root tolerance;
+  nested for D = 2, to a relative error RTOL = 1e-8 (``quadrature``); along
+  one solved input the margin is interpolated at 17, 33, 65 Chebyshev points
+  where P settles to SURROGATE_RTOL = 1e-6 there. The stated error adds the
+  quadrature's estimate, the margins' own errors carried through, the cut of
+  the integration range at +-8.3 standard deviations (1e-16 absolute per
+  coordinate), the root tolerance and the interpolation's last change;
 * **otherwise**: randomised quasi-Monte Carlo, with defensive importance
   sampling at the design point where FORM puts the probability at or below
   0.1 (:mod:`etcheck.checks.sampling`; ``sampling``): the 95 % interval of 32
   replicates with a Student t quantile; the number of points is fixed
-  beforehand by an evaluation budget.
+  beforehand by budgets of margin evaluations (BUDGET) and of their seconds
+  (SECONDS, at the time per evaluation measured first).
 
 At or below SMALL = 1e-4, FORM and SORM (Breitung) are computed as a
 cross-check. A probability whose upper end (value + error, or the interval's
@@ -29,7 +35,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -38,7 +44,7 @@ from etcheck.checks.margin_model import MarginModel
 from etcheck.checks.sampling import REPLICATES, SMALL_FORM, design_point, sample
 from etcheck.checks.sensitivity import MarginSensitivity
 from etcheck.input.uncertainty import Uncertainty
-from etcheck.numerics.quadrature import normal_integrals
+from etcheck.numerics.quadrature import CAP, normal_integrals
 
 #: Probabilities whose upper end lies below this are reported as the bound P < FLOOR.
 FLOOR = 1e-9
@@ -136,6 +142,9 @@ def failure_probability(model: MarginModel, kind: str, unc: Uncertainty, sens: M
                                how="exact: no uncertain input moves this margin", evaluations=1, points=0,
                                conditioned_on=None, elapsed_s=time.perf_counter() - started)
         chosen = method or _method(ls)
+        corner = None if chosen == SAMPLING and method else _adverse_corner(ls, sens)
+        if corner is not None:
+            return replace(corner, **info, elapsed_s=time.perf_counter() - started)
         out = _sampled(ls, info, seed, budget, points, seconds) if chosen == SAMPLING else _integrated(ls, info)
     except NotAnswered as exc:
         return _not_answered(base, f"a sample's margin was not answered by the check's route: {exc}", moving, inert,
@@ -174,8 +183,40 @@ def _limit_state(model: MarginModel, kind: str, moving, powers: dict[str, float]
     els = {e.input: e.value for e in sens.elasticities} if sens else {}
     cond = max(range(len(coords)), key=lambda i: abs(els.get(coords[i].name) or 0.0) * coords[i].dist.log_spread())
     ls = LimitState(model, kind, coords, cond)
-    ls.rising = ls.rises_along_cond() if els.get(coords[cond].name) is None else els[coords[cond].name] > 0
+    e = els.get(coords[cond].name)
+    ls.rising = ls.rises_along_cond() if not e else e > 0
     return ls
+
+
+def _adverse_corner(ls: LimitState, sens: MarginSensitivity | None) -> Probability | None:
+    """P < FLOOR at the cost of one margin where the margin meets the required margin even with every input at
+    CAP = 8.3 standard deviations on its adverse side (the sign of its elasticity at the mission's values, both
+    sides where that is 0): taking the margin monotone in each input (as the conditioning does), failure needs
+    an input beyond 8.3 standard deviations, P <= n 2 Phi(-8.3) = n 1e-16. None where that does not hold, an
+    elasticity is unknown or every margin is a closed form (integrated exactly anyway)."""
+    if sens is None or not any(c.shape for c in ls.coords):
+        return None
+    els = {e.input: e.value for e in sens.elasticities}
+    sides = []
+    for c in ls.coords:
+        e = c.power if c.power is not None else els.get(c.name) if c.dist is not None else 1.0
+        if e is None:
+            return None
+        sides.append((-CAP, CAP) if e == 0 else (-CAP if e > 0 else CAP,))
+    corners = np.array(np.meshgrid(*sides)).reshape(len(sides), -1).T
+    if len(corners) > 8:
+        return None
+    lnM, err = ls.log_margins(corners)
+    worst = float(np.min(lnM + ls.power_sum(corners) - np.abs(err)))
+    if not worst >= ls.log_required:
+        return None
+    n = len(ls.coords)
+    return Probability("", 0.0, None, FLOOR, None, None, None, EXACT,
+                       f"exact bound: the margin meets the required margin with every input at 8.3 standard "
+                       f"deviations on its adverse side ({len(corners)} margin evaluation"
+                       f"{'s' if len(corners) > 1 else ''}); taking it monotone in each input, P <= {n} x 1e-16",
+                       ls.evaluations, len(corners), None, (), (), "",
+                       note=f"below {FLOOR:g}: reported as a bound")
 
 
 def _method(ls: LimitState) -> str:
@@ -210,9 +251,10 @@ def _integrated(ls: LimitState, info: dict) -> Probability:
     how = (f"quadrature: adaptive Gauss-Kronrod (15 points, nested {D}-D) over {names} in standard-normal "
            f"coordinates to a relative {RTOL:.0e}; {how_cond}")
     if N is not None:
-        shape = next(c.name for c in ls.coords if c.shape)
-        how += (f"; the margin along {shape} interpolated at {N + 1} Chebyshev points over +-8.3 standard "
-                f"deviations (the change of P from {N // 2 + 1} points added to the error stated)")
+        what = (f"the root along {cond.name}" if cond.shape else
+                f"the margin along {next(c.name for c in ls.coords if c.shape)}")
+        how += (f"; {what} interpolated at {N + 1} Chebyshev points over +-8.3 standard deviations (the change of "
+                f"P from {N // 2 + 1} points added to the error stated)")
     return Probability(**info, value=value, bound=None, low=max(0.0, value - abs_err), high=min(1.0, value + abs_err),
                        error=abs_err / value if value > 0 else None, method=QUADRATURE, how=how,
                        evaluations=ls.evaluations, points=evaluations, conditioned_on=cond.name,
@@ -221,7 +263,7 @@ def _integrated(ls: LimitState, info: dict) -> Probability:
 
 def _cross_check(ls: LimitState, value: float, start: np.ndarray | None = None) -> CrossCheck | None:
     """FORM and SORM for a small probability (from ``start``, e.g. where the integrand peaked)."""
-    if not value <= SMALL or not ls.outer:
+    if not FLOOR <= value <= SMALL or not ls.outer:  # (a bound is not cross-checked)
         return None
     dp = design_point(ls, start)
     return CrossCheck(dp.beta, dp.form, dp.sorm) if dp.safe_origin and dp.found else None
@@ -229,16 +271,19 @@ def _cross_check(ls: LimitState, value: float, start: np.ndarray | None = None) 
 
 def _interpolated(ls: LimitState) -> tuple[float, float, int, np.ndarray, int | None]:
     """With one shape coordinate, not the one conditioned on: ln M along it interpolated at 17, 33, 65
-    Chebyshev-Lobatto points over +-CAP (nested: each level reuses the last's margins) until the stated error,
+    Chebyshev-Lobatto points over +-CAP (nested: each level reuses the last's margins); with a shape coordinate
+    conditioned on and one outer coordinate: the root along the former interpolated in the latter; until the
+    stated error,
     with the change of P from the last level added (an estimate of the last level's error, and so a generous
     one of this level's), is below SURROGATE_RTOL x P. N None where that does not happen (or a margin is zero or
     unbounded at a point): the margin is then solved at every quadrature point."""
     shape = [c for c in ls.coords if c.shape]
-    if len(shape) != 1 or ls.coords[ls.cond].shape:
+    root = ls.coords[ls.cond].shape
+    if (root and len(ls.outer) != 1) or (not root and len(shape) != 1):
         return 0.0, 0.0, 0, np.zeros(0), None
     last = None
     for N in SURROGATE_POINTS:
-        if not ls.lobatto_margins(N):
+        if not ls.lobatto_solve(N):
             break
         ls.surrogate = N
         try:
@@ -271,7 +316,7 @@ def _nested(ls: LimitState) -> tuple[float, float, int, np.ndarray]:
                 return ls.log_conditional(Z)
             return level(Z, depth + 1)
 
-        r = normal_integrals(log_f, n, rtol=RTOL, panels=_panels(ls, depth))
+        r = normal_integrals(log_f, n, rtol=RTOL, panels=_panels(ls, depth), below=0.1 * FLOOR if depth == 0 else 0.0)
         if depth == 0:
             peaks.append(r.peak[0])
         value = np.exp(r.log_value)
@@ -356,8 +401,6 @@ def _cost_per_sample(ls: LimitState) -> float:
 
 def _finish(p: Probability, ls: LimitState, started: float) -> Probability:
     """The cross-check for small probabilities, the bound below FLOOR, notes and the time."""
-    from dataclasses import replace
-
     notes = []
     if ls.not_monotone:
         notes.append(f"the margin is not monotone along {ls.coords[ls.cond].name} over the points visited: the "

@@ -2,8 +2,8 @@
 probability of falling short when there are too many uncertain inputs to integrate deterministically.
 
 Works on a :class:`~etcheck.checks.limit_state.LimitState`: its conditional
-probability P(fail | z) = Phi(-psi(z)) over the D outer standard-normal
-coordinates z (one coordinate already integrated exactly).
+probability P(fail | z) over the D outer standard-normal coordinates z (one
+coordinate already integrated exactly), and its margin over all of them.
 
 **Design point.** The limit state is g(u) = ln m(u) - ln required over all
 standard-normal coordinates u (failure where g < 0). FORM's design point is

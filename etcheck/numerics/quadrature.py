@@ -72,12 +72,14 @@ class NormalIntegrals:
 
 
 def normal_integrals(log_f: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]], n: int,
-                     rtol: float = 1e-10, cap: float = CAP, panels: int = 8, max_panels: int = 4000) -> NormalIntegrals:
+                     rtol: float = 1e-10, cap: float = CAP, panels: int = 8, max_panels: int = 4000,
+                     below: float = 0.0) -> NormalIntegrals:
     """I_i = int_{-cap}^{cap} f_i(z) phi(z) dz for i < n, each to the relative error ``rtol`` (module docstring).
 
     ``log_f(i, z)`` takes equally long arrays of integral indices and points and returns (ln f_i(z), ln e_i(z)),
     the integrand and its own pointwise error bound (-inf where exact). An integral whose panels reach
-    ``max_panels`` stops there, not converged, with its error estimate.
+    ``max_panels`` stops there, not converged, with its error estimate. An integral whose value plus error
+    estimate is below ``below`` is done (converged: what is asked of it is that bound).
     """
     edges = np.linspace(-cap, cap, panels + 1)
     owner = np.repeat(np.arange(n), panels)
@@ -90,7 +92,8 @@ def normal_integrals(log_f: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray,
         evaluations += lf.size
         store = store.extend(owner, a, b, lf, le)
         value, err, own, count = store.sums(n)
-        ok = (err <= rtol * value + own) | (value == 0)  # no finer than the integrand's own error
+        small = value + err + own < below * np.exp(-store.shift)
+        ok = (err <= rtol * value + own) | (value == 0) | small  # no finer than the integrand's own error
         done = done | ok | (count >= max_panels)
         split = ~done[store.owner] & (store.err > rtol * value[store.owner] / count[store.owner])
         if not split.any():
@@ -104,8 +107,8 @@ def normal_integrals(log_f: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray,
         rel = np.where(value > 0, err / value, 0.0)
         rel_own = np.where(value > 0, own / value, 0.0)
     trunc = 2.0 * 0.5 * math.erfc(cap / math.sqrt(2.0))
-    return NormalIntegrals(log_value, rel, rel_own, trunc, (err <= rtol * value + own) | (value == 0), evaluations,
-                           store.peaks(n))
+    converged = (err <= rtol * value + own) | (value == 0) | (value + err + own < below * np.exp(-store.shift))
+    return NormalIntegrals(log_value, rel, rel_own, trunc, converged, evaluations, store.peaks(n))
 
 
 def _evaluate(log_f, owner: np.ndarray, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

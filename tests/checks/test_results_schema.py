@@ -244,13 +244,16 @@ def test_orbit_mission_validates():
 
 
 def test_uncertainty_section_validates():
-    """Draft checks with [uncertainty] tables: the spinning SET (pencils, a root per point) and the static SET at
-    a small margin (closed form, with its FORM/SORM cross-check) and at a large one (a bound)."""
-    for name, current in (("set-tolerances.toml", None), ("set-static.toml", "20 A"), ("set-static.toml", "4 A")):
+    """Draft checks with [uncertainty] tables: the spinning SET (pencils; its spin margin at a root, the load
+    margin in closed form) and the static SET at a small margin (closed form, with its FORM/SORM cross-check)
+    and at a large one (a bound)."""
+    ei_field = {"bending_stiffness": {"distribution": "normal", "sigma": "15 %"},
+                "axial_field": {"distribution": "lognormal", "sigma": "30 %"}}
+    for name, current, table in (("set.toml", None, {"current": "±10 %", "length": "±1 %"}),
+                                 ("set-static.toml", "20 A", ei_field), ("set-static.toml", "4 A", ei_field)):
         data = tomllib.loads((MISSIONS / name).read_text())
         data["check"]["fidelity"] = "draft"
-        data["uncertainty"] = data.get("uncertainty") or {"bending_stiffness": {"distribution": "normal", "sigma": "15 %"},
-                                                          "axial_field": {"distribution": "lognormal", "sigma": "30 %"}}
+        data["uncertainty"] = table
         if current:
             data["operation"]["current"] = current
         results = check(mission_from_dict(data)).results
