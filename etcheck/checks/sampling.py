@@ -195,17 +195,17 @@ def sample(ls: LimitState, points: int, seed: int, shift: np.ndarray | None = No
 
 
 def _points_in_chunks(D: int, points: int, seed: int, replicates: int, mu: np.ndarray | None):
-    """(replicate of each row, z) in chunks of at most _CHUNK rows: every replicate's scrambled Sobol points,
-    half of them around mu when given (each half its own sequence)."""
+    """(replicate of each row, z) in chunks of at most _CHUNK rows: every replicate's ``points`` scrambled
+    Sobol points (one sequence per replicate; with mu, its first half as it is and its second half around mu:
+    each half of a Sobol sequence of 2^k points is a net of its own)."""
     from scipy import special
     from scipy.stats import qmc
 
-    centres = [np.zeros(D)] if mu is None else [np.zeros(D), mu]
-    sizes = [points] if mu is None else [points // 2, points // 2]
+    halves = [(np.zeros(D), points)] if mu is None else [(np.zeros(D), points // 2), (mu, points // 2)]
     owner, rows, held = [], [], 0
     for r, child in enumerate(np.random.SeedSequence(seed).spawn(replicates)):
-        for centre, n, stream in zip(centres, sizes, child.spawn(len(centres))):
-            engine = qmc.Sobol(D, scramble=True, seed=np.random.default_rng(stream))
+        engine = qmc.Sobol(D, scramble=True, seed=np.random.default_rng(child))
+        for centre, n in halves:
             left = n
             while left > 0:
                 k = min(left, _CHUNK)
