@@ -234,7 +234,7 @@ def _integrated(ls: LimitState, info: dict) -> Probability:
     """D = 0: the conditional probability at the outer point; D = 1, 2: nested quadrature."""
     cond = ls.coords[ls.cond]
     how_cond = (f"{cond.name} integrated in closed form (the margin is an exact power of it)" if not cond.shape else
-                f"{cond.name} integrated exactly at the root of margin = required along it (Brent)")
+                f"{cond.name} integrated exactly at the root of margin = required along it (secant or Brent)")
     D = len(ls.outer)
     if D == 0:
         lp, le = ls.log_conditional(np.zeros((1, 0)))

@@ -81,7 +81,8 @@ def probability_lines(results: dict) -> list[str]:
         elif p["value"] is None:
             lines.append(f"{head} < {p['bound']:.2g} [{p['method']}, {p['evaluations']} margin evaluations]")
         else:
-            err = (f"95 % interval {p['low']:.4g} … {p['high']:.4g}" if p["method"] == "sampling" else
+            err = (f"± {100 * p['error']:.2g} %, 95 % interval {p['low']:.6g} … {p['high']:.6g}"
+                   if p["method"] == "sampling" else
                    f"error ≤ {p['error']:.1e} relative" if p["error"] is not None else "exact")
             lines.append(f"{head} = {p['value']:.4g} ({err}) [{p['method']}, {p['evaluations']} margin evaluations]")
     return lines
