@@ -97,8 +97,9 @@ class MarginModel:
     route (SPECTRAL, EXACT); ``options``: the check's rung-1 tolerances;
     ``at_nominal``: the check's own margin values (for the margins not
     re-evaluated); ``damped``: the mission has damping (``gamma0``, the
-    dimensionless damping); ``spin_samples``: the uncertain inputs give samples
-    spin or tension although the mission has none (rung 1 answers them).
+    dimensionless damping). Where the uncertain inputs give samples spin or
+    tension although the mission has none, rung 1 answers every sample
+    (``route`` the one the plan picks for a spinning, taut sample).
     """
 
     nominal: dict[str, float]
@@ -112,7 +113,6 @@ class MarginModel:
     options: WhirlOptions = DEFAULT_OPTIONS
     at_nominal: dict[str, float] = field(default_factory=dict)
     damped: bool = True
-    spin_samples: bool = False
     gamma0: float = 0.0
 
     # ------------------------------------------------------------------ inputs
@@ -249,4 +249,4 @@ def margin_model(mission, scene, scaled, chosen, margins, options: WhirlOptions 
     gj_ratio = scene.GJ / (scene.EI1 + scene.EI2) if mission.poisson_ratio is not None else None
     at_nominal = {m.name: (math.inf if m.value is None else m.value) for m in margins}
     return MarginModel(nominal, scene.P, scene.length, scene.f, gj_ratio, kinds, route, mission.required_margin,
-                       options, at_nominal, p.gamma > 0, moving and chosen.rung == 0, p.gamma)
+                       options, at_nominal, p.gamma > 0, p.gamma)
