@@ -41,7 +41,7 @@ import math
 import numpy as np
 
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.determinant import BC_COMPLEX, isotropic_batch, isotropic_companion, schur, smoothing
+from etcheck.rod.straight.determinant import bc_complex, isotropic_batch, isotropic_companion, schur, smoothing
 
 __all__ = ["characteristic_plus", "characteristic_plus_counted"]
 
@@ -70,7 +70,8 @@ def characteristic_plus_counted(params: RodParameters, Omega, B=None, omega=None
     if route != "schur":
         for group in (c0 == 0, c0 != 0):
             if np.any(group):
-                value, _, m = isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift, small=False)
+                value, _, m = isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift, small=False,
+                                              ends=params.ends)
                 out[group] = value * smoothing(m)
     slow = np.nonzero(~np.isfinite(out))[0] if route != "exponential" else np.zeros(0, dtype=int)
     if slow.size > schur_budget:
@@ -78,7 +79,7 @@ def characteristic_plus_counted(params: RodParameters, Omega, B=None, omega=None
                               f"exponents) and the Schur route's budget is spent")
     for i in slow:
         A = isotropic_companion(c4, c2[i], c0[i], c1[i], kap[i])
-        out[i] = schur(A, BC_COMPLEX, shift).value * smoothing(np.linalg.eigvals(A))
+        out[i] = schur(A, bc_complex(params.ends), shift).value * smoothing(np.linalg.eigvals(A))
     return out.real.reshape(shape), int(slow.size)
 
 
