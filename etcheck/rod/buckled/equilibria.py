@@ -69,7 +69,7 @@ import scipy.linalg as sla
 
 from etcheck.errors import SolverError
 from etcheck.numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
-from etcheck.rod.core.ends import is_welded
+from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
 from etcheck.rod.core.linear import NFIELDS, collocation, end_rows, static_operator, stiffness_diag
 from etcheck.rod.core.parameters import RodParameters
 
@@ -90,7 +90,6 @@ __all__ = [
     "measure1",
     "rodrigues",
     "require_welded",
-    "WELDED_ONLY",
 ]
 
 #: Parameters a branch can be continued in.
@@ -210,17 +209,11 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                      a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
 
 
-#: Why the buckled rungs answer only for welded ends (:func:`require_welded`).
-WELDED_ONLY = ("the buckled tether (rungs 2-3) is computed for welded ends only: its whirling equilibria hold the "
-               "frame at both ends (eqs. (58)-(69)), and the nonlinear condition of a pinned end (no bending moment, "
-               "M . d1 = M . d2 = 0 at an end that turns) is not part of rung 2")
-
-
 def require_welded(params: RodParameters) -> None:
-    """Raise ValueError (:data:`WELDED_ONLY`) unless both ends are welded: no buckled state is ever computed with
-    the wrong ends."""
+    """Raise ValueError (:data:`~etcheck.rod.core.ends.BUCKLED_WELDED_ONLY`) unless both ends are welded: no
+    buckled state is ever computed with the wrong ends."""
     if not is_welded(params.ends):
-        raise ValueError(f"{WELDED_ONLY} (ends {params.ends[0]}, {params.ends[1]})")
+        raise ValueError(f"rungs 2-3 are {BUCKLED_WELDED_ONLY} (ends {params.ends[0]}, {params.ends[1]})")
 
 
 def residual(params: RodParameters, state: Equilibrium) -> np.ndarray:

@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 
 __all__ = [
+    "BUCKLED_WELDED_ONLY",
     "WELDED",
     "PINNED",
     "SWIVEL",
@@ -48,6 +49,11 @@ __all__ = [
 ]
 
 WELDED, PINNED, SWIVEL = "welded", "pinned", "swivel"
+#: Why the buckled rungs (2-3) answer only for welded ends. Both ends pinned would keep the mirror symmetries S1, S2
+#: of the welded problem (s -> 1 - s swaps two like ends); one of each keeps neither (docs/model.md).
+BUCKLED_WELDED_ONLY = ("computed for welded ends only: the buckled tether's whirling equilibria hold the frame at "
+                       "both ends (eqs. (58)-(69)), and the nonlinear condition of a pinned end (no bending moment, "
+                       "M . d1 = M . d2 = 0 at an end that turns) is not part of rung 2")
 #: The attachments an end may have.
 KINDS = (WELDED, PINNED, SWIVEL)
 Ends = tuple[str, str]
