@@ -61,8 +61,9 @@ from etcheck.input.echo import UncertaintyInputs
 from etcheck.input.mission import Mission
 from etcheck.input.uncertainty import Distribution, Uncertainty
 from etcheck.numerics.blas import one_blas_thread, single_blas_thread
+from etcheck.rod.core.ends import ALL_WELDED
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.analytic import characteristic_roots
+from etcheck.rod.straight.analytic import static_roots
 from etcheck.rod.straight.damped_critical import LADDER, first_root
 from etcheck.scaling import RPM, scene
 
@@ -101,7 +102,8 @@ class MarginModel:
     inertia ratio at the mission length (P ~ L^-2); ``gj_ratio``: GJ / (EI1 +
     EI2) when GJ follows from poisson_ratio (None: GJ is its own input);
     ``kinds``: the margins (LOAD0, LOAD, SPIN); ``route``: which model answers;
-    ``gamma0``: the nominal dimensionless damping (used for every pencil).
+    ``gamma0``: the nominal dimensionless damping (used for every pencil);
+    ``ends``: the attachment of the tether (:mod:`etcheck.rod.core.ends`).
     """
 
     nominal: dict[str, float]
@@ -115,6 +117,7 @@ class MarginModel:
     gamma0: float
     tol: float = 1e-8
     ladder: tuple[int, ...] = LADDER
+    ends: tuple[str, str] = ALL_WELDED
 
     def values(self, changes: dict[str, float] | None = None) -> dict[str, float]:
         """Physical inputs with ``changes`` applied; "bending_stiffness" is a factor on EI1 and EI2."""
@@ -137,13 +140,13 @@ class MarginModel:
         return RodParameters(P=self.P0 * (self.L0 / L) ** 2, R=EI2 / EI1, Gamma=2 * v["torsional_stiffness"] / (EI1 + EI2),
                              f=self.f, B=v["current"] * v["axial_field"] * L**3 / (self.f * EI1),
                              omega=v["spin_rate"] / wc, T=v["end_tension"] * L**2 / (self.f * EI1),
-                             gamma=v["damping_time"] * wc)
+                             gamma=v["damping_time"] * wc, ends=self.ends)
 
     def margins(self, v: dict[str, float], kinds: tuple[str, ...] | None = None) -> dict[str, float]:
         """Margins (critical / operating) at physical inputs v; 0 where the tether is already unstable."""
         kinds = kinds or self.kinds
         if self.route == ROUTE_CLOSED:
-            return {k: float(closed_form_margin({n: np.asarray(x) for n, x in v.items()})) for k in kinds}
+            return {k: float(closed_form_margin({n: np.asarray(x) for n, x in v.items()}, self.ends)) for k in kinds}
         return dimensionless_margins(self.params(v), kinds, self)
 
     def margins_at(self, p: RodParameters) -> dict[str, float]:
@@ -155,15 +158,16 @@ ROUTE_CLOSED = "rung 0 closed form B_1 = beta_1^3 sqrt(R)/f, vectorised over the
 ROUTE_PENCIL = "first roots of the static pencils per sample (rung 1, exact with damping; BLAS one thread)"
 ROUTE_UNDAMPED = "rung 1 spectral scans (undamped: flutter possible)"
 NOT_ANSWERED_UNDAMPED = "not answered (undamped: flutter possible; no fast exact route)"
-_BETA1_CUBED = characteristic_roots(1)[0].beta ** 3
 #: Quantile cut of the conditioning input's range in the root find (absolute error <= 1e-10 in P).
 _CUT = 1e-10
 
 
-def closed_form_margin(v: dict[str, np.ndarray]) -> np.ndarray:
-    """Rung-0 load margin beta_1^3 sqrt(EI1 EI2) / (|I| |B0| L^3), vectorised (SI arrays in, dimensionless out)."""
+def closed_form_margin(v: dict[str, np.ndarray], ends: tuple[str, str] = ALL_WELDED) -> np.ndarray:
+    """Rung-0 load margin beta_1^3 sqrt(EI1 EI2) / (|I| |B0| L^3), vectorised (SI arrays in, dimensionless out);
+    beta_1 of the ends (the first zero of chi for welded ends, eq. (91))."""
+    beta1_cubed = static_roots(ends, 1)[0].beta ** 3
     with np.errstate(divide="ignore"):
-        return _BETA1_CUBED * np.sqrt(v["EI1"] * v["EI2"]) / (v["current"] * v["axial_field"] * v["length"] ** 3)
+        return beta1_cubed * np.sqrt(v["EI1"] * v["EI2"]) / (v["current"] * v["axial_field"] * v["length"] ** 3)
 
 
 def dimensionless_margins(p: RodParameters, kinds: tuple[str, ...], model: MarginModel) -> dict[str, float]:
@@ -233,7 +237,8 @@ def margin_model(mission: Mission, tol: float = 1e-8) -> MarginModel:
                "axial_field": float(mission.worst_field.to_value("T")), "spin_rate": sc.spin_rate,
                "end_tension": sc.tension, "damping_time": sc.damping_time}
     gj_ratio = sc.GJ / (sc.EI1 + sc.EI2) if mission.poisson_ratio is not None else None
-    return MarginModel(nominal, sc.P, sc.length, sc.f, gj_ratio, kinds, route, mission.required_margin, p.gamma, tol)
+    return MarginModel(nominal, sc.P, sc.length, sc.f, gj_ratio, kinds, route, mission.required_margin, p.gamma, tol,
+                       ends=p.ends)
 
 
 def _fixed_resolution(model: MarginModel) -> MarginModel:
@@ -556,7 +561,7 @@ def _closed_form_batch(model: MarginModel, dists: list[Distribution], u: np.ndar
             v["EI1"], v["EI2"] = v["EI1"] * x, v["EI2"] * x
         else:
             v[d.input] = model.nominal[d.input] * x if d.factor else x
-    m = closed_form_margin(v)
+    m = closed_form_margin(v, model.ends)
     if cond is None:
         return (m < model.required).astype(float)
     a = _power(model, LOAD0, cond.input)
