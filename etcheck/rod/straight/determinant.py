@@ -24,7 +24,8 @@ Chebyshev grid cannot resolve.
 state y = (u, u'/ku, u''/ku^2, u'''/ku^3, v, v'/kv, v''/kv^2, v'''/kv^3)
 (ku, kv continuous wavenumber scales of the u and v exponents). Let G be
 the 8x8 map from y(0) to the clamped boundary values (u, u', v, v') at
-s = 0 and s = 1. det G is real and analytic in (B, omega, T); it grows like
+s = 0 and s = 1 (at a pinned end (u, u'', v, v''): no bending moment;
+``bc_real``, :mod:`etcheck.rod.core.ends`). det G is real and analytic in (B, omega, T); it grows like
 exp(sigma), sigma = sum of the positive real parts of the exponents (the
 eigenvalues of A). The function returned is
 
@@ -59,7 +60,9 @@ of the exponents (O(1) for moderate tension, 1e14 at T f = 1e12, R = 1e-7). Two 
 problem is isotropic: with w = u + i v (R = 1) or w = u + i v / sqrt(R)
 (omega = T = 0) it is one complex equation c4 w'''' - c2 w'' - c0 w +
 i c1 w' = 0, whose clamped determinant is real (the map w(s) ->
-conj(w(1 - s)) preserves the problem) and has simple zeros; D is a positive
+conj(w(1 - s)) preserves the problem; with one end of each the problem is
+self-adjoint with self-adjoint conditions at each end, and the determinant is
+real as well, to round-off) and has simple zeros; D is a positive
 multiple of its square, so every zero of D is double (touching, no sign
 change; the kernel is two-dimensional, Sec. VI A). Roots in these cases come
 from the complex determinant. Elsewhere zeros are simple; close pairs (the

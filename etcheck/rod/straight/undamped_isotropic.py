@@ -6,7 +6,7 @@ section 6) decouple in w = u + i v and w~ = u - i v. With normal modes
 exp(lambda t), lambda = i Omega (Omega the frequency in the rotating frame):
 
     (1/f) w'''' - (T + P omega^2 - P Omega^2) w'' + i B w' - (Omega + omega)^2 w = 0,
-    w = w' = 0 at s = 0 and s = 1,
+    w = w' = 0 at s = 0 and s = 1 (w = w'' = 0 at a pinned end),
 
 and w~ solves the same with -i B and (Omega - omega)^2. Every eigenvalue of
 the rod is an eigenvalue Omega of one of the two, and the second's are minus
@@ -14,7 +14,8 @@ the complex conjugates of the first's: the rod is stable iff every root
 Omega of the first, D+(Omega), is real. D+ is the determinant of the complex
 problem of :mod:`etcheck.rod.straight.exact` with c2 = T + P omega^2 -
 P Omega^2, c0 = (Omega + omega)^2, c1 = B; for real Omega the operator is
-self-adjoint (i d/ds is Hermitian under clamping) and D+ is real.
+self-adjoint (i d/ds is Hermitian with w = 0 at both ends, d^4/ds^4 with w' = 0 or w'' = 0 there) and D+ is
+real.
 
 Why this form: the real function E(mu) of the coupled problem is, for R = 1,
 D+ D~ with D~(Omega) = D+(-Omega) conjugated: at omega = 0 it is a square, and with spin its roots
