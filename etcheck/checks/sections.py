@@ -87,7 +87,8 @@ class FidelitySection(TypedDict):
 
 
 class StaticCriticalLoad(TypedDict):
-    """One critical load of the static rod (omega = T = 0, eq. (91)): the k-th zero beta of chi."""
+    """One critical load of the static rod (omega = T = 0, eq. (91)): the k-th zero beta of chi (of its closed-form
+    analogue 2 g^2 for other ends than welded, docs/model.md section 9; ``chi_*`` keep their names)."""
 
     k: int
     beta: float

@@ -16,7 +16,7 @@ import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.optimize import brentq, minimize_scalar
-from etcheck.rod.core.ends import clamped_count, euler_load, first_bending_root
+from etcheck.rod.core.ends import clamped_count, euler_load, first_bending_root, is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.damped_critical import (
@@ -59,6 +59,8 @@ MODEL = "rung 1x (exact determinant)"
 #: Axes along which roots are searched (as in :func:`etcheck.rod.straight.damped_critical.first_root`).
 AXES = ("B", "omega", "T", "ray")
 _EPS = np.finfo(float).eps
+#: beta_1 of the first double zero of chi (eq. (91)) to 7 digits: the scan's scale of the welded static load.
+_BETA1 = 7.332130
 #: int phi'^2 / int phi^2 of the first bending mode phi by the number of welded ends (pinned-pinned pi^2).
 _SLOPE = {0: math.pi**2, 1: 11.51, 2: 12.30}
 
@@ -104,10 +106,13 @@ def root_scale(params: RodParameters, axis: str, sign: float) -> float:
     bending mode for the spin; the Euler load for the tension (each for the rod's ends)."""
     P, R, f = params.P, params.R, params.f
     Tp = max(params.T, 0.0)
-    load = float(critical_loads(R, f, 1, params.ends)[0]) + 2 * math.pi * Tp
+    welded = is_welded(params.ends)
+    static = _BETA1**3 * math.sqrt(R) / f if welded else float(critical_loads(R, f, 1, params.ends)[0])
+    load = static + 2 * math.pi * Tp
     # first bending mode: int phi''^2 / int phi^2 = beta^4 (f when welded), int phi'^2 / int phi^2 = _SLOPE
     slope = _SLOPE[clamped_count(params.ends)]
-    spin = math.sqrt((R * first_bending_root(params.ends) ** 4 / f + slope * Tp) / max(1.0 - slope * P * R, 0.05))
+    bending = R if welded else R * first_bending_root(params.ends) ** 4 / f
+    spin = math.sqrt((bending + slope * Tp) / max(1.0 - slope * P * R, 0.05))
     if axis == "B":
         return load
     if axis == "omega":
