@@ -13,7 +13,7 @@ import pytest
 from scipy import integrate, stats
 from scipy.optimize import brentq
 
-from etcheck import mission_from_dict
+from etcheck import check, mission_from_dict
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.damped_critical import damped_critical
 from etcheck.scaling import scale, scene
@@ -54,6 +54,21 @@ def test_rung0_elasticities_are_the_closed_form_exactly():
     scaled = scale(scene(mission("set-static.toml")))
     critical = critical_loads(scaled.params.R, scaled.params.f, 1)[0] * scaled.scales.load  # I B0 [N/m]
     assert model.margins(model.values())[LOAD0] == pytest.approx(critical / (1.0 * 70e-6), rel=1e-13)
+
+
+@pytest.mark.parametrize("ends", [["pinned", "pinned"], ["pinned", "welded"]])
+def test_margin_model_takes_the_ends(ends):
+    """The study's margins are the check's for the mission's ends: rung 0's closed form with their beta_1, and
+    the pencils (spin) with their boundary rows."""
+    for base, kind, name in (("set-static.toml", LOAD0, "magnetic load |I B0|"),
+                             ("set.toml", SPIN, "spin rate at the operating load")):
+        data = tomllib.loads((MISSIONS / base).read_text())
+        data["tether"]["end_conditions"] = ends
+        m = mission_from_dict(data)
+        model = margin_model(m)
+        got = model.margins(model.values())[kind]
+        want = next(x["value"] for x in check(m).results["margins"] if x["name"] == name)
+        assert got == pytest.approx(want, rel=1e-7)
 
 
 def test_finite_differences_of_the_pencils_match_rung0_at_vanishing_spin():
