@@ -44,7 +44,6 @@ __all__ = [
     "euler_load",
     "first_bending_root",
     "is_welded",
-    "mirrored",
     "twist_held",
 ]
 
@@ -98,11 +97,6 @@ def twist_held(end: str) -> bool:
 def clamped_count(ends: Ends) -> int:
     """Number of ends where bending is held (welded)."""
     return sum(e == WELDED for e in ends)
-
-
-def mirrored(ends: Ends) -> Ends:
-    """The pair seen from the other end (s -> 1 - s)."""
-    return (ends[1], ends[0])
 
 
 def first_bending_root(ends: Ends) -> float:
