@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import astropy.units as u
 
 from etcheck.input.mission import DEFAULT_GAMMA, Mission
+from etcheck.rod.core.ends import ALL_WELDED
 from etcheck.rod.core.parameters import RodParameters
 
 #: rad/s -> revolutions per minute
@@ -44,6 +45,7 @@ class Scene:
     tension: float
     damping_time: float
     f: float
+    ends: tuple[str, str] = ALL_WELDED  # (lower, upper): how the tether is attached (etcheck.rod.core.ends)
 
 
 @dataclass(frozen=True)
@@ -107,6 +109,7 @@ def scene(mission: Mission) -> Scene:
         tension=float(mission.end_tension.to_value(u.N)),
         damping_time=damping,
         f=f,
+        ends=mission.end_conditions,
     )
 
 
@@ -123,6 +126,7 @@ def scale(s: Scene) -> Scaled:
         omega=s.spin_rate / wc,
         T=s.tension / scales.force,
         gamma=s.damping_time * wc,
+        ends=s.ends,
     )
     return Scaled(params=params, scales=scales)
 
@@ -144,6 +148,7 @@ def unscale(scaled: Scaled) -> Scene:
         tension=p.T * sc.force,
         damping_time=p.gamma / wc,
         f=p.f,
+        ends=p.ends,
     )
 
 

@@ -11,6 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from etcheck import load_mission
+from etcheck.rod.core.ends import KINDS
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.scaling import Scaled, Scales, Scene, scale, scene, unscale, with_length
 
@@ -37,6 +38,10 @@ def pos(lo, hi):
     return st.floats(min_value=lo, max_value=hi, allow_nan=False, allow_infinity=False)
 
 
+#: the attachments of the ends: every pair but a swivel at both
+ENDS = st.sampled_from([(a, b) for a in KINDS for b in KINDS if (a, b) != ("swivel", "swivel")])
+
+
 @st.composite
 def scenes(draw):
     EI1 = draw(pos(1e-6, 1e5))
@@ -53,6 +58,7 @@ def scenes(draw):
         tension=draw(pos(-1e4, 1e4)),
         damping_time=draw(pos(0.0, 1e3)),
         f=draw(st.sampled_from([1.0, F, 12.5, 1e4])),
+        ends=draw(ENDS),
     )
 
 
@@ -67,6 +73,7 @@ def scaleds(draw):
         omega=draw(pos(0.0, 1e3)),
         T=draw(pos(-1e4, 1e4)),
         gamma=draw(pos(0.0, 1e2)),
+        ends=draw(ENDS),
     )
     scales = Scales(
         length=draw(pos(1e-2, 1e5)),
@@ -85,6 +92,8 @@ def assert_same(a, b, rel=1e-12):
         if isinstance(x, dict):
             for k2 in x:
                 assert y[k2] == pytest.approx(x[k2], rel=rel, abs=1e-300), f"{key}.{k2}"
+        elif key == "ends":
+            assert x == y
         else:
             assert y == pytest.approx(x, rel=rel, abs=1e-300), key
 
@@ -186,6 +195,9 @@ def test_scene_holds_plain_floats(name):
     """Scene is "SI floats": plain Python floats, not numpy scalars (JSON-able downstream)."""
     s = scene(load_mission(MISSIONS / name))
     for field in dataclasses.fields(s):
+        if field.name == "ends":  # the attachment: a pair of words
+            assert len(s.ends) == 2 and all(e in KINDS for e in s.ends)
+            continue
         assert type(getattr(s, field.name)) is float, field.name
     for name_, value in dataclasses.asdict(scale(s).params).items():
-        assert type(value) is float, name_
+        assert type(value) is (tuple if name_ == "ends" else float), name_

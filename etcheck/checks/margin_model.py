@@ -35,8 +35,9 @@ import numpy as np
 from etcheck.checks.margins import BUCKLED, INCOMPLETE, LOAD_AT_REST, LOAD_AT_SPIN, SPIN, margin_from_critical
 from etcheck.checks.plan import EXACT, SPECTRAL, straight_route
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, critical_values
+from etcheck.rod.core.ends import ALL_WELDED
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.analytic import characteristic_roots
+from etcheck.rod.straight.analytic import static_roots
 
 #: Physical inputs, their SI unit and label.
 PHYSICAL = {
@@ -66,8 +67,6 @@ UNDAMPED = "rung 1 as the check: the exact undamped determinant (flutter possibl
 #: Exponents of the rung-0 margin beta_1^3 sqrt(EI1 EI2) / (|I B0| L^3) in its inputs.
 RUNG0_POWERS = {"EI1": 0.5, "EI2": 0.5, "bending_stiffness": 1.0, "length": -3.0, "current": -1.0,
                 "axial_field": -1.0}
-_BETA1_CUBED = characteristic_roots(1)[0].beta ** 3
-_RUNG0_ERROR = 3.0 * characteristic_roots(1)[0].error
 
 
 @dataclass(frozen=True)
@@ -97,7 +96,7 @@ class MarginModel:
     route (SPECTRAL, EXACT); ``options``: the check's rung-1 tolerances;
     ``at_nominal``: the check's own margin values (for the margins not
     re-evaluated); ``damped``: the mission has damping (``gamma0``, the
-    dimensionless damping). Where the uncertain inputs give samples spin or
+    dimensionless damping); ``ends``: the attachment (:mod:`etcheck.rod.core.ends`). Where the uncertain inputs give samples spin or
     tension although the mission has none, rung 1 answers every sample
     (``route`` the one the plan picks for a spinning, taut sample).
     """
@@ -114,6 +113,7 @@ class MarginModel:
     at_nominal: dict[str, float] = field(default_factory=dict)
     damped: bool = True
     gamma0: float = 0.0
+    ends: tuple[str, str] = ALL_WELDED
 
     # ------------------------------------------------------------------ inputs
 
@@ -140,7 +140,8 @@ class MarginModel:
         gamma = self.gamma0 if self.damped and self.route != CLOSED else v["damping_time"] * wc
         return RodParameters(P=self.P0 * (self.L0 / L) ** 2, R=EI2 / EI1, Gamma=2 * v["torsional_stiffness"] / (EI1 + EI2),
                              f=self.f, B=v["current"] * v["axial_field"] * L**3 / (self.f * EI1),
-                             omega=v["spin_rate"] / wc, T=v["end_tension"] * L**2 / (self.f * EI1), gamma=gamma)
+                             omega=v["spin_rate"] / wc, T=v["end_tension"] * L**2 / (self.f * EI1), gamma=gamma,
+                             ends=self.ends)
 
     @property
     def name(self) -> str:
@@ -196,8 +197,8 @@ class MarginModel:
             out[BUCKLED] = MarginValue(self.at_nominal[BUCKLED] * scale)
         straight = tuple(k for k in kinds if k != BUCKLED)
         if straight and self.route == CLOSED:
-            m = float(closed_form_margin({k: np.asarray(x) for k, x in v.items()}))
-            return out | {k: MarginValue(m, _RUNG0_ERROR) for k in straight}
+            m = float(closed_form_margin({k: np.asarray(x) for k, x in v.items()}, self.ends))
+            return out | {k: MarginValue(m, 3.0 * static_roots(self.ends, 1)[0].error) for k in straight}
         return out | (self.at_params(self.params(v), straight) if straight else {})
 
     def at_params(self, p: RodParameters, kinds: tuple[str, ...]) -> dict[str, MarginValue]:
@@ -220,10 +221,12 @@ def _ratio(point, operating: float, required: float) -> MarginValue:
     return MarginValue(math.inf if m.value is None else m.value, m.error or 0.0)
 
 
-def closed_form_margin(v: dict[str, np.ndarray]) -> np.ndarray:
-    """Rung-0 load margin beta_1^3 sqrt(EI1 EI2) / (|I| |B0| L^3), vectorised (SI arrays in, dimensionless out)."""
+def closed_form_margin(v: dict[str, np.ndarray], ends: tuple[str, str] = ALL_WELDED) -> np.ndarray:
+    """Rung-0 load margin beta_1^3 sqrt(EI1 EI2) / (|I| |B0| L^3), vectorised (SI arrays in, dimensionless out);
+    beta_1 of the ends (the first double zero of chi for welded ends, eq. (91))."""
+    beta1_cubed = static_roots(ends, 1)[0].beta ** 3
     with np.errstate(divide="ignore"):
-        return _BETA1_CUBED * np.sqrt(v["EI1"] * v["EI2"]) / (v["current"] * v["axial_field"] * v["length"] ** 3)
+        return beta1_cubed * np.sqrt(v["EI1"] * v["EI2"]) / (v["current"] * v["axial_field"] * v["length"] ** 3)
 
 
 def margin_model(mission, scene, scaled, chosen, margins, options: WhirlOptions = DEFAULT_OPTIONS) -> MarginModel:
@@ -249,4 +252,4 @@ def margin_model(mission, scene, scaled, chosen, margins, options: WhirlOptions 
     gj_ratio = scene.GJ / (scene.EI1 + scene.EI2) if mission.poisson_ratio is not None else None
     at_nominal = {m.name: (math.inf if m.value is None else m.value) for m in margins}
     return MarginModel(nominal, scene.P, scene.length, scene.f, gj_ratio, kinds, route, mission.required_margin,
-                       options, at_nominal, p.gamma > 0, p.gamma)
+                       options, at_nominal, p.gamma > 0, p.gamma, p.ends)

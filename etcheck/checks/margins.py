@@ -7,8 +7,15 @@ from enum import StrEnum
 from typing import cast
 
 from etcheck.checks.plan import EXACT, EXACT_MODEL, RUNG_NAMES, Plan
-from etcheck.checks.sections import LinearSection, MarginRecord, PostbucklingSection, StraightRodSection
+from etcheck.checks.sections import (
+    AlternativeMargin,
+    LinearSection,
+    MarginRecord,
+    PostbucklingSection,
+    StraightRodSection,
+)
 from etcheck.input.mission import Mission
+from etcheck.rod.core.ends import describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import RPM, Scaled, Scene
 
@@ -37,7 +44,8 @@ class Margin:
     ``critical`` and ``operating`` are in ``unit`` (SI); ``value`` is their
     ratio (None when the operating value is zero: an unlimited margin, or when
     the check is incomplete); ``error`` is the estimated relative numerical
-    error of ``value``; ``rung`` the model that answered.
+    error of ``value``; ``rung`` the model that answered; ``alternatives`` the
+    same margin under other attachments of the ends (:mod:`etcheck.checks.attachment`).
     """
 
     name: str
@@ -51,13 +59,14 @@ class Margin:
     error: float | None
     why: str
     route: str = ""
+    alternatives: tuple[AlternativeMargin, ...] = ()
 
     @property
     def model(self) -> str:
         return EXACT_MODEL if self.route == EXACT and self.rung == 1 else RUNG_NAMES[self.rung]
 
     def as_dict(self) -> MarginRecord:
-        return cast(MarginRecord, asdict(self) | {"model": self.model})
+        return cast(MarginRecord, asdict(self) | {"model": self.model, "alternatives": list(self.alternatives)})
 
 
 def ratio_margin(
@@ -108,10 +117,17 @@ def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, 
                 required,
                 chosen.rung,
                 first["relative_error"],
-                "first (doubly degenerate) static buckling load of the straight welded tether, arXiv:0810.3668 eq. (91)",
+                _static_why(scaled.params.ends),
             )
         ]
     return [incomplete_margin(LOAD_AT_REST, "N/m", sc.load, required, chosen.rung, chosen.reason)]
+
+
+def _static_why(ends) -> str:
+    if is_welded(ends):
+        return "first (doubly degenerate) static buckling load of the straight welded tether, arXiv:0810.3668 eq. (91)"
+    return (f"first (doubly degenerate) static buckling load of the straight tether {describe(ends)}: a zero of "
+            "its closed-form characteristic function (docs/model.md)")
 
 
 def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSection) -> list[Margin]:

@@ -12,6 +12,7 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import cast
 
+from etcheck.checks.attachment import alternatives, attachment_section, with_alternatives
 from etcheck.checks.fidelity import fidelity_of
 from etcheck.checks.margins import (
     FAIL,
@@ -39,6 +40,7 @@ from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, lin
 from etcheck.checks.validity import validity
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
 from etcheck.numerics.parallel import ahead
+from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import Scaled, Scene, scale, scene
 
@@ -101,6 +103,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
             linear = linear_stability(scaled, options, chosen.route)
             accuracy_rows = accuracy_later()
     margins = straight_margins(mission, sc, scaled, chosen, static, linear)
+    alts = alternatives(mission, sc, scaled, options)  # the same margins under the other attachments of the ends
+    margins = with_alternatives(margins, alts)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
@@ -128,6 +132,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "accuracy": accuracy_rows,
         "margins": [m.as_dict() for m in margins],
         "verdict": overall_verdict(margins),
+        "attachment": attachment_section(scaled, alts),
         "validity": validity(mission, scaled, chosen, post),
         "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
@@ -153,6 +158,10 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
         return {"computed": False, "B_c": 0.0, "load_ratio": None,
                 "reason": "the straight tether is unstable without any magnetic load at this spin and tension "
                 "(it whirls): no buckled branch grows from a stable straight state here"}
+    if not is_welded(p.ends):
+        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c,
+                "reason": f"the buckled tether (rungs 2-3) is {BUCKLED_WELDED_ONLY} (this tether is "
+                f"{describe(p.ends)}); the margins of the straight tether above decide the verdict"}
     if linear is not None and linear.get("route") == EXACT:
         layer = boundary_layer(p)
         return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c,

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from etcheck.rod.core.ends import describe, is_welded
 from etcheck.rod.core.parameters import RodParameters
 
 #: end boundary layers thinner than this fraction of the length are left to the exact determinant:
@@ -42,7 +43,8 @@ def boundary_layer(params: RodParameters) -> float:
     """Width (fraction of L, dimensionless) of the thinner end boundary layer of the straight tether.
 
     Under the effective tension T + P R omega^2 the weak-axis bending stiffness R/f acts only in
-    layers of width sqrt(R / (f T_eff)) at the welded ends; inf without tension.
+    layers of width sqrt(R / (f T_eff)) at the ends (welded or pinned: a pinned end's layer is weaker, of
+    amplitude eps^2 u'', but as thin); inf without tension.
     """
     tension = params.T + params.P * params.R * params.omega**2
     return math.sqrt(params.R / (params.f * tension)) if tension > 0 else math.inf
@@ -67,7 +69,10 @@ def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
     """
     static = params.omega == 0 and params.T == 0
     if static and fidelity in ("auto", "draft", "analytic"):
-        return Plan(0, "no spin and no end tension: the static buckling loads of chi(beta) are exact")
+        if is_welded(params.ends):
+            return Plan(0, "no spin and no end tension: the static buckling loads of chi(beta) are exact")
+        return Plan(0, f"no spin and no end tension: the static buckling loads of the tether {describe(params.ends)} "
+                    "are exact (the zeros of its closed-form characteristic function)")
     if static:
         return Plan(1, "fidelity = linear requested (rung 0 would be exact here)", route=SPECTRAL)
     why = []
@@ -87,7 +92,8 @@ def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
     if route == SPECTRAL:
         return Plan(1, f"the mission has {moving}: rung 0 does not model it, the linear spectral model does", route=route)
     layer = boundary_layer(params)
-    why_exact = (f"boundary layers of {layer:.2g} L at the welded ends" if layer < LAYER_MIN
+    held = "welded ends" if is_welded(params.ends) else "ends"
+    why_exact = (f"boundary layers of {layer:.2g} L at the {held}" if layer < LAYER_MIN
                  else f"a nearly string-like weak axis (R = {params.R:.2g})")
     if params.gamma <= 0:
         return Plan(1, f"the mission has {moving} and {why_exact}, too thin for collocation, and no damping: the "

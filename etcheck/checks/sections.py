@@ -53,6 +53,7 @@ class ScaledSection(TypedDict):
     omega: float
     T: float
     gamma: float
+    ends: list[str]  # [s = 0 (lower end), s = 1 (upper end)]: welded, pinned or swivel
 
 
 class ScalesSection(TypedDict):
@@ -86,7 +87,8 @@ class FidelitySection(TypedDict):
 
 
 class StaticCriticalLoad(TypedDict):
-    """One critical load of the static rod (omega = T = 0, eq. (91)): the k-th zero beta of chi."""
+    """One critical load of the static rod (omega = T = 0, eq. (91)): the k-th zero beta of chi (of its closed-form
+    analogue 2 g^2 for other ends than welded, docs/model.md section 9; ``chi_*`` keep their names)."""
 
     k: int
     beta: float
@@ -492,8 +494,21 @@ class PostbucklingSection(TypedDict):
 # --------------------------------------------------------------------------- margins and verdict
 
 
+class AlternativeMargin(TypedDict):
+    """The same margin under another attachment of the ends (:mod:`etcheck.checks.attachment`)."""
+
+    ends: list[str]
+    described: str
+    critical: float | None
+    value: float | None
+    verdict: str  # a Verdict value
+    error: float | None
+    model: str
+
+
 class MarginRecord(TypedDict):
-    """One margin = critical / operating (:meth:`etcheck.checks.margins.Margin.as_dict`)."""
+    """One margin = critical / operating (:meth:`etcheck.checks.margins.Margin.as_dict`); ``alternatives``: the
+    same margin under the other attachments (none for the buckled tether's)."""
 
     name: str
     unit: str
@@ -507,6 +522,26 @@ class MarginRecord(TypedDict):
     why: str
     route: str
     model: str
+    alternatives: list[AlternativeMargin]
+
+
+class AttachmentAlternative(TypedDict):
+    """The straight tether's margins under another attachment: their verdict and the model that answered."""
+
+    ends: list[str]
+    described: str
+    model: str
+    verdict: str  # a Verdict value
+
+
+class AttachmentSection(TypedDict):
+    """``attachment``: how the tether is held at its ends (:mod:`etcheck.checks.attachment`)."""
+
+    ends: list[str]  # [lower end, upper end]
+    described: str
+    torsion: str
+    buckled: str  # whether rungs 2-3 are computed for these ends, and why not
+    alternatives: list[AttachmentAlternative]
 
 
 # --------------------------------------------------------------------------- along the orbit
@@ -699,6 +734,7 @@ class CheckResults(ResultsHeader):
     accuracy: list[AccuracyRow] | None
     margins: list[MarginRecord]
     verdict: str  # a Verdict value
+    attachment: AttachmentSection
     validity: list[str]
     orbit: NotRequired[OrbitSection | None]
     elapsed_s: float

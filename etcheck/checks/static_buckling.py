@@ -1,8 +1,9 @@
 """Rung 0 for a mission: the static buckling of the straight tether, exact and analytic.
 
 At zero spin and zero end tension the critical loads are B_k = beta_k^3 sqrt(R)/f
-with beta_k the double zeros of chi(beta) (arXiv:0810.3668, eq. (91) and Fig. 4);
-the unperturbed frequencies are those of the paper's Sec. VI B. Dimensionless
+with beta_k the double zeros of chi(beta) (arXiv:0810.3668, eq. (91) and Fig. 4),
+or of its closed-form analogue for pinned ends (docs/model.md); the unperturbed
+frequencies are those of the paper's Sec. VI B, for the tether's ends. Dimensionless
 answers with their SI counterparts (I·B0 in N/m, frequencies in rad/s and Hz).
 """
 
@@ -24,13 +25,14 @@ N_LOADS = 5
 def static_buckling(scaled: Scaled) -> StaticBuckling:
     """Rung 0 answers for the scene: critical loads, frequencies, mode shape.
 
-    All loads are at omega = 0, T = 0 (eq. (91)); dimensionless B
-    and I B0 in N/m.
+    All loads are at omega = 0, T = 0 (eq. (91), or its analogue for the
+    scene's ends); dimensionless B and I B0 in N/m.
     """
     p, scales = scaled.params, scaled.scales
-    roots = analytic.characteristic_roots(N_LOADS)
+    ends = p.ends
+    roots = analytic.static_roots(ends, N_LOADS)
     loads: list[StaticCriticalLoad] = []
-    for r, B in zip(roots, analytic.critical_loads(p.R, p.f, N_LOADS)):
+    for r, B in zip(roots, analytic.critical_loads(p.R, p.f, N_LOADS, ends)):
         B = float(B)
         loads.append(
             {
@@ -45,13 +47,14 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
             }
         )
     s = np.linspace(0.0, 1.0, 101)
-    x, y = analytic.buckling_mode(1, p.R, s)
+    x, y = analytic.buckling_mode(1, p.R, s, ends)
     op_beta = analytic.beta_of_load(p.B, p.R, p.f)
     beta_grid = np.linspace(0.0, min(max(1.25 * roots[2].beta, 1.15 * op_beta), 1.1 * roots[-1].beta), 600)
-    # zeros of chi below the operating beta (asymptotically pi/3 + 2 pi n beyond the tabulated ones)
+    # zeros of chi below the operating beta (asymptotically pi/3 + 2 pi n beyond the tabulated ones; other ends:
+    # analytic.asymptotic_count)
     exceeded = sum(r.beta <= op_beta for r in roots)
     if op_beta > roots[-1].beta:
-        exceeded = int((op_beta - math.pi / 3) // (2 * math.pi))
+        exceeded = analytic.asymptotic_count(op_beta, ends)
     wc = scales.frequency
     return {
         "model": "rung 0 (analytic)",
@@ -60,11 +63,12 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
         "loads_exceeded": exceeded,
         "operating_B": p.B,
         "first_mode": {"s": s.tolist(), "x": x.tolist(), "y": y.tolist()},
-        "chi_curve": {"beta": beta_grid.tolist(), "chi_scaled": analytic.chi_scaled(beta_grid).tolist()},
+        "chi_curve": {"beta": beta_grid.tolist(),
+                      "chi_scaled": analytic.characteristic_scaled(beta_grid, ends).tolist()},
         "natural_frequencies": {
-            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak"), wc),
-            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff"), wc),
-            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5), wc),
+            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak", ends), wc),
+            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff", ends), wc),
+            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5, ends), wc),
         },
     }
 

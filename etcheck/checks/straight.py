@@ -144,7 +144,7 @@ def _damped_critical(p, options: WhirlOptions, route: str,
         dc = exact_critical(p, tol=max(options.tol, options.eig_tol), spin=spin)
     else:
         dc = pencil_or_exact(p, tol=options.tol, ladder=DRAFT_LADDER if options.draft else LADDER, spin=spin)
-    B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1)[0]), p.B)
+    B_hi = 1.6 * max(float(critical_loads(p.R, p.f, 1, p.ends)[0]), p.B)
     w_hi = 1.6 * max(p.omega, math.sqrt(p.R))
     load = _pencil_critical(dc.critical_load, "critical load at the operating spin", B_hi)
     spin = _pencil_critical(dc.critical_spin, "critical spin at the operating load", w_hi)
@@ -307,7 +307,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     # ranges of the pictures: past the boundary and the operating point
     B_ref = load["value"] if CriticalKind(load["kind"]).located else None
     w_ref = spin["value"] if CriticalKind(spin["kind"]).located and spin["value"] else None
-    B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1)[0])
+    B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1, p.ends)[0])
     w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
     B_grid = np.linspace(0.0, B_hi, options.map_points)
     w_grid = np.linspace(0.0, w_hi, options.map_points)

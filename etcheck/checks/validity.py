@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
+from etcheck.checks.attachment import alternative_ends
 from etcheck.checks.plan import EXACT, Plan
 from etcheck.checks.sections import PostbucklingSection
 from etcheck.input.mission import Mission
+from etcheck.rod.core.ends import describe, is_welded
 from etcheck.scaling import Scaled
 
 
-def _after_buckling(post: PostbucklingSection | None) -> str:
+def _after_buckling(post: PostbucklingSection | None, ends) -> str:
+    if not is_welded(ends):
+        return ("Linear stability of the straight tether: margins say where it first buckles or whirls. The buckled "
+                "tether (rungs 2-3) is computed for welded ends only and is not analysed for these ends.")
     if post and post.get("computed"):
         return ("Past (or near) the first critical load the first post-buckling branch b1 is followed as nonlinear "
                 "whirling equilibria (rung 2, Chebyshev collocation, Newton with the exact Jacobian, pseudo-arclength "
@@ -18,18 +23,48 @@ def _after_buckling(post: PostbucklingSection | None) -> str:
             "point is within the required margin of that load, the buckled tether is analysed too (rungs 2-3).")
 
 
+def _model(ends) -> str:
+    held = "welded (clamped) at both ends" if is_welded(ends) else describe(ends)
+    return (f"Model: inextensible, unshearable, intrinsically straight Kirchhoff rod, {held}, "
+            "uniform field along the undeformed axis (Valverde & van der Heijden, arXiv:0810.3668).")
+
+
+def _attachment(ends) -> str:
+    """What the attachment means for the answers, and the other attachment beside each margin."""
+    if is_welded(ends):
+        held = ("Welded ends, as in the paper: the end bodies hold the tether's position, direction and twist. A "
+                "tether on a gimbal, a hinge or an exit guide passes no bending moment (pinned) and buckles much "
+                "sooner; each margin is shown beside the same margin with both ends pinned.")
+    else:
+        held = ("The paper welds both ends; a pinned end holds the position but passes no bending moment "
+                "(u = u'' = v = v'' = 0 on the straight tether; docs/model.md), which lowers the critical loads; "
+                "torsion decouples from bending on the straight tether, so the twist condition (gimbal or swivel) "
+                f"changes only the torsional frequencies. Each margin is shown beside the same margin {_others(ends)}; "
+                "the buckled tether (rungs 2-3) is computed for welded ends only and is not computed here.")
+    return held + (" The alternatives are computed on the same rung with the critical values only (no spectrum).")
+
+
+def _others(ends) -> str:
+    alts = alternative_ends(ends)
+    if len(alts) == 2:
+        return "with both ends welded and with both pinned, which bound it"
+    return f"with both ends {alts[0][0]}"
+
+
 def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: PostbucklingSection | None = None) -> list[str]:
     p = scaled.params
     items = [
-        "Model: inextensible, unshearable, intrinsically straight Kirchhoff rod, welded (clamped) at both ends, "
-        "uniform field along the undeformed axis (Valverde & van der Heijden, arXiv:0810.3668).",
-        _after_buckling(post),
+        _model(p.ends),
+        _after_buckling(post, p.ends),
+        _attachment(p.ends),
         "The load is the worst case |I| x |B0| over the given ranges; field components across the tether "
         "(which drive the intended drag) are not part of this check.",
     ]
     if chosen.rung == 0:
         items.append(
-            "Rung 0 roots of chi(beta) are located to ~1e-15 relative (a-posteriori Newton step); "
+            ("Rung 0 roots of chi(beta) are located" if is_welded(p.ends) else
+             "Rung 0 roots of the closed-form characteristic function of these ends are located")
+            + " to ~1e-15 relative (a-posteriori Newton step); "
             "the static loads do not depend on P, damping or mass per length."
         )
     if chosen.rung == 1 and chosen.route == EXACT:

@@ -60,11 +60,17 @@ def summary(results: dict, paths: list[Path]) -> None:
     """A few lines on stdout: verdict, margins, where the reports are."""
     draft = " (DRAFT: margins only, not for signature)" if results.get("fidelity", {}).get("name") == "draft" else ""
     print(f"etcheck {__version__}: {results['mission']['name']}: {results['verdict'].upper()}{draft}")
+    if "attachment" in results:
+        print(f"  ends: {results['attachment']['described']}")
     for m in results["margins"]:
         value = "not answered" if m["verdict"] == "incomplete" else "unlimited" if m["value"] is None else f"{m['value']:.4g}"
         print(f"  {m['name']}: margin {value} (required {m['required']:g}) -> {m['verdict']} [{m['model']}]")
         if m["verdict"] == "incomplete":
             print(f"    incomplete: {m['why']}")
+        for a in m.get("alternatives", ()):
+            other = "not answered" if a["verdict"] == "incomplete" else "unlimited" if a["value"] is None else \
+                f"{a['value']:.4g}"
+            print(f"    if both ends were {a['ends'][0]}: margin {other} -> {a['verdict']}")
     for line in probability_lines(results):
         print(line)
     for path in paths:

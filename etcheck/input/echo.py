@@ -22,6 +22,7 @@ class TetherEcho(TypedDict):
     youngs_modulus: str | None
     cross_section_area: str | None
     damping_time: str | None
+    end_conditions: list[str]  # [lower end, upper end]: welded, pinned or swivel
 
 
 class TensionProfile(TypedDict):

@@ -28,6 +28,8 @@ from etcheck.input.sweep_axes import AXES, Axis, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
+from etcheck.rod.core.ends import ALL_WELDED, check_ends, describe, is_welded
+from etcheck.rod.core.ends import KINDS as END_KINDS
 from etcheck.rod.core.parameters import F_CLAMPED
 
 if TYPE_CHECKING:  # etcheck.orbit (IGRF, SGP4) is imported only for missions with an [orbit] table
@@ -83,6 +85,7 @@ SCHEMA: dict[str, dict[str, Field]] = {
         "cross_section_area": Field("area", sign="positive"),
         "damping_time": Field("time", sign="non-negative"),
         "end_masses": Field("mass_pair"),  # [upper, lower]: gravity-gradient tension
+        "end_conditions": Field("end_conditions", default=ALL_WELDED, choices=END_KINDS),  # [lower, upper]
     },
     "operation": {
         "current": Field("current_range", required=True),
@@ -126,6 +129,7 @@ class Mission:
     spin_rate: u.Quantity = 0.0 * u.rad / u.s
     end_tension: u.Quantity = 0.0 * u.N
     damping_time: u.Quantity | None = None
+    end_conditions: tuple[str, str] = ALL_WELDED  # (lower end, upper end): etcheck.rod.core.ends
     poisson_ratio: float | None = None
     youngs_modulus: u.Quantity | None = None
     cross_section_area: u.Quantity | None = None
@@ -196,6 +200,7 @@ class Mission:
                 "youngs_modulus": q(self.youngs_modulus),
                 "cross_section_area": q(self.cross_section_area),
                 "damping_time": q(self.damping_time),
+                "end_conditions": list(self.end_conditions),
             },
             "operation": {
                 "current": pair(self.current),
@@ -267,6 +272,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     mass = read_field(t, "tether", "mass_per_length", source)
     P, E, A, inertia_notes = _rotary_inertia(t, EI1, length, source)
     damping = read_field(t, "tether", "damping_time", source)
+    ends = read_field(t, "tether", "end_conditions", source)
     current = _range(o, "operation", "current", "current", source)
     bfield, orbit = _axial_field(o, data, source)
     spin, spin_notes = _spin_rate(o, source)
@@ -277,7 +283,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
                "axial_field": None if bfield is None else max(abs(bfield[0]), abs(bfield[1])),
                "spin_rate": spin, "end_tension": tension, "damping_time": damping}
     uncertainty, uncertainty_notes = _uncertainty(data, source, nominal, gj_derived=nu is not None)
-    notes = (*torsion_notes, *inertia_notes, *spin_notes, *tension_notes,
+    notes = (*_end_notes(ends), *torsion_notes, *inertia_notes, *spin_notes, *tension_notes,
              *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping))
     return Mission(
         name=name,
@@ -292,6 +298,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         youngs_modulus=E,
         cross_section_area=A,
         damping_time=damping,
+        end_conditions=ends,
         current=current,
         axial_field=bfield,
         spin_rate=spin,
@@ -362,7 +369,30 @@ def _chebyshev_points(value: Any, spec: Field, fld: str, source: str) -> int:
     return value
 
 
-_READERS = {"number": _number, "text": _text, "chebyshev_points": _chebyshev_points}
+def _end_conditions(value: Any, spec: Field, fld: str, source: str) -> tuple[str, str]:
+    """One attachment for both ends or [lower, upper], each one of ``spec.choices``; not a swivel at both."""
+    items = value if isinstance(value, list) else [value, value]
+    if len(items) != 2:
+        raise MissionError(source, fld, f"expected one attachment or [lower, upper], got {len(items)} values",
+                           'e.g. end_conditions = ["welded", "pinned"]')
+    for item in items:
+        if not isinstance(item, str) or item not in spec.choices:
+            raise MissionError(source, fld, f"unknown attachment {item!r}", f"use one of {', '.join(spec.choices)}")
+    try:
+        return check_ends(items)
+    except ValueError:
+        raise MissionError(source, fld, "a swivel at both ends leaves the tether free to turn about its axis",
+                           "hold the twist at one end at least: welded or pinned") from None
+
+
+def _end_notes(ends: tuple[str, str]) -> list[str]:
+    if is_welded(ends):
+        return []
+    return [f"tether.end_conditions: {describe(ends)}; a pinned end passes no bending moment and holds the twist "
+            "(a gimbal), a swivel passes no moment at all"]
+
+
+_READERS = {"number": _number, "text": _text, "chebyshev_points": _chebyshev_points, "end_conditions": _end_conditions}
 
 
 def _name(m: dict[str, Any], source: str) -> str:

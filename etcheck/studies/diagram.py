@@ -16,6 +16,7 @@ from etcheck.checks.results import results_header
 from etcheck.errors import MissionError
 from etcheck.input.mission import Mission
 from etcheck.rod.buckled import pitchforks
+from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.scaling import RPM, scale, scene
 
@@ -40,7 +41,13 @@ def postbuckling_limit(params: RodParameters) -> str | None:
 
 def refuse_outside_limit(mission: Mission, params: RodParameters, what: str, field: str | None = None) -> None:
     """A :class:`~etcheck.errors.MissionError` (exit 2) when ``params`` are outside rungs 2-3's validated
-    range (:func:`postbuckling_limit`), before any solve; ``what`` names the study."""
+    range (:func:`postbuckling_limit`) or the tether's ends are not welded, before any solve; ``what`` names the
+    study."""
+    if not is_welded(params.ends):
+        raise MissionError(mission.file or "mission", "tether.end_conditions",
+                           f"{what} needs the buckled tether (rungs 2-3), which is {BUCKLED_WELDED_ONLY} (this "
+                           f"tether is {describe(params.ends)})",
+                           "the straight tether's margins for these ends are given by 'etcheck MISSION'")
     why = postbuckling_limit(params)
     if why is not None:
         if field is None:

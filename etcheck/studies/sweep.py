@@ -53,6 +53,7 @@ from etcheck.jsonable import finite_or_none
 from etcheck.numerics.blas import one_blas_thread
 from etcheck.numerics.optimize import brentq
 from etcheck.numerics.parallel import serial
+from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.damped_critical import first_root
 from etcheck.rod.straight.exact import MODEL as EXACT_ROOTS
@@ -183,7 +184,10 @@ def _finite(out: dict[str, Any], spin: bool) -> dict[str, Any]:
 
 
 def _buckled(params: RodParameters) -> dict[str, Any]:
-    """Is the coiled state on b1 stable at a straight-unstable point (rungs 2-3)."""
+    """Is the coiled state on b1 stable at a straight-unstable point (rungs 2-3; welded ends only)."""
+    if not is_welded(params.ends):
+        return {"buckled_stable": None, "buckled_deflection": None,
+                "buckled_reason": f"not computed: rungs 2-3 are {BUCKLED_WELDED_ONLY}"}
     try:
         b = buckled_point(params)
     except (ArithmeticError, ValueError, EtcheckError, np.linalg.LinAlgError) as exc:
@@ -215,8 +219,9 @@ def _undamped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
 
 def point_key(params: RodParameters, tol: float, kind: str = "point") -> str:
     """Cache key: dimensionless parameters (exact floats), settings and version."""
-    text = json.dumps({"kind": kind, "params": {k: repr(v) for k, v in asdict(params).items()}, "tol": repr(tol),
-                       "version": __version__}, sort_keys=True)
+    # welded ends (the paper's) leave the key as it was before the ends were a parameter
+    fields = {k: repr(v) for k, v in asdict(params).items() if not (k == "ends" and is_welded(v))}
+    text = json.dumps({"kind": kind, "params": fields, "tol": repr(tol), "version": __version__}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()
 
 

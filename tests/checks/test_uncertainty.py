@@ -273,6 +273,20 @@ def test_samples_use_the_checks_route_and_tolerance():
         assert model.route == r["plan"]["route"]
 
 
+@pytest.mark.parametrize("ends", [["pinned", "pinned"], ["pinned", "welded"]])
+def test_margin_model_takes_the_ends(ends):
+    """The study's margins are the check's for the mission's ends: rung 0's closed form with their beta_1, and
+    the pencils (spin) with their boundary rows."""
+    for base in ("set-static.toml", "set.toml"):
+        data = tomllib.loads((MISSIONS / base).read_text())
+        data["tether"]["end_conditions"] = ends
+        m = mission_from_dict(data)
+        model = study_model(m)
+        r = check(m, replace(DEFAULT_OPTIONS, accuracy_N=())).results
+        for g in r["margins"]:
+            assert model.margin(model.values(), g["name"]).value == pytest.approx(g["value"], rel=1e-7)
+
+
 # --------------------------------------------------------------------------- elasticities
 
 

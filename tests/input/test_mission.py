@@ -84,6 +84,14 @@ BAD_CASES: list[tuple[str, dict, str, str | None]] = [
     ("typo-curent", {("operation", "curent"): '"1 A"'}, "operation.curent", "current"),
     ("unknown-table", {("tehter", "length"): '"100 m"'}, "tehter", "tether"),
     ("unknown-table-2", {("extras", "x"): "1"}, "extras", None),
+    # how the ends are held
+    ("ends-unknown", {("tether", "end_conditions"): '"hinged"'}, "tether.end_conditions", "pinned"),
+    ("ends-three", {("tether", "end_conditions"): '["welded", "pinned", "welded"]'}, "tether.end_conditions",
+     "[lower, upper]"),
+    ("ends-number", {("tether", "end_conditions"): "1"}, "tether.end_conditions", "unknown attachment"),
+    ("ends-two-swivels", {("tether", "end_conditions"): '["swivel", "swivel"]'}, "tether.end_conditions",
+     "twist"),
+    ("ends-typo", {("tether", "end_condition"): '"pinned"'}, "tether.end_condition", "end_conditions"),
     # wrong dimension
     ("length-in-seconds", {("tether", "length"): '"100 s"'}, "tether.length", None),
     ("field-in-metres", {("operation", "axial_field"): '"70 m"'}, "operation.axial_field", None),
@@ -484,3 +492,18 @@ def test_error_message_has_a_fix(tmp_path):
         load_mission(path)
     assert exc.value.fix  # says what would make it right
     assert exc.value.fix in str(exc.value)
+
+
+@pytest.mark.parametrize("literal, ends", [(None, ("welded", "welded")), ('"pinned"', ("pinned", "pinned")),
+                                           ('["welded", "pinned"]', ("welded", "pinned")),
+                                           ('["swivel", "welded"]', ("swivel", "welded"))])
+def test_end_conditions_lower_end_first(tmp_path, literal, ends):
+    """[tether] end_conditions: one attachment for both ends, or [lower, upper]; welded by default; echoed as read,
+    carried to the dimensionless problem (s = 0 is the lower end) and noted when not the paper's."""
+    from etcheck.scaling import scale, scene
+
+    m = load_mission(write_mission(tmp_path, {("tether", "end_conditions"): literal}))
+    assert m.end_conditions == ends
+    assert m.echo()["tether"]["end_conditions"] == list(ends)
+    assert scale(scene(m)).params.ends == ends
+    assert any("end_conditions" in n for n in m.notes) == (ends != ("welded", "welded"))

@@ -136,6 +136,25 @@ def test_sweep_point_equals_check_margins():
                                                 rel=1e-8)
 
 
+def test_sweep_takes_the_ends_of_the_mission():
+    """[tether] end_conditions reaches every point of a sweep unchanged: a point equals the check of the same
+    mission, and without spin the critical length is the closed form of those ends (B ~ L^3)."""
+    ends = ["welded", "pinned"]
+    m = _spin_mission(end_conditions=ends)
+    res = sweep(m, (parse_option("length", "100m:200m:2"),), SweepOptions(workers=1))
+    chk = check(m).results
+    assert res["grid"]["critical_load_N_per_m"][0] == pytest.approx(chk["linear"]["critical_load"]["IB0_N_per_m"],
+                                                                     rel=1e-8)
+    welded = check(_spin_mission()).results["linear"]["critical_load"]["IB0_N_per_m"]
+    assert res["grid"]["critical_load_N_per_m"][0] < 0.9 * welded
+    m = mission_from_dict(set_like(end_conditions=ends))
+    res = sweep(m, (parse_option("length", "100m:2km:6:log"),), SweepOptions(workers=1))
+    sc = scene(m)
+    B1 = critical_loads(sc.EI2 / sc.EI1, sc.f, 1, tuple(ends))[0]
+    assert res["critical_length"][0]["length_m"] == pytest.approx(sc.length * (B1 / scale(sc).params.B) ** (1 / 3),
+                                                                  rel=1e-7)
+
+
 def test_critical_length_without_spin_is_analytic():
     m = mission_from_dict(set_like())
     res = sweep(m, (parse_option("length", "100m:2km:6:log"),), SweepOptions(workers=1))

@@ -16,15 +16,24 @@ from etcheck.report.figures.common import pyplot as _plt
 from etcheck.report.figures.diagram import branch_plot, shapes_plot
 
 
+def _ends(results: dict) -> tuple[list[str], str]:
+    """The tether's ends [lower, upper] and their description (welded at both when the results do not say)."""
+    att = results.get("attachment") or {"ends": ["welded", "welded"], "described": "welded at both ends"}
+    return att["ends"], att["described"]
+
+
 def chi_plot(results: dict) -> str:
-    """chi(beta) e^{-sqrt3 beta} with the critical betas and the operating beta."""
+    """chi(beta) e^{-sqrt3 beta} (or its analogue for other ends) with the critical betas and the operating beta."""
     plt = _plt()
     sr = results["straight_rod"]
+    ends, described = _ends(results)
+    welded = ends == ["welded", "welded"]
     beta = sr["chi_curve"]["beta"]
     chi = sr["chi_curve"]["chi_scaled"]
     op = sr["operating_beta"]
     fig, ax = plt.subplots(figsize=(5.7, 2.8))
-    ax.plot(beta, chi, color="#1f4e79", lw=1.4, label="χ(β) exp(−√3 β) (arXiv:0810.3668 eq. (91))")
+    ax.plot(beta, chi, color="#1f4e79", lw=1.4, label="χ(β) exp(−√3 β) (arXiv:0810.3668 eq. (91))" if welded
+            else "2 g(β)² (its closed-form analogue for these ends)")
     for i, load in enumerate(sr["critical_loads"]):
         if load["beta"] <= beta[-1] and (i < 3 or op > beta[-1]):
             ax.axvline(load["beta"], color="#c0392b", ls=":", lw=1,
@@ -43,7 +52,9 @@ def chi_plot(results: dict) -> str:
     ax.set_xlabel("β = ∛(f B / √R)  (dimensionless)")
     ax.set_ylabel("scaled χ (dimensionless)")
     ax.legend(loc="upper left", fontsize=7, framealpha=0.9)
-    ax.set_title("Characteristic function of the straight welded tether (ω = 0, T = 0)", fontsize=9)
+    ax.set_title("Characteristic function of the straight welded tether (ω = 0, T = 0)" if welded else
+                 f"Characteristic function of the straight tether, {described.split(' (')[0]} (ω = 0, T = 0)",
+                 fontsize=9)
     fig.tight_layout()
     return _image(fig)
 
@@ -68,7 +79,9 @@ def mode_plot(results: dict) -> str:
     ax1.legend(fontsize=7, loc="lower center")
     ax1.set_title("First buckling mode (one of a double pair)", fontsize=9)
     ax2.plot(x, y, color="#7d3c98")
-    ax2.plot([0], [0], "ko", ms=3, label="welded ends")
+    ends, _ = _ends(results)
+    ax2.plot([0], [0], "ko", ms=3, label="welded ends" if ends == ["welded", "welded"] else
+             "ends (" + ", ".join(dict.fromkeys(ends)) + ")")
     ax2.set_aspect("equal", adjustable="datalim")
     ax2.set_xlabel("x / max (–)")
     ax2.set_ylabel("y / max (–)")

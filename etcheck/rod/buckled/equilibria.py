@@ -69,7 +69,8 @@ import scipy.linalg as sla
 
 from etcheck.errors import SolverError
 from etcheck.numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
-from etcheck.rod.core.linear import NFIELDS, collocation, static_operator, stiffness_diag, welded_rows
+from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
+from etcheck.rod.core.linear import NFIELDS, collocation, end_rows, static_operator, stiffness_diag
 from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
@@ -88,6 +89,7 @@ __all__ = [
     "measures",
     "measure1",
     "rodrigues",
+    "require_welded",
 ]
 
 #: Parameters a branch can be continued in.
@@ -207,14 +209,22 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
                      a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]], axis=1)
 
 
+def require_welded(params: RodParameters) -> None:
+    """Raise ValueError (:data:`~etcheck.rod.core.ends.BUCKLED_WELDED_ONLY`) unless both ends are welded: no
+    buckled state is ever computed with the wrong ends."""
+    if not is_welded(params.ends):
+        raise ValueError(f"rungs 2-3 are {BUCKLED_WELDED_ONLY} (ends {params.ends[0]}, {params.ends[1]})")
+
+
 def residual(params: RodParameters, state: Equilibrium) -> np.ndarray:
     """Collocation residual of the O(1) BVP, shape (12 (N+1),), dimensionless.
 
     Rows as in :func:`etcheck.rod.core.linear.linear_operator`: ODE group e
     (x', constitutive, F', M' rows, e-frame components) at first-kind point
     t_k is row e N + k; then the 12 welded boundary rows
-    (eqs. (58)-(69)).
+    (eqs. (58)-(69)). Welded ends only (:func:`require_welded`).
     """
+    require_welded(params)
     N = state.N
     col = collocation(N)
     P, PD = col.P, col.PD
@@ -258,6 +268,7 @@ def jacobian(params: RodParameters, state: Equilibrium, exact: bool = True) -> n
     the exact one at the straight rod and differs from it elsewhere by the
     aliasing error of the collocation plus O(residual) (module docstring).
     """
+    require_welded(params)
     if not exact:
         return static_operator(params.with_(gamma=0.0), state, state.N)
     return _exact_jacobian(params, state)
@@ -364,7 +375,7 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
     put_identity(3, 3, PD)
     J[9:12, :, 3:6, :] += _moment_rotation_block(params, D, Dt, Ft, P)
     put_weighted(3, 2, _skew(Dt[:, :, 2]), "k")
-    out[NFIELDS * N:] = welded_rows(D[[0, -1]], N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
+    out[NFIELDS * N:] = end_rows(D[[0, -1]], N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
     return out
 
 

@@ -62,6 +62,7 @@ from etcheck.numerics.chebyshev import (
     resample_matrix,
 )
 from etcheck.rod.core.base_state import BaseState, StraightBaseState
+from etcheck.rod.core.ends import ALL_WELDED, SWIVEL, WELDED, Ends, is_welded
 from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
@@ -75,7 +76,7 @@ __all__ = [
     "static_operator",
     "field_slice",
     "boundary_rows",
-    "welded_rows",
+    "end_rows",
 ]
 
 VARIABLES = ("xi1", "xi2", "xi3", "a1", "a2", "a3", "phi1", "phi2", "phi3", "m1", "m2", "m3")
@@ -213,13 +214,23 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
     return out
 
 
-def boundary_rows(base: BaseState, N: int) -> np.ndarray:
-    """The 12 linearised welded boundary conditions (eqs. (76)-(81))."""
-    return welded_rows(base.D0(np.array([0.0, 1.0])), N)
+def boundary_rows(base: BaseState, N: int, ends: Ends = ALL_WELDED) -> np.ndarray:
+    """The 12 linearised boundary conditions: welded (eqs. (76)-(81)), pinned or swivel ends
+    (:mod:`etcheck.rod.core.ends`)."""
+    if is_welded(ends):
+        return end_rows(base.D0(np.array([0.0, 1.0])), N)
+    at = np.array([0.0, 1.0])
+    return end_rows(base.D0(at), N, ends, base.M0(at))
 
 
-def welded_rows(D: np.ndarray, N: int) -> np.ndarray:
-    """:func:`boundary_rows` from the base state's frames at the two ends, ``D`` (2, 3, 3), column i = d_i."""
+def end_rows(D: np.ndarray, N: int, ends: Ends = ALL_WELDED, M: np.ndarray | None = None) -> np.ndarray:
+    """:func:`boundary_rows` from the base state's frames at the two ends, ``D`` (2, 3, 3), column i = d_i, and its
+    contact moments there, ``M`` (2, 3) (needed only for an end that is not welded).
+
+    Position rows at both ends (s = 0: xi . e1 = xi . e2 = 0 and the end force phi . e3 = 0; s = 1: xi = 0), then
+    three rows per end: welded, the end rotations (a x d3) . e1 = (a x d3) . e2 = (a x d1) . e2 = 0 (eqs. (76)-(81));
+    pinned, no perturbed bending moment (m + M0 x a) . d1 = (m + M0 x a) . d2 = 0 (the linearised M . d_j = 0) and
+    the twist (a x d1) . e2 = 0; swivel, no perturbed moment about any d_j."""
     rows = np.zeros((12, NFIELDS, N + 1))
     # s = 0: xi1 = xi2 = 0, phi3 = 0; s = 1: xi = 0
     rows[0, 0, 0] = rows[1, 1, 0] = rows[2, 8, 0] = 1.0
@@ -232,6 +243,15 @@ def welded_rows(D: np.ndarray, N: int) -> np.ndarray:
                   np.stack([-d1[:, 2], zero, d1[:, 0]], axis=1)], axis=1)  # d1 x e2; (end, row, component)
     rows[3:6, 3:6, 0] = g[0]
     rows[9:12, 3:6, N] = g[1]
+    for end, (first, node) in enumerate(((3, 0), (9, N))):
+        kind = ends[end]
+        if kind == WELDED:
+            continue
+        # (m + M0 x a) . d_j = m . d_j + a . (d_j x M0)
+        for j in range(3 if kind == SWIVEL else 2):
+            rows[first + j, :, node] = 0.0
+            rows[first + j, 9:12, node] = D[end, :, j]
+            rows[first + j, 3:6, node] = np.cross(D[end, :, j], M[end])
     return rows.reshape(12, NFIELDS * (N + 1))
 
 
@@ -248,7 +268,7 @@ def linear_operator(params: RodParameters, base: BaseState, N: int):
     col = collocation(int(N))
     E0, E1, G0, G1, G2 = coefficient_blocks(params, base, col.t)
     A0 = _assemble(E0, G0, col)
-    A0[NFIELDS * col.N:] = boundary_rows(base, col.N)
+    A0[NFIELDS * col.N:] = boundary_rows(base, col.N, params.ends)
     return A0, _assemble(E1, G1, col), _assemble(None, G2, col)
 
 
@@ -258,7 +278,7 @@ def static_operator(params: RodParameters, base: BaseState, N: int) -> np.ndarra
     col = collocation(int(N))
     E0, _, G0, _, _ = coefficient_blocks(params, base, col.t)
     A0 = _assemble(E0, G0, col)
-    A0[NFIELDS * col.N:] = boundary_rows(base, col.N)
+    A0[NFIELDS * col.N:] = boundary_rows(base, col.N, params.ends)
     return A0
 
 
@@ -270,13 +290,13 @@ def static_differences(ref: RodParameters, ref_base: BaseState, others, N: int) 
     col = collocation(int(N))
     E0r, _, G0r, _, _ = coefficient_blocks(ref, ref_base, col.t)
     rows = NFIELDS * col.N
-    bc = boundary_rows(ref_base, col.N)
+    bc = boundary_rows(ref_base, col.N, ref.ends)
     A0 = _assemble(E0r, G0r, col)
     A0[rows:] = bc
     out = []
     for params, base in others:
         E0, _, G0, _, _ = coefficient_blocks(params, base, col.t)
         D = _assemble(E0 - E0r, G0 - G0r, col)
-        D[rows:] = boundary_rows(base, col.N) - bc
+        D[rows:] = boundary_rows(base, col.N, params.ends) - bc
         out.append(D)
     return A0, out

@@ -1,9 +1,11 @@
-"""The dimensionless parameters of the whirling welded rod (eqs. (36), (42) of arXiv:0810.3668)."""
+"""The dimensionless parameters of the whirling rod (eqs. (36), (42) of arXiv:0810.3668) and how its ends are held."""
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+
+from etcheck.rod.core.ends import ALL_WELDED, Ends, check_ends
 
 #: First clamped-clamped bending root to the fourth power, 4.730040744862704**4:
 #: the paper's reference-frequency constant f (eq. (36)).
@@ -22,6 +24,9 @@ class RodParameters:
     omega  spin rate omega/omega_c
     T      end tension T L^2/(f EI1), positive in tension
     gamma  Kelvin-Voigt damping gamma_v omega_c
+    ends   attachment at s = 0 and s = 1 (:mod:`etcheck.rod.core.ends`; the paper's is welded at both)
+
+    The scaling constant f stays the clamped beam's (eq. (36)) whatever the ends: it is only a scale.
     """
 
     P: float
@@ -32,8 +37,10 @@ class RodParameters:
     omega: float = 0.0
     T: float = 0.0
     gamma: float = 0.0
+    ends: Ends = ALL_WELDED
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "ends", check_ends(self.ends))  # a list (JSON, asdict) becomes the hashable pair
         for name in ("P", "R", "Gamma", "f", "B", "omega", "T", "gamma"):
             value = getattr(self, name)
             if not math.isfinite(value):
@@ -48,6 +55,6 @@ class RodParameters:
         if self.gamma < 0:
             raise ValueError(f"rod parameter gamma must be >= 0, got {self.gamma!r}")
 
-    def with_(self, **changes: float) -> RodParameters:
+    def with_(self, **changes) -> RodParameters:
         """A copy with some parameters changed (e.g. ``p.with_(B=1.0)``)."""
         return replace(self, **changes)

@@ -161,20 +161,19 @@ def prefers_dense(params: RodParameters, nev: int) -> bool:
         return False
     if params.gamma >= DENSE_GAMMA:
         return True
-    return 1.0 / params.gamma < 1.5 * _frequency_scale(params.P, params.R, params.Gamma, params.f, nev // 2) + 2 * abs(
-        params.omega
-    )
+    scale = _frequency_scale(params.P, params.R, params.Gamma, params.f, nev // 2, params.ends)
+    return 1.0 / params.gamma < 1.5 * scale + 2 * abs(params.omega)
 
 
 @lru_cache(maxsize=64)
-def _frequency_scale(P: float, R: float, Gamma: float, f: float, n: int) -> float:
+def _frequency_scale(P: float, R: float, Gamma: float, f: float, n: int, ends: tuple[str, str]) -> float:
     from etcheck.rod.straight.analytic import bending_frequencies, torsion_frequencies
 
     mu = np.concatenate(
         [
-            bending_frequencies(P, R, f, n, "weak"),
-            bending_frequencies(P, R, f, n, "stiff"),
-            torsion_frequencies(P, Gamma, f, n),
+            bending_frequencies(P, R, f, n, "weak", ends),
+            bending_frequencies(P, R, f, n, "stiff", ends),
+            torsion_frequencies(P, Gamma, f, n, ends),
         ]
     )
     return float(np.sort(mu)[n - 1])

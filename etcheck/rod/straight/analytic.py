@@ -1,4 +1,4 @@
-"""Rung 0: closed-form results for the straight welded rod (Secs. VI A, VI B of arXiv:0810.3668).
+"""Rung 0: closed-form results for the straight rod (Secs. VI A, VI B of arXiv:0810.3668), welded or pinned.
 
 Everything here is dimensionless. Loads are given in the f-scaling of
 eq. (36): the paper's Sec. VI is written with f = 1 and the conversion
@@ -12,6 +12,21 @@ both ends. Its determinant D(beta) has simple zeros and chi(beta) of
 eq. (91) is proportional to |D|**2, so every zero of chi is a double
 zero: the kernel is two-dimensional (w and i w) and the pitchfork is doubly
 degenerate for every R.
+
+**Pinned ends** (no bending moment: w = w'' = 0; :mod:`etcheck.rod.core.ends`).
+The boundary conditions stay complex-linear, so the kernel is again w and
+i w. With a = sqrt(3) beta / 2 the determinant of the boundary map, for the
+basis 1, exp(m_j s) (m_j^3 = -i beta^3), is i times a real multiple of
+
+    welded-welded:  cos beta - e^a cos(beta/2 + pi/3) - e^-a cos(beta/2 - pi/3)
+    pinned-pinned:  cos beta - e^a sin(beta/2 + pi/6) - e^-a cos(beta/2 + pi/3)
+    welded-pinned:  2 sin(beta/2) (cosh a - cos(beta/2))
+
+(the first is chi of eq. (91): chi e^(-sqrt(3) beta) = 2 (e^-a times it)^2).
+The mixed attachment buckles exactly at beta = 2 pi k (cosh a > 1 >= cos),
+either way round; the pinned one at beta ~ 2 pi k - pi/3 (beta_1 =
+5.225154248768965): with R = 21/38 its first load is 0.362 of the welded
+one, the mixed one's (2 pi / beta_1)^3 = 0.629.
 """
 
 from __future__ import annotations
@@ -23,6 +38,7 @@ from functools import lru_cache
 import numpy as np
 
 from etcheck.numerics.optimize import bracketed_roots, brentq
+from etcheck.rod.core.ends import ALL_WELDED, Ends, bending_order, clamped_count, twist_held
 
 SQRT3 = math.sqrt(3.0)
 #: Step of the complex-step derivative (exact to rounding, no cancellation).
@@ -74,8 +90,9 @@ def _complex_exponents(beta: float) -> np.ndarray:
     return beta * roots
 
 
-def _clamped_matrix(beta: float) -> np.ndarray:
-    """4x4 boundary matrix of w'''' + i beta^3 w' = 0 with w = w' = 0 at s = 0, 1.
+def _clamped_matrix(beta: float, ends: Ends = ALL_WELDED) -> np.ndarray:
+    """4x4 boundary matrix of w'''' + i beta^3 w' = 0 with w = w' = 0 (welded) or w = w'' = 0 (pinned, swivel)
+    at s = 0 and s = 1.
 
     Basis 1, e^{m_j (s - s_j)} with s_j = 1 for Re m_j > 0 and 0 otherwise, so
     every entry is bounded by 1 and nothing overflows for large beta.
@@ -83,10 +100,10 @@ def _clamped_matrix(beta: float) -> np.ndarray:
     m = _complex_exponents(beta)
     shift = np.where(m.real > 0, 1.0, 0.0)
     rows = []
-    for s in (0.0, 1.0):
+    for s, end in zip((0.0, 1.0), ends):
         e = np.exp(m * (s - shift))
         rows.append(np.concatenate([[1.0], e]))
-        rows.append(np.concatenate([[0.0], m * e]))
+        rows.append(np.concatenate([[0.0], m ** bending_order(end) * e]))
     return np.array(rows, dtype=complex)
 
 
@@ -166,14 +183,106 @@ def characteristic_roots(n: int = 5) -> tuple[CharacteristicRoot, ...]:
     return tuple(roots)
 
 
-def critical_loads(R: float, f: float, n: int = 5) -> np.ndarray:
+def critical_loads(R: float, f: float, n: int = 5, ends: Ends = ALL_WELDED) -> np.ndarray:
     """Static magnetic buckling loads B_k = beta_k**3 sqrt(R) / f, k = 1..n.
 
     Dimensionless (eq. (36)); omega = T = 0. Each is a doubly
-    degenerate pitchfork of the straight rod (Sec. VI A).
+    degenerate pitchfork of the straight rod (Sec. VI A). ``ends``: the
+    attachment (:func:`static_roots`; welded: the zeros of chi, eq. (91)).
     """
-    betas = np.array([r.beta for r in characteristic_roots(n)])
+    betas = np.array([r.beta for r in static_roots(ends, n)])
     return betas**3 * math.sqrt(R) / f
+
+
+# --- any attachment: the three closed-form characteristic functions -------------------
+
+
+def reduced_characteristic(beta, ends: Ends = ALL_WELDED):
+    """The real characteristic function g(beta) of the static straight rod with these ends, times e^(-a),
+    a = sqrt(3) beta / 2 (bounded, simple zeros at the buckling betas; see the module docstring):
+
+        welded-welded  e^-a cos beta - cos(beta/2 + pi/3) - e^-2a cos(beta/2 - pi/3)
+        pinned-pinned  e^-a cos beta - sin(beta/2 + pi/6) - e^-2a cos(beta/2 + pi/3)
+        mixed          sin(beta/2) (1 - 2 e^-a cos(beta/2) + e^-2a)
+
+    A swivel bends as a pin. Dimensionless; real or complex arrays (complex for the complex-step derivative)."""
+    b = np.asarray(beta)
+    e1 = np.exp(-0.5 * SQRT3 * b)
+    e2 = e1 * e1
+    welded = clamped_count(ends)
+    if welded == 2:
+        return e1 * np.cos(b) - np.cos(0.5 * b + math.pi / 3) - e2 * np.cos(0.5 * b - math.pi / 3)
+    if welded == 0:
+        return e1 * np.cos(b) - np.sin(0.5 * b + math.pi / 6) - e2 * np.cos(0.5 * b + math.pi / 3)
+    return np.sin(0.5 * b) * (1.0 - 2.0 * e1 * np.cos(0.5 * b) + e2)
+
+
+def characteristic_scaled(beta, ends: Ends = ALL_WELDED):
+    """chi(beta) e^(-sqrt(3) beta) of eq. (91) for welded ends, and its analogue 2 g(beta)^2 for others
+    (:func:`reduced_characteristic`): the real 8 x 8 determinant, with double zeros. Dimensionless."""
+    if clamped_count(ends) == 2:
+        return chi_scaled(beta)
+    return 2.0 * reduced_characteristic(np.asarray(beta, dtype=float), ends) ** 2
+
+
+def _reduced_derivative(beta: float, ends: Ends) -> float:
+    return float(np.imag(reduced_characteristic(beta + 1j * _H, ends)) / _H)
+
+
+def _asymptote(k: int, ends: Ends) -> float:
+    """Asymptotic position of the k-th buckling beta: pi/3 + 2 pi k welded, 2 pi k mixed, 2 pi k - pi/3 pinned."""
+    return 2 * math.pi * k + {2: math.pi / 3, 1: 0.0, 0: -math.pi / 3}[clamped_count(ends)]
+
+
+def _simple_zero(k: int, ends: Ends) -> float:
+    """The k-th zero of g: 2 pi k for mixed ends; pinned-pinned, Newton's method from its asymptote
+    2 pi k - pi/3, Brent's on that +- 1 should a step leave it."""
+    guess = beta = _asymptote(k, ends)
+    if clamped_count(ends) == 1:
+        return beta
+    lo, hi = guess - 1.0, guess + 1.0
+    for _ in range(20):
+        step = float(reduced_characteristic(beta, ends)) / _reduced_derivative(beta, ends)
+        beta -= step
+        if not lo < beta < hi:
+            break
+        if abs(step) <= 4 * np.finfo(float).eps * beta:
+            return beta
+    return brentq(lambda x: float(reduced_characteristic(x, ends)), lo, hi, xtol=1e-15,
+                  rtol=4 * np.finfo(float).eps, maxiter=200)
+
+
+def _root_record(k: int, ends: Ends) -> CharacteristicRoot:
+    beta = _simple_zero(k, ends)
+    slope = _reduced_derivative(beta, ends)
+    singular = np.linalg.svd(_clamped_matrix(beta, ends), compute_uv=False)
+    return CharacteristicRoot(
+        k=k,
+        beta=float(beta),
+        residual=float(characteristic_scaled(beta, ends)),
+        curvature=4.0 * slope**2,  # (2 g^2)'' at a zero of g
+        kernel_dimension=2 * int(np.sum(singular < 1e-8 * singular[0])),
+        error=max(abs(float(reduced_characteristic(beta, ends)) / slope) / beta, np.finfo(float).eps),
+    )
+
+
+@lru_cache(maxsize=64)
+def static_roots(ends: Ends = ALL_WELDED, n: int = 5) -> tuple[CharacteristicRoot, ...]:
+    """The first n buckling betas of the static straight rod with these ends (the double zeros of
+    :func:`characteristic_scaled`), located to ~1e-15 relative: welded, the zeros of chi
+    (:func:`characteristic_roots`); pinned-pinned, the simple zeros of g by Newton's method; mixed,
+    beta = 2 pi k exactly. ``curvature``: the scaled function's second derivative at the zero (> 0, a
+    touching zero); ``error``: the size of one more Newton step, relative."""
+    if n < 1:
+        raise ValueError(f"n must be >= 1, got {n}")
+    if clamped_count(ends) == 2:
+        return characteristic_roots(n)
+    return tuple(_root_record(k, ends) for k in range(1, n + 1))
+
+
+def asymptotic_count(beta: float, ends: Ends = ALL_WELDED) -> int:
+    """Number of buckling betas up to ``beta`` from their asymptotic positions (past the tabulated ones)."""
+    return max(int((beta - _asymptote(0, ends)) // (2 * math.pi)), 0)
 
 
 def beta_of_load(B: float, R: float, f: float) -> float:
@@ -181,16 +290,16 @@ def beta_of_load(B: float, R: float, f: float) -> float:
     return (f * abs(B)) ** (1.0 / 3.0) / R ** (1.0 / 6.0)
 
 
-def buckling_mode(k: int, R: float, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def buckling_mode(k: int, R: float, s: np.ndarray, ends: Ends = ALL_WELDED) -> tuple[np.ndarray, np.ndarray]:
     """Shape (x(s), y(s)) of the k-th static buckling mode, dimensionless.
 
     One member of the two-dimensional kernel (the other is the same coil
     turned by a quarter period of w = x + i y / sqrt(R)). Normalised so that
     max sqrt(x^2 + y^2) = 1.
     """
-    beta = characteristic_roots(k)[-1].beta
+    beta = static_roots(ends, k)[-1].beta
     m = _complex_exponents(beta)
-    _, _, vh = np.linalg.svd(_clamped_matrix(beta))
+    _, _, vh = np.linalg.svd(_clamped_matrix(beta, ends))
     c = vh[-1].conj()
     shift = np.where(m.real > 0, 1.0, 0.0)
     s = np.asarray(s, dtype=float)
@@ -205,29 +314,51 @@ def buckling_mode(k: int, R: float, s: np.ndarray) -> tuple[np.ndarray, np.ndarr
 # --- unperturbed spectrum (T = gamma = omega = B = 0), Sec. VI B -----------------
 
 
+def _wavenumbers(mu, P: float, stiffness: float):
+    """(a, b) of the Rayleigh beam at frequency mu (f = 1): solutions cos(a s), sin(a s), cosh(b s), sinh(b s)."""
+    root = np.sqrt(mu**4 * P**2 + 4 * mu**2 / stiffness)
+    a = np.sqrt(0.5 * mu**2 * P + 0.5 * root)
+    b = np.sqrt(np.maximum(0.5 * root - 0.5 * mu**2 * P, 0.0))
+    return a, b
+
+
 def _clamped_beam_function(mu, P: float, stiffness: float):
     """Frequency equation of a clamped-clamped Rayleigh beam, Sec. VI B, f = 1 (mu scalar or array).
 
     (a^2 - b^2) sin a sinh b - 2 a b (1 - cos a cosh b) = 0, divided by cosh b
     so it stays bounded; ``stiffness`` is R for the x (weak) equation and 1 for y.
     """
-    root = np.sqrt(mu**4 * P**2 + 4 * mu**2 / stiffness)
-    a = np.sqrt(0.5 * mu**2 * P + 0.5 * root)
-    b = np.sqrt(np.maximum(0.5 * root - 0.5 * mu**2 * P, 0.0))
+    a, b = _wavenumbers(mu, P, stiffness)
     return (a * a - b * b) * np.sin(a) * np.tanh(b) - 2 * a * b * (1.0 / np.cosh(b) - np.cos(a))
 
 
-def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "weak") -> np.ndarray:
+def _clamped_pinned_beam_function(mu, P: float, stiffness: float):
+    """Frequency equation of a clamped-pinned Rayleigh beam (f = 1): with X = C1 (cos a s - cosh b s) +
+    C2 (sin a s - (a/b) sinh b s) (clamped at s = 0), X(1) = X''(1) = 0 give (a^2 + b^2) (sin a cosh b -
+    (a/b) cos a sinh b) = 0; written b sin a - a cos a tanh b (bounded; tan a = tanh a without rotary inertia)."""
+    a, b = _wavenumbers(mu, P, stiffness)
+    return b * np.sin(a) - a * np.cos(a) * np.tanh(b)
+
+
+def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "weak",
+                        ends: Ends = ALL_WELDED) -> np.ndarray:
     """First n bending frequencies mu (lambda = +- i mu) of the straight rod.
 
     Dimensionless, f-scaling; Sec. VI B transcendental equations with rotary
     inertia P. ``axis="weak"`` is the x equation (stiffness R, first
-    frequency sqrt(R) as P -> 0), ``"stiff"`` the y equation (stiffness 1).
+    frequency sqrt(R) as P -> 0 for welded ends), ``"stiff"`` the y equation (stiffness 1).
+    ``ends``: pinned at both, the modes sin(k s), k = n pi, mu^2 = k^4 / (P k^2 + 1 / stiffness)
+    (f = 1); one of each, the roots of :func:`_clamped_pinned_beam_function`.
     """
     stiffness = {"weak": R, "stiff": 1.0}[axis]
-    g = lambda mu: _clamped_beam_function(mu, P, stiffness)  # noqa: E731
-    # Euler-Bernoulli spacing: mu_n ~ sqrt(stiffness) ((n + 1/2) pi)^2, and rotary
-    # inertia only lowers the frequencies; scan finely in the f = 1 frequency
+    welded = clamped_count(ends)
+    if welded == 0:
+        k = np.arange(1, n + 1) * math.pi
+        return k**2 / np.sqrt(P * k**2 + 1.0 / stiffness) / math.sqrt(f)
+    equation = _clamped_beam_function if welded == 2 else _clamped_pinned_beam_function
+    g = lambda mu: equation(mu, P, stiffness)  # noqa: E731
+    # Euler-Bernoulli spacing: mu_n ~ sqrt(stiffness) ((n + 1/2) pi)^2 (welded; (n + 1/4) pi mixed), and
+    # rotary inertia only lowers the frequencies; scan finely in the f = 1 frequency
     # and refine the first n sign changes to the last bits.
     mu_max = math.sqrt(stiffness) * ((n + 1.5) * math.pi) ** 2
     grid = np.linspace(1e-6, mu_max, 400 * (n + 2))
@@ -238,12 +369,14 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
     return bracketed_roots(g, grid[i], grid[i + 1]) / math.sqrt(f)
 
 
-def torsion_frequencies(P: float, Gamma: float, f: float, n: int = 5) -> np.ndarray:
-    """Torsional frequencies mu_n = n pi sqrt(Gamma / (2 P f)), n = 1..n.
+def torsion_frequencies(P: float, Gamma: float, f: float, n: int = 5, ends: Ends = ALL_WELDED) -> np.ndarray:
+    """Torsional frequencies mu_n = n pi sqrt(Gamma / (2 P f)), n = 1..n, with the twist held at both ends
+    (welded or pinned); (n - 1/2) pi sqrt(Gamma / (2 P f)) with one end on a swivel (no torque there).
 
     Dimensionless, f-scaling (Sec. VI B, converted as in docs/errata.md, #6).
     Infinite for P = 0 (no rotary inertia).
     """
     if P == 0:
         return np.full(n, np.inf)
-    return np.arange(1, n + 1) * math.pi * math.sqrt(Gamma / (2 * P * f))
+    order = np.arange(1, n + 1) - (0.0 if all(twist_held(e) for e in ends) else 0.5)
+    return order * math.pi * math.sqrt(Gamma / (2 * P * f))

@@ -33,9 +33,10 @@ from functools import lru_cache
 import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
+from etcheck.rod.core.ends import is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution, roundoff_floor
-from etcheck.rod.straight.analytic import characteristic_roots, critical_loads
+from etcheck.rod.straight.analytic import critical_loads, static_roots
 from etcheck.rod.straight.spectral import DOUBLE, _family
 
 __all__ = [
@@ -96,7 +97,7 @@ def first_root(params: RodParameters, axis: str, tol: float = 1e-8, sign: float 
     ignored (the pencil is A0 at axis = 0 plus axis times its derivative).
     "ray" scales load and spin squared together: the root t has A0(t B,
     sqrt(t) omega, T) singular, so with damping the rod is stable iff t > 1.
-    At omega = T = 0 the B root is beta_1^3 sqrt(R) / f from chi (rung 0).
+    At omega = T = 0 the B root is beta_1^3 sqrt(R) / f from chi (rung 0; its closed form for other ends).
     The error is relative to max(|root|, floor): a root that tends to zero
     (a critical load as the spin nears the critical spin of the unloaded rod)
     is converged when it is small against ``floor``. Memoised: in a sweep
@@ -114,9 +115,9 @@ def _first_root(params: RodParameters, axis: str, tol: float, sign: float, ladde
         load = _first_root(params.with_(B=0.0), "B", tol, sign, ladder, floor)
         return PencilRoot("ray", load.value / params.B, load.error, load.N, load.converged, load.model)
     if axis == "B" and sign > 0 and params.omega == 0 and params.T == 0:
-        root = characteristic_roots(1)[0]
-        return PencilRoot("B", float(critical_loads(params.R, params.f, 1)[0]), 3.0 * root.error, 0, True,
-                          "rung 0 (chi roots)")
+        root = static_roots(params.ends, 1)[0]
+        return PencilRoot("B", float(critical_loads(params.R, params.f, 1, params.ends)[0]), 3.0 * root.error, 0,
+                          True, "rung 0 (chi roots)" if is_welded(params.ends) else "rung 0 (closed form)")
     err, value, N = math.inf, math.nan, ladder[0]
     for N in ladder:
         a = _smallest_positive(params, axis, N, sign)

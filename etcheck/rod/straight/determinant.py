@@ -24,7 +24,8 @@ Chebyshev grid cannot resolve.
 state y = (u, u'/ku, u''/ku^2, u'''/ku^3, v, v'/kv, v''/kv^2, v'''/kv^3)
 (ku, kv continuous wavenumber scales of the u and v exponents). Let G be
 the 8x8 map from y(0) to the clamped boundary values (u, u', v, v') at
-s = 0 and s = 1. det G is real and analytic in (B, omega, T); it grows like
+s = 0 and s = 1 (at a pinned end (u, u'', v, v''): no bending moment;
+``bc_real``, :mod:`etcheck.rod.core.ends`). det G is real and analytic in (B, omega, T); it grows like
 exp(sigma), sigma = sum of the positive real parts of the exponents (the
 eigenvalues of A). The function returned is
 
@@ -59,7 +60,9 @@ of the exponents (O(1) for moderate tension, 1e14 at T f = 1e12, R = 1e-7). Two 
 problem is isotropic: with w = u + i v (R = 1) or w = u + i v / sqrt(R)
 (omega = T = 0) it is one complex equation c4 w'''' - c2 w'' - c0 w +
 i c1 w' = 0, whose clamped determinant is real (the map w(s) ->
-conj(w(1 - s)) preserves the problem) and has simple zeros; D is a positive
+conj(w(1 - s)) preserves the problem; with one end of each the problem is
+self-adjoint with self-adjoint conditions at each end, and the determinant is
+real as well, to round-off) and has simple zeros; D is a positive
 multiple of its square, so every zero of D is double (touching, no sign
 change; the kernel is two-dimensional, Sec. VI A). Roots in these cases come
 from the complex determinant. Elsewhere zeros are simple; close pairs (the
@@ -78,11 +81,14 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.linalg import lapack
 
+from etcheck.rod.core.ends import ALL_WELDED, Ends, bending_order, is_welded
 from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
     "BC_COMPLEX",
     "BC_REAL",
+    "bc_complex",
+    "bc_real",
     "Characteristic",
     "Evans",
     "assemble",
@@ -114,9 +120,24 @@ _CONFLUENT = 1e-4
 _CONFLUENT_WIDE = 1e-12
 #: |k| below which an exponent is treated as near zero (Schur route).
 _SMALL_K = 1e-3
-#: Boundary-value rows of the scaled state: u, u', v, v' (real) or w, w' (complex).
+#: Boundary-value rows of the scaled state at a welded end: u, u', v, v' (real) or w, w' (complex).
 BC_REAL = np.array([0, 1, 4, 5])
 BC_COMPLEX = np.array([0, 1])
+
+
+def bc_real(ends: Ends = ALL_WELDED):
+    """The boundary-value rows of the real scaled state at each end: BC_REAL where both are welded, else a pair
+    (rows at s = 0, rows at s = 1) with u, u'', v, v'' at a pinned end (no bending moment)."""
+    if is_welded(ends):
+        return BC_REAL
+    return tuple(np.array([0, bending_order(e), 4, 4 + bending_order(e)]) for e in ends)
+
+
+def bc_complex(ends: Ends = ALL_WELDED):
+    """:func:`bc_real` of the complex state (w, w'/kap, ..): w, w' or w, w''."""
+    if is_welded(ends):
+        return BC_COMPLEX
+    return tuple(np.array([0, bending_order(e)]) for e in ends)
 
 
 # --- coefficients and scales ---------------------------------------------------------
@@ -176,7 +197,9 @@ class Evans:
     route: str
 
 
-def schur(A: np.ndarray, bc: np.ndarray, shift: int = 0) -> Evans:
+def schur(A: np.ndarray, bc, shift: int = 0) -> Evans:
+    """D by the ordered Schur route; ``bc`` the boundary rows, the same at both ends or a pair (s = 0, s = 1)."""
+    b0, b1 = (bc, bc) if isinstance(bc, np.ndarray) else bc
     cplx = np.iscomplexobj(A)
     T, Q = sla.schur(A, output="complex" if cplx else "real")
     re = np.diag(T).real.copy()  # real parts (equal on the diagonal of a 2x2 block)
@@ -202,7 +225,7 @@ def schur(A: np.ndarray, bc: np.ndarray, shift: int = 0) -> Evans:
     Q2 = Q1 @ Y + Q[:, m:]  # invariant subspace of the exponents with Re k >= tau
     P1 = Q1 @ sla.expm(T11) if m else Q1
     P2 = Q2 @ sla.expm(-T22) if m < n else Q2
-    M = np.vstack([np.hstack([Q1[bc], P2[bc]]), np.hstack([P1[bc], Q2[bc]])])
+    M = np.vstack([np.hstack([Q1[b0], P2[b0]]), np.hstack([P1[b1], Q2[b1]])])
     sigma = float(np.sum(np.maximum(re, 0.0)))
     value = np.linalg.det(M) * np.exp(np.trace(T22) - sigma) / np.linalg.det(Q)
     return Evans(complex(value), M, "schur")
@@ -320,25 +343,27 @@ def _splits(re: np.ndarray, shift: int = 0) -> np.ndarray:
     return np.exp(0.5 * (pts[rows, i] + pts[rows, i + 1]))
 
 
-def assemble(k: np.ndarray, V: np.ndarray, logdet: np.ndarray, shift: int) -> tuple[np.ndarray, np.ndarray]:
+def assemble(k: np.ndarray, V, logdet: np.ndarray, shift: int) -> tuple[np.ndarray, np.ndarray]:
     """D (n,) and the scaled boundary matrices M (n, 2 r, m) from exponents k (n, m),
-    boundary rows V (n, r, m) (initial values of the basis solutions at the bc rows)
-    and log det of the full initial-data matrix W (n,)."""
-    norm = np.max(np.abs(V), axis=1)
-    V = V / norm[:, None, :]
+    boundary rows V (n, r, m) (initial values of the basis solutions at the bc rows; a pair
+    (V0, V1) where the two ends hold different rows) and log det of the full initial-data matrix W (n,)."""
+    V0, V1 = (V, V) if isinstance(V, np.ndarray) else V
+    norm = np.max(np.abs(V0), axis=1) if V1 is V0 else np.maximum(np.max(np.abs(V0), axis=1),
+                                                                   np.max(np.abs(V1), axis=1))
+    V0, V1 = V0 / norm[:, None, :], V1 / norm[:, None, :]
     logdet = logdet - np.sum(np.log(norm), axis=1)
     tau = _splits(k.real, shift)
     far = k.real >= tau[:, None]  # scaled at s = 1
     e0 = np.exp(np.where(far, -k, 0.0))
     e1 = np.exp(np.where(far, 0.0, k))
-    M = np.concatenate([V * e0[:, None, :], V * e1[:, None, :]], axis=1)
+    M = np.concatenate([V0 * e0[:, None, :], V1 * e1[:, None, :]], axis=1)
     sigma = np.sum(np.maximum(k.real, 0.0), axis=1)
     value = np.linalg.det(M) * np.exp(np.sum(np.where(far, k, 0.0), axis=1) - sigma - logdet)
     return value, M
 
 
 def _exponential_batch(P: float, R: float, f: float, B: np.ndarray, w2: np.ndarray, a: np.ndarray,
-                       b: np.ndarray, ku: np.ndarray, kv: np.ndarray, shift: int = 0):
+                       b: np.ndarray, ku: np.ndarray, kv: np.ndarray, shift: int = 0, ends: Ends = ALL_WELDED):
     """The exponential-basis route of the coupled real problem for arrays of (B, omega^2,
     a, b, ku, kv), all with omega = 0 or all with omega != 0. Returns (D, M); D is NaN
     where the route does not apply (B = 0, coincident or near-zero exponents)."""
@@ -378,18 +403,30 @@ def _exponential_batch(P: float, R: float, f: float, B: np.ndarray, w2: np.ndarr
         else:
             logW = np.log(B**4 * w2 + 0j) + 3 * math.log(R / f) + log_vandermonde(k)
         logW = logW + 1j * math.pi + log_lam - 6 * np.log(ku) - 6 * np.log(kv)
-        V = np.stack([u, u * k / ku[:, None], v, v * k / kv[:, None]], axis=1)
+        V = end_values(u, v, k, ku, kv, ends)
         if static:
             const = np.zeros((n, 4, 2))
             const[:, 0, 0] = const[:, 2, 1] = 1.0
-            V = np.concatenate([const, V], axis=2)
+            V = tuple(np.concatenate([const, x], axis=2) for x in V)
             k = np.concatenate([np.zeros((n, 2)), k], axis=1)
-        ok &= np.all(np.isfinite(V), axis=(1, 2)) & np.isfinite(logW)
+        ok &= np.all([np.all(np.isfinite(x), axis=(1, 2)) for x in V], axis=0) & np.isfinite(logW)
         k = np.where(ok[:, None], k, 1.0 + np.arange(k.shape[1]))
-        V = np.where(ok[:, None, None], V, 1.0)
+        V = tuple(np.where(ok[:, None, None], x, 1.0) for x in V)
         logW = np.where(ok, logW, 0.0)
-        value, M = assemble(k, V, logW, shift)
+        value, M = assemble(k, V[0] if is_welded(ends) else V, logW, shift)
     return np.where(ok & np.isfinite(value), value, np.nan), M
+
+
+def end_values(u: np.ndarray, v: np.ndarray, k: np.ndarray, ku: np.ndarray, kv: np.ndarray, ends: Ends) -> tuple:
+    """The boundary values (n, 4, m) of the basis solutions (u, v) exp(k s) of the scaled state at s = 0, one array per
+    end: u, u' / ku, v, v' / kv at a welded end, u, u'' / ku^2, v, v'' / kv^2 at a pinned one."""
+    out = []
+    for end in ends:
+        if bending_order(end) == 1:
+            out.append(np.stack([u, u * k / ku[:, None], v, v * k / kv[:, None]], axis=1))
+        else:
+            out.append(np.stack([u, u * (k / ku[:, None]) ** 2, v, v * (k / kv[:, None]) ** 2], axis=1))
+    return tuple(out)
 
 
 def real_batch(params: RodParameters, B, omega, T, factor: float = 1.0, shift: int = 0) -> np.ndarray:
@@ -406,18 +443,18 @@ def real_batch(params: RodParameters, B, omega, T, factor: float = 1.0, shift: i
         group = group & (B != 0)
         if np.any(group):
             out[group] = _exponential_batch(P, R, f, B[group], w2[group], a[group], b[group], ku[group], kv[group],
-                                            shift)[0]
+                                            shift, params.ends)[0]
     free = B == 0
     if np.any(free):
-        out[free] = _decoupled_batch(R, f, w2[free], a[free], b[free], ku[free], kv[free], shift)[0]
+        out[free] = _decoupled_batch(R, f, w2[free], a[free], b[free], ku[free], kv[free], shift, params.ends)[0]
     for i in np.nonzero(~np.isfinite(out))[0]:
         p = params.with_(B=float(B[i]), omega=float(omega[i]), T=float(T[i]))
-        out[i] = schur(_companion(p, ku[i], kv[i]), BC_REAL, shift).value
+        out[i] = schur(_companion(p, ku[i], kv[i]), bc_real(params.ends), shift).value
     return out.real
 
 
 def _decoupled_batch(R: float, f: float, w2: np.ndarray, a: np.ndarray, b: np.ndarray, ku: np.ndarray,
-                     kv: np.ndarray, shift: int = 0):
+                     kv: np.ndarray, shift: int = 0, ends: Ends = ALL_WELDED):
     """B = 0: u and v decouple and D = D_u D_v, each the real determinant of a scalar
     clamped beam (the complex route with c1 = 0; the two boundary blocks are swapped
     pairwise, so no sign). Returns (D, M) with M block diagonal; NaN where it does
@@ -430,7 +467,7 @@ def _decoupled_batch(R: float, f: float, w2: np.ndarray, a: np.ndarray, b: np.nd
         for group in (w2 == 0, w2 != 0):
             if np.any(group):
                 value[group], M[group], _ = isotropic_batch(c4, c2[group], w2[group],
-                                                             np.zeros(int(group.sum())), kap[group], shift)
+                                                             np.zeros(int(group.sum())), kap[group], shift, ends=ends)
         out *= value
         Ms.append(M)
     M = np.zeros((w2.size, 8, 8), dtype=complex)
@@ -444,10 +481,11 @@ def _exponential(params: RodParameters, ku: float, kv: float, shift: int = 0) ->
     a, b, w2 = tensions(params)
     one = lambda x: np.array([float(x)])  # noqa: E731
     if params.B == 0:
-        value, M = _decoupled_batch(params.R, params.f, one(w2), one(a), one(b), one(ku), one(kv), shift)
+        value, M = _decoupled_batch(params.R, params.f, one(w2), one(a), one(b), one(ku), one(kv), shift,
+                                    params.ends)
     else:
         value, M = _exponential_batch(params.P, params.R, params.f, one(params.B), one(w2), one(a), one(b), one(ku),
-                                      one(kv), shift)
+                                      one(kv), shift, params.ends)
     if not np.isfinite(value[0]):
         return None
     return Evans(complex(value[0]), M[0], "exponential")
@@ -463,7 +501,7 @@ def is_isotropic(params: RodParameters) -> bool:
 
 
 def isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, kap: np.ndarray, shift: int = 0,
-                     small: bool = True):
+                     small: bool = True, ends: Ends = ALL_WELDED):
     """Exponential-basis route of the complex problem for arrays (all c0 = 0 or all c0 != 0).
     Returns (D, M, m): D is NaN where the route does not apply, m the exponents (n, 4); ``small``: not
     where an exponent is near zero either."""
@@ -479,12 +517,12 @@ def isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, k
             m = polynomial_roots(c)
             ok = _separated(m, small)
         ms = m / kap[:, None]
-        V = np.stack([np.ones_like(m), ms], axis=1)
+        V = tuple(np.stack([np.ones_like(m), ms if bending_order(e) == 1 else ms**2], axis=1) for e in ends)
         logW = log_vandermonde(ms)
-        ok &= np.isfinite(logW) & np.all(np.isfinite(V), axis=(1, 2))
+        ok &= np.isfinite(logW) & np.all([np.all(np.isfinite(x), axis=(1, 2)) for x in V], axis=0)
         m = np.where(ok[:, None], m, 1.0 + np.arange(4))
-        V = np.where(ok[:, None, None], V, 1.0)
-        value, M = assemble(m, V, np.where(ok, logW, 0.0), shift)
+        V = tuple(np.where(ok[:, None, None], x, 1.0) for x in V)
+        value, M = assemble(m, V[0] if is_welded(ends) else V, np.where(ok, logW, 0.0), shift)
     return np.where(ok & np.isfinite(value), value, np.nan), M, m
 
 
@@ -510,8 +548,9 @@ def isotropic_companion(c4: float, c2: float, c0: float, c1: float, kap: float) 
     return A
 
 
-def isotropic_schur(c4: float, c2: float, c0: float, c1: float, kap: float, shift: int = 0) -> Evans:
-    return schur(isotropic_companion(c4, c2, c0, c1, kap), BC_COMPLEX, shift)
+def isotropic_schur(c4: float, c2: float, c0: float, c1: float, kap: float, shift: int = 0,
+                    ends: Ends = ALL_WELDED) -> Evans:
+    return schur(isotropic_companion(c4, c2, c0, c1, kap), bc_complex(ends), shift)
 
 
 def isotropic_batch_values(params: RodParameters, B, omega, T, factor: float = 1.0, shift: int = 0) -> np.ndarray:
@@ -520,21 +559,21 @@ def isotropic_batch_values(params: RodParameters, B, omega, T, factor: float = 1
     out = np.full(c2.size, np.nan, dtype=complex)
     for group in (c0 == 0, c0 != 0):
         if np.any(group):
-            out[group] = isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift)[0]
+            out[group] = isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift, ends=params.ends)[0]
     for i in np.nonzero(~np.isfinite(out))[0]:
-        out[i] = isotropic_schur(c4, c2[i], c0[i], c1[i], kap[i], shift).value
+        out[i] = isotropic_schur(c4, c2[i], c0[i], c1[i], kap[i], shift, params.ends).value
     return out.real
 
 
 def isotropic_evans(params: RodParameters, route: str, factor: float = 1.0, shift: int = 0) -> Evans:
     c4, c2, c0, c1, kap = _isotropic_arrays(params, params.B, params.omega, params.T, factor)
     if route != "schur":
-        value, M, _ = isotropic_batch(c4, c2, c0, c1, kap, shift)
+        value, M, _ = isotropic_batch(c4, c2, c0, c1, kap, shift, ends=params.ends)
         if np.isfinite(value[0]):
             return Evans(complex(value[0]), M[0], "exponential")
         if route == "exponential":
             raise ValueError("the exponential basis does not apply here (coincident exponents)")
-    return isotropic_schur(c4, c2[0], c0[0], c1[0], kap[0], shift)
+    return isotropic_schur(c4, c2[0], c0[0], c1[0], kap[0], shift, params.ends)
 
 
 # --- public evaluation -----------------------------------------------------------------
@@ -566,7 +605,7 @@ def real_evans(params: RodParameters, route: str = "auto", factor: float = 1.0, 
             return ev
         if route == "exponential":
             raise ValueError("the exponential basis does not apply here (B = 0 or coincident exponents)")
-    return schur(_companion(params, ku, kv), BC_REAL, shift)
+    return schur(_companion(params, ku, kv), bc_real(params.ends), shift)
 
 
 def _finish(ev: Evans) -> Characteristic:

@@ -16,7 +16,9 @@ import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.optimize import brentq, minimize_scalar
+from etcheck.rod.core.ends import clamped_count, euler_load, first_bending_root, is_welded
 from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.damped_critical import (
     LADDER,
     DampedCritical,
@@ -57,8 +59,10 @@ MODEL = "rung 1x (exact determinant)"
 #: Axes along which roots are searched (as in :func:`etcheck.rod.straight.damped_critical.first_root`).
 AXES = ("B", "omega", "T", "ray")
 _EPS = np.finfo(float).eps
-#: beta_1 of the first double zero of chi (eq. (91)): the static load is beta_1^3 sqrt(R) / f.
+#: beta_1 of the first double zero of chi (eq. (91)) to 7 digits: the scan's scale of the welded static load.
 _BETA1 = 7.332130
+#: int phi'^2 / int phi^2 of the first bending mode phi by the number of welded ends (pinned-pinned pi^2).
+_SLOPE = {0: math.pi**2, 1: 11.51, 2: 12.30}
 
 
 # --- roots along an axis -----------------------------------------------------------------
@@ -98,19 +102,23 @@ def _axis_params(params: RodParameters, axis: str, x: float) -> RodParameters:
 
 def root_scale(params: RodParameters, axis: str, sign: float) -> float:
     """Expected size of the first root on ``axis`` (sets the scan step): the static
-    load (chi) plus the string load 2 pi T; the Rayleigh quotient of the first
-    clamped mode for the spin; the clamped Euler load for the tension."""
+    load (rung 0) plus the string load 2 pi T; the Rayleigh quotient of the first
+    bending mode for the spin; the Euler load for the tension (each for the rod's ends)."""
     P, R, f = params.P, params.R, params.f
     Tp = max(params.T, 0.0)
-    load = _BETA1**3 * math.sqrt(R) / f + 2 * math.pi * Tp
-    # first clamped mode: int phi''^2 / int phi^2 = f, int phi'^2 / int phi^2 = 12.30
-    spin = math.sqrt((R + 12.30 * Tp) / max(1.0 - 12.30 * P * R, 0.05))
+    welded = is_welded(params.ends)
+    static = _BETA1**3 * math.sqrt(R) / f if welded else float(critical_loads(R, f, 1, params.ends)[0])
+    load = static + 2 * math.pi * Tp
+    # first bending mode: int phi''^2 / int phi^2 = beta^4 (f when welded), int phi'^2 / int phi^2 = _SLOPE
+    slope = _SLOPE[clamped_count(params.ends)]
+    bending = R if welded else R * first_bending_root(params.ends) ** 4 / f
+    spin = math.sqrt((bending + slope * Tp) / max(1.0 - slope * P * R, 0.05))
     if axis == "B":
         return load
     if axis == "omega":
         return spin
     if axis == "T":
-        return 4 * math.pi**2 * R / f + abs(params.B) / (2 * math.pi) + params.omega**2 / math.pi**2
+        return euler_load(params.ends) * R / f + abs(params.B) / (2 * math.pi) + params.omega**2 / math.pi**2
     if params.B == 0 and params.omega == 0:
         raise ValueError("the ray needs B != 0 or omega != 0")
     return 1.0 / (abs(params.B) / load + params.omega**2 / spin**2)
@@ -357,33 +365,38 @@ def pencil_or_exact(params: RodParameters, tol: float = 1e-8, ladder: tuple[int,
 def string_limit_load(params: RodParameters, order: int = 1) -> float:
     """First critical load B of the straight tether under strong tension (dimensionless).
 
-    As T f -> infinity both axes are strings with welded ends: with
+    As T f -> infinity both axes are strings held at their ends: with
     w = u + i v the outer problem is -T w'' + i B w' = 0, w(0) = w(1) = 0,
-    whose first root is B = 2 pi T (I B0 = 2 pi T / L physically). Each
-    clamped end carries a boundary layer exp(-s / eps) of width
+    whose first root is B = 2 pi T (I B0 = 2 pi T / L physically) whatever
+    the attachment. Each end carries a boundary layer exp(-s / eps) of width
     eps_u = sqrt(R / (f a)) in u and eps_v = sqrt(1 / (f b)) in v
-    (a = T + P R omega^2, b = T + P omega^2); matching it to the outer
-    solution turns the clamped conditions into u -/+ eps_u u' = 0,
-    v -/+ eps_v v' = 0 at s = 0, 1. With w = A + C exp(i beta s),
+    (a = T + P R omega^2, b = T + P omega^2). Matched to the outer
+    solution, a welded end (w = w' = 0) turns into u -/+ eps_u u' = 0,
+    v -/+ eps_v v' = 0 (a pin at a distance eps inside it); a pinned end (w =
+    w'' = 0) into w = eps^2 w'' (the layer's amplitude is eps^2 w''), which
+    the outer helix meets at any beta as it meets w = 0: it does not move
+    the root at any order in eps. With w = A + C exp(i beta s),
     beta = B / T = 2 pi + delta, the four conditions split at first order
-    into (delta - 4 pi eps_u) Im C = 0 and (delta - 4 pi eps_v) Re C = 0:
-    the double string root splits into beta = 2 pi (1 + 2 eps_u) (the mode
-    whose ends bend about the weak axis, the first one) and
-    2 pi (1 + 2 eps_v). So
+    into (delta - 2 pi n eps_u) Im C = 0 and (delta - 2 pi n eps_v) Re C = 0,
+    n the number of welded ends: the double string root splits into
+    beta = 2 pi (1 + n eps_u) (the mode whose ends bend about the weak
+    axis, the first one) and 2 pi (1 + n eps_v). So
 
         order 0:  B = 2 pi T
-        order 1:  B = 2 pi T (1 + 2 eps_u)                 error O(1 / (f T))
-        order 2:  + 2 pi T [4 eps_u^2 + 2 pi^2 (1 + R) / (f T)
+        order 1:  B = 2 pi T (1 + n eps_u)                 error O(1 / (f T)) (pinned: order 0)
+        order 2:  + 2 pi T [n^2 eps_u^2 + 2 pi^2 (1 + R) / (f T)
                             - omega^2 / (2 pi^2 T) + P (1 + R) omega^2 / (2 T)]
 
-    The order-2 terms: the next term of the layer series (the clamped end
-    acts as a pin at eps_u, 2 pi / (1 - 2 eps_u)), the bending stiffness of
-    the outer helix w = A + C exp(2 pi i s), averaged over u and v
-    ((R + 1) / (2 f) times (2 pi)^2), and the spin (the whirling string
-    B^2 = 4 pi^2 T^2 - 4 T omega^2, rotary inertia as the mean extra
-    tension). For a thin tape (R << 1) the order-2 bending term
-    2 pi^2 / (f T) exceeds the layer term 2 sqrt(R / (f T)) until
-    f T ~ pi^4 / R. Error of order 2: O((f T)^-3/2). Requires T > 0.
+    The order-2 terms: the next term of the layer series (the n welded
+    ends act as pins eps_u inside: 2 pi / (1 - n eps_u)), and the Rayleigh
+    quotient of the outer helix w = 1 - exp(2 pi i s) (and i times it; the
+    quotient is the same on both, so it does not split the pair): its bending
+    stiffness averaged over u and v ((R + 1) / (2 f) times (2 pi)^2), and the
+    spin (the whirling string B^2 = 4 pi^2 T^2 - 4 T omega^2, rotary inertia
+    as the mean extra tension). For a thin tape (R << 1) with welded ends the
+    order-2 bending term 2 pi^2 / (f T) exceeds the layer term
+    2 sqrt(R / (f T)) until f T ~ pi^4 / R; with pinned ends it is the first
+    correction. Error of order 2: O((f T)^-3/2). Requires T > 0.
     """
     if not params.T > 0:
         raise ValueError("the string limit needs tension T > 0")
@@ -391,11 +404,12 @@ def string_limit_load(params: RodParameters, order: int = 1) -> float:
         raise ValueError("order must be 0, 1 or 2")
     T, R, f, P, w2 = params.T, params.R, params.f, params.P, params.omega**2
     a = T + P * R * w2
-    eps_u = math.sqrt(R / (f * a))
+    n = clamped_count(params.ends)
+    layer = n * math.sqrt(R / (f * a))
     ratio = 1.0
     if order >= 1:
-        ratio += 2 * eps_u
+        ratio += layer
     if order >= 2:
-        ratio += (4 * eps_u**2 + 2 * math.pi**2 * (1 + R) / (f * T) - w2 / (2 * math.pi**2 * T)
+        ratio += (layer**2 + 2 * math.pi**2 * (1 + R) / (f * T) - w2 / (2 * math.pi**2 * T)
                   + P * (1 + R) * w2 / (2 * T))
     return 2 * math.pi * T * ratio

@@ -21,8 +21,9 @@ __all__ = ["mode_count", "coupling_wavenumber", "cut", "band_modes"]
 
 
 def mode_count(params: RodParameters, mu: np.ndarray, T: float) -> np.ndarray:
-    """Weyl estimate of the number of clamped u and v modes with eigenvalue below mu >= 0
-    (the roots of the undamped determinant are about one apart in this variable)."""
+    """Weyl estimate of the number of u and v modes with eigenvalue below mu >= 0, for any ends (welded or
+    pinned move the count by less than one per axis; the roots of the undamped determinant are about one apart
+    in this variable)."""
     R, f, P = params.R, params.f, params.P
     out = np.zeros_like(np.asarray(mu, dtype=float))
     for c4, pc in ((R / f, P * R), (1.0 / f, P)):

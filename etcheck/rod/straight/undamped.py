@@ -17,6 +17,7 @@ import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.parallel import can_split, split_map
+from etcheck.rod.core.ends import euler_load
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight import exact
 from etcheck.rod.straight.spectral import CriticalKind, CriticalPoint
@@ -197,8 +198,8 @@ def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> Undam
     """:func:`undamped_critical` for R = 1 on the lines of D+ (roots that never touch), with the bound of
     :mod:`etcheck.rod.straight.undamped_isotropic`: below the static load at rest B_s the rod is stable at every spin,
     so only loads past B_s (and spins at such loads) are followed."""
-    if p.T <= -4 * math.pi**2 / p.f:  # the clamped Euler load: K_B is not positive at B = 0
-        raise ArithmeticError("R = 1 compressed past its clamped Euler load: the undamped isotropic lines need "
+    if p.T <= -euler_load(p.ends) / p.f:  # the Euler load: K_B is not positive at B = 0
+        raise ArithmeticError("R = 1 compressed past its Euler load: the undamped isotropic lines need "
                               "a rod stable at rest")
     rest = _at_rest(p)
     below = p.B < rest.value
@@ -342,10 +343,10 @@ def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     changes on n points between the Rayleigh floor and 0 and close pairs at the dips of |E| between them (as a
     line's samples); False when none shows (not a proof). False by a proof
     where the stiffness is proven positive (:func:`stiffness_positive`) and, for R = 1 (short of the
-    clamped Euler compression), below the static load at rest (:mod:`etcheck.rod.straight.undamped_isotropic`)."""
+    Euler compression), below the static load at rest (:mod:`etcheck.rod.straight.undamped_isotropic`)."""
     if stiffness_definite(params):
         return False
-    if params.R == 1.0 and params.T > -4 * math.pi**2 / params.f and params.B < _at_rest(params).value:
+    if params.R == 1.0 and params.T > -euler_load(params.ends) / params.f and params.B < _at_rest(params).value:
         return False
     mu_lo = rayleigh_floor(params, params.B, params.omega, params.T)
     mu = -np.linspace(math.sqrt(-mu_lo), 0.0, n + 1) ** 2

@@ -6,7 +6,7 @@ section 6) decouple in w = u + i v and w~ = u - i v. With normal modes
 exp(lambda t), lambda = i Omega (Omega the frequency in the rotating frame):
 
     (1/f) w'''' - (T + P omega^2 - P Omega^2) w'' + i B w' - (Omega + omega)^2 w = 0,
-    w = w' = 0 at s = 0 and s = 1,
+    w = w' = 0 at s = 0 and s = 1 (w = w'' = 0 at a pinned end),
 
 and w~ solves the same with -i B and (Omega - omega)^2. Every eigenvalue of
 the rod is an eigenvalue Omega of one of the two, and the second's are minus
@@ -14,7 +14,8 @@ the complex conjugates of the first's: the rod is stable iff every root
 Omega of the first, D+(Omega), is real. D+ is the determinant of the complex
 problem of :mod:`etcheck.rod.straight.exact` with c2 = T + P omega^2 -
 P Omega^2, c0 = (Omega + omega)^2, c1 = B; for real Omega the operator is
-self-adjoint (i d/ds is Hermitian under clamping) and D+ is real.
+self-adjoint (i d/ds is Hermitian with w = 0 at both ends, d^4/ds^4 with w' = 0 or w'' = 0 there) and D+ is
+real.
 
 Why this form: the real function E(mu) of the coupled problem is, for R = 1,
 D+ D~ with D~(Omega) = D+(-Omega) conjugated: at omega = 0 it is a square, and with spin its roots
@@ -41,7 +42,7 @@ import math
 import numpy as np
 
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.determinant import BC_COMPLEX, isotropic_batch, isotropic_companion, schur, smoothing
+from etcheck.rod.straight.determinant import bc_complex, isotropic_batch, isotropic_companion, schur, smoothing
 
 __all__ = ["characteristic_plus", "characteristic_plus_counted"]
 
@@ -70,7 +71,8 @@ def characteristic_plus_counted(params: RodParameters, Omega, B=None, omega=None
     if route != "schur":
         for group in (c0 == 0, c0 != 0):
             if np.any(group):
-                value, _, m = isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift, small=False)
+                value, _, m = isotropic_batch(c4, c2[group], c0[group], c1[group], kap[group], shift, small=False,
+                                              ends=params.ends)
                 out[group] = value * smoothing(m)
     slow = np.nonzero(~np.isfinite(out))[0] if route != "exponential" else np.zeros(0, dtype=int)
     if slow.size > schur_budget:
@@ -78,7 +80,7 @@ def characteristic_plus_counted(params: RodParameters, Omega, B=None, omega=None
                               f"exponents) and the Schur route's budget is spent")
     for i in slow:
         A = isotropic_companion(c4, c2[i], c0[i], c1[i], kap[i])
-        out[i] = schur(A, BC_COMPLEX, shift).value * smoothing(np.linalg.eigvals(A))
+        out[i] = schur(A, bc_complex(params.ends), shift).value * smoothing(np.linalg.eigvals(A))
     return out.real.reshape(shape), int(slow.size)
 
 

@@ -16,7 +16,8 @@ frame, u along the weak axis e1) are
 (torsion decouples and is neutrally stable; for omega = T = 0, f = 1 this is
 eq. (87)). Constant coefficients: exponents k are the roots of the degree-8
 polynomial p(k) = Pu(k) Pv(k) + q(k)^2 with q = B k + 2 omega lambda, and
-the clamped determinant is known exactly, as for lambda = 0 in
+the determinant with the ends' conditions (clamped as above, or u = u'' = v = v'' = 0 at a
+pinned end, :mod:`etcheck.rod.core.ends`) is known exactly, as for lambda = 0 in
 :mod:`etcheck.rod.straight.exact` (same scaled state, same D = det G
 exp(-sigma), G the map from y(0) to the boundary values).
 
@@ -52,9 +53,10 @@ import math
 
 import numpy as np
 
-from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
+from etcheck.rod.core.ends import ALL_WELDED, Ends, first_bending_root, is_welded
+from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight import determinant
-from etcheck.rod.straight.determinant import assemble, log_vandermonde, schur, smoothing
+from etcheck.rod.straight.determinant import assemble, bc_real, end_values, log_vandermonde, schur, smoothing
 
 __all__ = [
     "MODEL",
@@ -74,7 +76,6 @@ __all__ = [
 MODEL = "rung 1 (exact undamped determinant)"
 
 _EPS = np.finfo(float).eps
-_BC_REAL = np.array([0, 1, 4, 5])
 #: Relative gap between two exponents below which the exponential basis is not used.
 _CONFLUENT = 1e-4
 
@@ -216,7 +217,7 @@ def _exponents_qr(c: np.ndarray) -> np.ndarray:
     return k
 
 
-def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0):
+def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0, ends: Ends = ALL_WELDED):
     """D by the exponential basis for arrays (n,); NaN where it does not apply."""
     n = B.size
     lu, lv = R / f, 1.0 / f
@@ -244,14 +245,14 @@ def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0):
         ratio = np.where(np.abs(q) >= np.abs(Pu), Pv / q, -q / Pu)
         log_lam = np.sum(np.where(second, np.log(ratio), 0.0), axis=1)
         logW = 3 * math.log(lu) + np.log(res) + log_vandermonde(k, d) + log_lam - 6 * np.log(ku) - 6 * np.log(kv)
-        V = np.stack([u, u * k / ku[:, None], v, v * k / kv[:, None]], axis=1)
+        V = end_values(u, v, k, ku, kv, ends)
         good = np.abs(res) > 1e-12 * (lu * np.abs(c1) ** 4 + np.abs(alpha) * np.abs(c1) ** 2 * B**2
                                       + np.abs(c0) * B**4 + 1e-300)
-        ok &= good & np.all(np.isfinite(V), axis=(1, 2)) & np.isfinite(logW)
+        ok &= good & np.all([np.all(np.isfinite(x), axis=(1, 2)) for x in V], axis=0) & np.isfinite(logW)
         k = np.where(ok[:, None], k, 1.0 + np.arange(8))
-        V = np.where(ok[:, None, None], V, 1.0)
+        V = tuple(np.where(ok[:, None, None], x, 1.0) for x in V)
         logW = np.where(ok, logW, 0.0)
-        value, _ = assemble(k, V, logW, shift)
+        value, _ = assemble(k, V[0] if is_welded(ends) else V, logW, shift)
         value = value * smoothing(k)
     return np.where(ok & np.isfinite(value), value, np.nan)
 
@@ -297,7 +298,7 @@ def characteristic_counted(params: RodParameters, mu, B=None, omega=None, T=None
     ku, kv = wavenumbers(params.R, params.f, B, alpha, beta, c0, c1, factor)
     out = np.full(mu.size, np.nan, dtype=complex)
     if route != "schur":
-        out = _exponential(params.R, params.f, B + 0j, alpha, beta, c0, c1, ku, kv, shift)
+        out = _exponential(params.R, params.f, B + 0j, alpha, beta, c0, c1, ku, kv, shift, params.ends)
         rest = np.nonzero(~np.isfinite(out) & (B == 0) & (omega == 0))[0]
         if rest.size:  # u and v uncoupled: the basis of the coupled problem degenerates (q = 0)
             out[rest] = _uncoupled(params, mu[rest], T[rest], factor, shift)
@@ -308,14 +309,14 @@ def characteristic_counted(params: RodParameters, mu, B=None, omega=None, T=None
                                   f"exponents) and the Schur route's budget is spent")
         for i in slow:
             A = _companion(params.R, params.f, B[i], alpha[i], beta[i], c0[i], c1[i], ku[i], kv[i])
-            out[i] = schur(A, _BC_REAL, shift).value * smoothing(np.linalg.eigvals(A))
+            out[i] = schur(A, bc_real(params.ends), shift).value * smoothing(np.linalg.eigvals(A))
     return out.real.reshape(shape), int(slow.size) if route != "exponential" else 0
 
 
 def _uncoupled(params: RodParameters, mu: np.ndarray, T: np.ndarray, factor: float, shift: int) -> np.ndarray:
-    """E at B = omega = 0 up to a positive factor: the product of the determinants of the two clamped
-    Rayleigh beams (c4 w^(4) - (T - pc mu) w'' - mu w = 0 for u and v). Where a beam's exponential basis does not
-    apply (mu = 0: the double exponent 0) its own Schur route, in the same scaled state, so that the positive
+    """E at B = omega = 0 up to a positive factor: the product of the determinants of the two Rayleigh beams
+    (c4 w^(4) - (T - pc mu) w'' - mu w = 0 for u and v, held as the ends are). Where a beam's exponential basis
+    does not apply (mu = 0: the double exponent 0) its own Schur route, in the same scaled state, so that the positive
     factor stays continuous along mu (the coupled Schur route there has another: a jump of two decades at
     mu = 0 would look like two dips of |E| on a line under compression and be taken for a double root)."""
     out = np.ones(mu.size, dtype=complex)
@@ -326,11 +327,12 @@ def _uncoupled(params: RodParameters, mu: np.ndarray, T: np.ndarray, factor: flo
         for group in (mu == 0, mu != 0):
             if np.any(group):
                 v, _, m = determinant.isotropic_batch(c4, c2[group] + 0j, mu[group] + 0j, np.zeros(int(group.sum())),
-                                               kap[group], shift, small=False)
+                                                      kap[group], shift, small=False, ends=params.ends)
                 value[group] = v * smoothing(m)
         for i in np.nonzero(~np.isfinite(value))[0]:
             A = determinant.isotropic_companion(c4, c2[i], mu[i], 0.0, kap[i])
-            value[i] = determinant.isotropic_schur(c4, c2[i], mu[i], 0.0, kap[i], shift).value * smoothing(np.linalg.eigvals(A))
+            value[i] = (determinant.isotropic_schur(c4, c2[i], mu[i], 0.0, kap[i], shift, params.ends).value
+                        * smoothing(np.linalg.eigvals(A)))
         out *= value
     return out
 
@@ -359,9 +361,11 @@ def rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min:
     return 0.0 if bound > 0 else 1.1 * bound - 1e-6  # 0: no real root below 0, no real pair of eigenvalues
 
 
-#: A lower bound of int w''^2 / int w^2 over clamped w (w = w' = 0 at both ends): beta^4 of the first clamped beam
-#: mode (cos(beta) cosh(beta) = 1), rounded down.
-_CLAMPED_BENDING = F_CLAMPED * (1.0 - 1e-12)
+def bending_floor(ends: Ends) -> float:
+    """A lower bound of int w''^2 / int w^2 over w held at these ends (w = w' = 0 welded, w = 0 pinned): beta^4 of
+    the first beam mode (cos(beta) cosh(beta) = 1 welded at both, tan(beta) = tanh(beta) at one, beta = pi
+    pinned at both; :func:`etcheck.rod.core.ends.first_bending_root`), rounded down."""
+    return first_bending_root(ends) ** 4 * (1.0 - 1e-12)
 
 
 def stiffness_positive(params: RodParameters, B, omega) -> np.ndarray:
@@ -369,23 +373,24 @@ def stiffness_positive(params: RodParameters, B, omega) -> np.ndarray:
     True there, False where none is found.
 
     For unit |q| = (|u|^2 + |v|^2)^(1/2), U = |u|, V = |v|, x = |v''| / V and y = |u''| / U (both >= beta^2,
-    :data:`_CLAMPED_BENDING` = beta^4), |w'|^2 >= pi^2 |w|^2 (w = 0 at both ends), |w'|^2 = -(w, w'') <= x |w|^2
+    :func:`bending_floor` = beta^4 of the ends), |w'|^2 >= pi^2 |w|^2 (w = 0 at both ends), |w'|^2 = -(w, w'') <= x |w|^2
     and the load's term 2 B int u' v >= -2 |B| U |v'| >= -2 |B| U V x^(1/2):
     q^T K q >= A U^2 + C(x) V^2 - 2 |B| x^(1/2) U V, with A = min over y of (R/f) y^2 + a_u (pi^2 or y) - omega^2
     and C(x) = x^2 / f + a_v (pi^2 or x) - omega^2 (pi^2 for a >= 0, else x), a_u = T + P R omega^2,
     a_v = T + P omega^2. That 2 x 2 form is positive for every x >= beta^2 iff A > 0 and A C(x) - B^2 x > 0 there
     (a convex quadratic in x: its least value at the vertex or at beta^2). K > 0 with M > 0 and G skew: every
     eigenvalue lies on the imaginary axis (Lagrange), so every root mu of E is real and positive (no real pair, no
-    complex pair). Exact at B = 0, T = P = 0 (the weak beam's first clamped mode: omega^2 = beta^4 R / f); looser
+    complex pair). Exact at B = 0, T = P = 0 (the weak beam's first mode: omega^2 = beta^4 R / f); looser
     with load and compression. A relative margin of 1e-9 keeps round-off out of the proof."""
     B, omega = np.broadcast_arrays(np.abs(np.asarray(B, dtype=float)), np.asarray(omega, dtype=float))
     w2 = omega**2
-    b2 = math.sqrt(_CLAMPED_BENDING)
+    floor = bending_floor(params.ends)
+    b2 = math.sqrt(floor)
     cu, cv = params.R / params.f, 1.0 / params.f
     au, av = params.T + params.P * params.R * w2, params.T + params.P * w2
     yu = np.maximum(b2, -au / (2.0 * cu))
-    A = np.where(au >= 0.0, cu * _CLAMPED_BENDING + au * math.pi**2, cu * yu**2 + au * yu) - w2
-    A_scale = cu * _CLAMPED_BENDING + np.abs(au) * (math.pi**2 + yu) + w2
+    A = np.where(au >= 0.0, cu * floor + au * math.pi**2, cu * yu**2 + au * yu) - w2
+    A_scale = cu * floor + np.abs(au) * (math.pi**2 + yu) + w2
     s, t = np.minimum(av, 0.0), np.maximum(av, 0.0) * math.pi**2 - w2  # C(x) = cv x^2 + s x + t
     good = A > 1e-9 * A_scale
     with np.errstate(all="ignore"):
