@@ -34,7 +34,7 @@ from etcheck.checks.straight import linear_stability  # noqa: E402
 from etcheck.input.mission import load_mission  # noqa: E402
 from etcheck.rod.core.spectrum import check_resolution, spectrum  # noqa: E402
 from etcheck.rod.straight.convergence import accuracy_table  # noqa: E402
-from etcheck.rod.straight.spectral import _family, campbell  # noqa: E402
+from etcheck.rod.straight.spectral import campbell, straight_family  # noqa: E402
 from etcheck.rod.straight.static_map import stable_rows, static_curves  # noqa: E402
 from etcheck.scaling import scale, scene  # noqa: E402
 
@@ -54,7 +54,7 @@ def best(fn, repeats: int = 3):
 
 def qz_curves(p, B_max, w_max, N):
     """The same points by one reduced QZ per row and per load (the route the map took before)."""
-    fam = _family(p, N)
+    fam = straight_family(p, N)
     first = []
     for w in np.linspace(0.0, w_max, ROWS):
         r = fam.pencil_roots("B", 0.0, w, p.T)

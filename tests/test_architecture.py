@@ -193,3 +193,41 @@ def test_relative_imports_resolve():
     """``from .. import x`` and ``from ..numerics.blas import y`` resolve to the modules they name."""
     graph = _import_graph()
     assert "etcheck.numerics.blas" in graph["etcheck.numerics.eigen"]
+
+
+def _private_imports(root: Path = ROOT) -> list[str]:
+    """``from etcheck.x import _name`` and ``module._name`` on an imported etcheck module, anywhere in the
+    package (a private name belongs to its module; what another module needs is public)."""
+    import ast
+
+    bad = []
+    for path in (root / "etcheck").rglob("*.py"):
+        tree = ast.parse(path.read_text())
+        modules = set()
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith("etcheck")):
+                for a in node.names:
+                    if a.name.startswith("_") and not a.name.startswith("__"):
+                        bad.append(f"{path.relative_to(root)}: from {node.module} import {a.name}")
+                    modules.add(a.asname or a.name)
+            elif isinstance(node, ast.Import):
+                modules |= {a.asname or a.name for a in node.names if a.name.startswith("etcheck")}
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in modules
+                    and node.attr.startswith("_") and not node.attr.startswith("__")):
+                bad.append(f"{path.relative_to(root)}: {node.value.id}.{node.attr}")
+    return sorted(bad)
+
+
+def test_no_private_name_crosses_a_module():
+    bad = _private_imports()
+    assert not bad, "\n".join(bad)
+
+
+def test_a_planted_private_import_is_found(tmp_path):
+    import shutil
+
+    shutil.copytree(PACKAGE, tmp_path / "etcheck", ignore=shutil.ignore_patterns("__pycache__"))
+    target = tmp_path / "etcheck" / "checks" / "plan.py"
+    target.write_text(target.read_text() + "\nfrom etcheck.rod.straight.spectral import _family_cached\n")
+    assert any("_family_cached" in b for b in _private_imports(tmp_path))

@@ -10,7 +10,7 @@ from independent import first_static_load
 
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
 from etcheck.rod.core.spectrum import damping_cluster, spectrum
-from etcheck.rod.straight.spectral import THRESHOLD, _family, critical_load
+from etcheck.rod.straight.spectral import THRESHOLD, critical_load, straight_family
 from etcheck.rod.straight.static_map import plane, stable_rows, static_curves
 
 
@@ -67,7 +67,7 @@ def test_crossing_count_classifies_like_the_growth_rate(T):
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375, T=T)
     spins, B_max = [0.0, 0.3, 0.9], 4.5
     curves = static_curves(p, B_max, 1.0, omega_rows=spins, n_loads=4, N=16)
-    fam = _family(p, 16)
+    fam = straight_family(p, 16)
     for w, roots, row in zip(spins, curves.loads, stable_rows(p, curves, B_max)):
         edges = [0.0, *roots[roots > 0], B_max]
         assert len(edges) >= 4  # at least two roots crossed
@@ -81,7 +81,7 @@ def test_crossing_count_classifies_like_the_growth_rate(T):
 
 def test_plane_roots_are_the_pencil_roots():
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375, T=0.2)
-    fam, pl = _family(p, 24), plane(p, 24)
+    fam, pl = straight_family(p, 24), plane(p, 24)
     for w in (0.0, 0.4, 1.1):
         qz = fam.pencil_roots("B", 0.0, w, p.T)
         small = pl.roots("B", w * w)[0]

@@ -155,10 +155,10 @@ def test_collocation_indicator_looks_at_the_whole_coupled_band():
     least-|lambda| pairs (a dense low spectrum: P = 0.05, B past three static loads); the undamped stability
     indicator looks at every eigenvalue of the band that load and spin reshape, so it sees it (it saw a stable
     window at omega in [5.42, 7.14])."""
-    from etcheck.rod.straight.spectral import _family
+    from etcheck.rod.straight.spectral import straight_family
 
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, T=0.0)
-    assert _family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
+    assert straight_family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
 
 
 def test_a_change_of_stability_below_the_static_load_at_rest_is_refused(monkeypatch):

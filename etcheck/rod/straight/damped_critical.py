@@ -37,7 +37,7 @@ from etcheck.rod.core.ends import is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution, roundoff_floor
 from etcheck.rod.straight.analytic import critical_loads, static_roots
-from etcheck.rod.straight.spectral import DOUBLE, _family
+from etcheck.rod.straight.spectral import DOUBLE, straight_family
 
 __all__ = [
     "DRAFT_LADDER",
@@ -79,7 +79,7 @@ class PencilRoot:
 
 
 def _smallest_positive(params: RodParameters, axis: str, N: int, sign: float = 1.0) -> float:
-    r = _family(params, N).pencil_roots(axis, params.B, params.omega, params.T)
+    r = straight_family(params, N).pencil_roots(axis, params.B, params.omega, params.T)
     r = np.abs(r[sign * r > 0])
     if not r.size:
         return math.inf

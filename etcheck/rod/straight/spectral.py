@@ -65,6 +65,7 @@ __all__ = [
     "CriticalPoint",
     "Campbell",
     "StraightFamily",
+    "straight_family",
     "static_points",
     "divergence_loads",
     "critical_load",
@@ -273,7 +274,9 @@ def _family_cached(params: RodParameters, N: int) -> StraightFamily:
     return StraightFamily(params, N)
 
 
-def _family(params: RodParameters, N: int) -> StraightFamily:
+def straight_family(params: RodParameters, N: int) -> StraightFamily:
+    """The operator family of the straight rod with these P, R, Gamma, f, ends at resolution N (memoised: B, omega, T
+    are the family's coordinates, not its key)."""
     return _family_cached(params.with_(B=0.0, omega=0.0, T=0.0), int(N))
 
 
@@ -292,7 +295,7 @@ def static_points(params: RodParameters, axis: str = "B", lo: float = 0.0, hi: f
     M = check_resolution(N)
     out = []
     for n in (N, M):
-        r = _family(params, n).pencil_roots(axis, params.B, params.omega, params.T)
+        r = straight_family(params, n).pencil_roots(axis, params.B, params.omega, params.T)
         if axis == "omega":
             r = np.sqrt(r[r > 0])
         out.append(r)
@@ -349,7 +352,7 @@ class _Line:
 
     def __init__(self, params: RodParameters, axis: str, N: int, k: int):
         self.params, self.axis, self.k = params, axis, k
-        self.fam = _family(params, N)
+        self.fam = straight_family(params, N)
         self.memo: dict[float, float] = {}
 
     def growth(self, x: float) -> float:
@@ -556,7 +559,7 @@ def stability_map(params: RodParameters, B_grid, omega_grid, N: int = 16, k: int
     per point (it is polynomial in B and omega), so each point costs one
     shift-invert solve (milliseconds). T, gamma, P, R, Gamma from ``params``.
     """
-    fam = _family(params, N)
+    fam = straight_family(params, N)
     B_grid = np.asarray(B_grid, dtype=float)
     omega_grid = np.asarray(omega_grid, dtype=float)
     out = np.empty((omega_grid.size, B_grid.size))
@@ -608,7 +611,7 @@ def campbell(params: RodParameters, omega_grid, k: int = 10, N: int = 24, N_chec
     nev = 2 * k + 2  # the 2k least-|lambda| and a conjugate cut at the edge (the shift is ~0: same order)
     N_check = check_resolution(N) if N_check is None else int(N_check)
     checked = np.unique(np.linspace(0, omega_grid.size - 1, min(n_check, omega_grid.size)).round().astype(int))
-    coarse, fine = _family(params, N), _family(params, N_check)
+    coarse, fine = straight_family(params, N), straight_family(params, N_check)
     _ = coarse.parts, fine.parts  # made here, before the spins are shared with a forked helper
 
     def solve(job) -> np.ndarray:

@@ -54,7 +54,7 @@ import scipy.linalg as sla
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.parallel import split_map
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.spectral import DOUBLE, K_MODES, THRESHOLD, StraightFamily, _family, nearly_isotropic
+from etcheck.rod.straight.spectral import DOUBLE, K_MODES, THRESHOLD, StraightFamily, nearly_isotropic, straight_family
 
 __all__ = ["StaticPlane", "StaticCurves", "plane", "static_curves", "stable_rows"]
 
@@ -178,7 +178,7 @@ class StaticPlane:
 
 @lru_cache(maxsize=16)
 def _plane(params: RodParameters, N: int, T: float) -> StaticPlane:
-    return StaticPlane(_family(params, N), T)
+    return StaticPlane(straight_family(params, N), T)
 
 
 def plane(params: RodParameters, N: int) -> StaticPlane:
