@@ -3,18 +3,21 @@
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 from collections.abc import Callable
 from typing import Any
 
 from etcheck.errors import EtcheckError
+from etcheck.numerics.lifetime import stop_words
 
 EXIT_TEXT = """exit codes:
   0  the run finished and every margin meets the required margin
   1  a margin fails, the check is incomplete, or some sweep points have no answer (never a silent pass)
   2  bad input or usage (mission file, options, report cannot be written): the message names the field
   3  a numerical solve failed (nothing is reported from it)
-  130 interrupted (a sweep resumes when the same command is run again)
+  130 interrupted by Ctrl-C (SIGINT), 143 stopped by SIGTERM, 129 by SIGHUP: helpers stopped, no report
+      half-written (a sweep resumes when the same command is run again)
 """
 
 
@@ -44,15 +47,21 @@ def guarded(action: Callable[[], Any], interrupted: str):
     try:
         return action()
     except EtcheckError as exc:
-        print(f"etcheck: {'error: ' if exc.exit_code != 130 else ''}{exc}", file=sys.stderr)
+        print(f"etcheck: {'error: ' if exc.exit_code < 128 else ''}{exc}", file=sys.stderr)
         return exc.exit_code
-    except KeyboardInterrupt:
-        print(f"etcheck: interrupted; {interrupted}", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as exc:
+        return stopped(exc, interrupted)
     except Exception as exc:  # a bug, not the user's fault: say so, no traceback
         print(f"etcheck: internal error ({type(exc).__name__}: {exc}); {interrupted}. "
               "Please report this with the mission file.", file=sys.stderr)
         return 3
+
+
+def stopped(exc: KeyboardInterrupt, interrupted: str) -> int:
+    """Say that the run was stopped (Ctrl-C or a stop signal, :mod:`etcheck.numerics.lifetime`); the shell's exit
+    code for that signal, 128 + its number."""
+    print(f"etcheck: {stop_words(exc)}; {interrupted}", file=sys.stderr)
+    return 128 + getattr(exc, "signum", signal.SIGINT)
 
 
 def run_and_summarise(action: Callable[[], tuple], summary: Callable[..., int | None],

@@ -9,9 +9,10 @@ import sys
 
 from etcheck import __version__
 from etcheck.cli import accuracy, check, damping_map, diagram, sweep
-from etcheck.cli.common import EXIT_TEXT
+from etcheck.cli.common import EXIT_TEXT, stopped
 from etcheck.numerics.blas import pin_before_numpy
 from etcheck.numerics.heap import keep_freed_memory
+from etcheck.numerics.lifetime import stop_on_signals
 
 #: subcommand modules; each has ``add_parser(subparsers)`` that sets ``run(args, parser) -> int``
 COMMANDS = (check, sweep, diagram, damping_map, accuracy)
@@ -44,7 +45,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.command is None:
         p.print_help()
         return 2
-    return args.run(args, args.parser)
+    with stop_on_signals():  # SIGTERM, SIGHUP, SIGINT: helpers stopped, nothing half-written, 128 + the signal
+        return args.run(args, args.parser)
 
 
 def run() -> None:
@@ -63,6 +65,8 @@ def run() -> None:
         code = exc.code or 0
     except BrokenPipeError:  # the reader went away (`etcheck ... | head`): the shell's code for SIGPIPE, no traceback
         code = 128 + 13
+    except KeyboardInterrupt as exc:  # stopped outside a command's own guard (its summary, the parser)
+        code = stopped(exc, "stopped")
     for stream in (sys.stdout, sys.stderr):
         with contextlib.suppress(OSError, ValueError):  # a closed pipe: nothing more to say
             stream.flush()

@@ -8,7 +8,9 @@ another thread holds would stay locked in the copy), inside a helper
 (:func:`serial_here`) or a sweep's chunk (:func:`serial`: the sweep already
 keeps every core busy), or fewer than ``min_items`` items. If the helper fails, its items are computed
 here (an error is then raised here, with its traceback). The results are the
-same bytes either way: the same code runs on one BLAS thread in both processes.
+same bytes either way: the same code runs on one BLAS thread in both processes. A helper never outlives this
+process (:mod:`etcheck.numerics.lifetime`), and is stopped when this process leaves the map by an exception (a
+signal included).
 
 Only work whose result is all that is needed belongs in the map: what the helper memoises (lru caches,
 counters) stays in the helper. The undamped load line computed in a helper inside a sweep would lose the
@@ -21,10 +23,11 @@ from __future__ import annotations
 import contextlib
 import os
 import pickle
-import signal
 import threading
 from collections.abc import Callable, Iterator, Sequence
 from typing import Any
+
+from etcheck.numerics.lifetime import die_with_parent, kill_and_reap
 
 __all__ = ["split_map", "ahead", "serial_here", "serial", "can_split"]
 
@@ -73,6 +76,7 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
     queue = _Queue(order)
     first = queue.take()
     read, write = os.pipe()
+    parent = os.getpid()
     try:
         pid = os.fork()
     except OSError:  # no process to spare (a resource limit): one by one
@@ -89,7 +93,7 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
                 out[i] = fn(items[i])
             return out
 
-        _be_the_helper(read, write, taken)
+        _be_the_helper(parent, read, write, taken)
     os.close(write)
     mine = {}
     try:
@@ -98,16 +102,18 @@ def split_map(fn: Callable[[Any], Any], items: Sequence, min_items: int = 2,
             while i is not None:
                 mine[i] = fn(items[i])
                 i = queue.take()
-    except BaseException:
-        os.close(read)
         queue.close()
-        os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
+        with os.fdopen(os.dup(read), "rb") as fh:
+            data = fh.read()
+        _, status = os.waitpid(pid, 0)
+        pid = 0
+    except BaseException:  # an error here or a stop signal: the helper's work is not needed
+        if pid:
+            kill_and_reap(pid)
+        queue.close()
         raise
-    queue.close()
-    with os.fdopen(read, "rb") as fh:
-        data = fh.read()
-    _, status = os.waitpid(pid, 0)
+    finally:
+        os.close(read)
     theirs = pickle.loads(data) if status == 0 and data else {}
     # what the helper took but did not deliver (it failed) is computed here
     return [mine[i] if i in mine else theirs[i] if i in theirs else fn(items[i]) for i in range(len(items))]
@@ -124,6 +130,7 @@ def ahead(fn: Callable[[], Any]) -> Iterator[Callable[[], Any]]:
         yield fn
         return
     read, write = os.pipe()
+    parent = os.getpid()
     try:
         pid = os.fork()
     except OSError:  # no process to spare: here, when asked
@@ -132,7 +139,7 @@ def ahead(fn: Callable[[], Any]) -> Iterator[Callable[[], Any]]:
         yield fn
         return
     if pid == 0:
-        _be_the_helper(read, write, fn)
+        _be_the_helper(parent, read, write, fn)
     os.close(write)
     got: list = []
     reaped = [False]
@@ -152,17 +159,18 @@ def ahead(fn: Callable[[], Any]) -> Iterator[Callable[[], Any]]:
     try:
         yield result
     finally:
-        if not reaped[0]:  # not asked (an error here): the helper's work is not needed
-            os.kill(pid, signal.SIGKILL)
-            os.waitpid(pid, 0)
+        if not reaped[0]:  # not asked (an error here or a stop signal): the helper's work is not needed
+            kill_and_reap(pid)
         os.close(read)
 
 
-def _be_the_helper(read: int, write: int, compute: Callable[[], Any]) -> None:
-    """In a forked helper: compute (without forking again), send the result through the pipe and leave without any
-    clean-up of the parent's state; exit status 1 where anything failed (the parent then computes it itself)."""
+def _be_the_helper(parent: int, read: int, write: int, compute: Callable[[], Any]) -> None:
+    """In a forked helper of ``parent``: compute (without forking again), send the result through the pipe and leave
+    without any clean-up of the parent's state; exit status 1 where anything failed (the parent then computes it
+    itself). The helper ends with its parent (:func:`etcheck.numerics.lifetime.die_with_parent`)."""
     code = 1
     try:
+        die_with_parent(parent)
         os.close(read)
         serial_here()
         out = compute()
@@ -202,4 +210,7 @@ class _Queue:
         self._pending = []
 
     def close(self) -> None:
-        os.close(self._read)
+        """Close the pipe (once; again does nothing)."""
+        if self._read >= 0:
+            os.close(self._read)
+            self._read = -1

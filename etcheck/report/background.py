@@ -27,6 +27,7 @@ import threading
 from collections.abc import Callable, Iterator
 
 from etcheck.errors import EtcheckError, ReportError
+from etcheck.numerics.lifetime import die_with_parent
 from etcheck.report import render
 from etcheck.report.figures.common import forking_allowed
 
@@ -54,7 +55,8 @@ def renderer(formats: tuple[str, ...], kind: str = "check"
     sys.stderr.flush()
     ctx = multiprocessing.get_context("fork")
     ours, theirs = ctx.Pipe()
-    proc = ctx.Process(target=_serve, args=(theirs, ours, formats, kind), daemon=True, name="etcheck-report")
+    proc = ctx.Process(target=_serve, args=(os.getpid(), theirs, ours, formats, kind), daemon=True,
+                       name="etcheck-report")
     proc.start()
     theirs.close()
 
@@ -74,11 +76,14 @@ def renderer(formats: tuple[str, ...], kind: str = "check"
     remote.pid = proc.pid  # type: ignore[attr-defined]  # the report process, for the tests
     try:
         yield remote
+    except BaseException:  # the report is not needed (a stop signal stops the process already)
+        proc.kill()
+        raise
     finally:
         ours.close()  # the process reads end-of-file and exits
         proc.join(timeout=5)
         if proc.is_alive():
-            proc.terminate()
+            proc.kill()
             proc.join()
 
 
@@ -88,8 +93,10 @@ def _worth_a_process(formats: tuple[str, ...]) -> bool:
             and len(os.sched_getaffinity(0)) >= 2 and threading.active_count() == 1 and "numpy" not in sys.modules)
 
 
-def _serve(conn, parent_end, formats: tuple[str, ...], kind: str) -> None:
-    """The report process: load and warm the report stack, then render what the parent sends until it closes."""
+def _serve(parent: int, conn, parent_end, formats: tuple[str, ...], kind: str) -> None:
+    """The report process of ``parent``: load and warm the report stack, then render what the parent sends until it
+    closes; it ends with its parent (:func:`~etcheck.numerics.lifetime.die_with_parent`)."""
+    die_with_parent(parent)
     parent_end.close()
     if kind != "check":
         os.nice(STUDY_NICE)

@@ -31,6 +31,7 @@ import hashlib
 import json
 import math
 import os
+import signal
 import time
 from collections.abc import Callable, Iterable
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -51,6 +52,7 @@ from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.blas import one_blas_thread
+from etcheck.numerics.lifetime import die_with_parent, stop_words
 from etcheck.numerics.optimize import brentq
 from etcheck.numerics.parallel import serial
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
@@ -73,9 +75,12 @@ REGION_BUCKLED = "buckled-stable"
 
 
 class SweepInterrupted(EtcheckError):
-    """The sweep was interrupted; what finished is in the cache."""
+    """The sweep was interrupted (Ctrl-C or a stop signal, ``stop``); what finished is in the cache. Exit code
+    128 + the signal's number, as the shell reports it."""
 
-    exit_code = 130
+    def __init__(self, message: str, stop: KeyboardInterrupt | None = None) -> None:
+        super().__init__(message)
+        self.exit_code = 128 + getattr(stop, "signum", signal.SIGINT)
 
 
 @dataclass(frozen=True)
@@ -311,23 +316,15 @@ class _NoAnswer(Exception):
 
 def _worker_init(parent: int) -> None:
     """Local worker: one BLAS thread (its chunks run without forked helpers, :func:`_serially`), freed matrices
-    kept for reuse (:mod:`etcheck.numerics.heap`: the worker is etcheck's own process); exit when the sweep process
-    dies (kill -9 leaves no orphans)."""
-    import threading
-
+    kept for reuse (:mod:`etcheck.numerics.heap`: the worker is etcheck's own process); it ends with the sweep
+    process (:func:`~etcheck.numerics.lifetime.die_with_parent`: kill -9 leaves no orphans)."""
     from threadpoolctl import threadpool_limits
 
     from etcheck.numerics.heap import keep_freed_memory
 
+    die_with_parent(parent)
     threadpool_limits(limits=1)  # for the life of the worker
     keep_freed_memory()
-
-    def watch() -> None:
-        while os.getppid() == parent:
-            time.sleep(0.5)
-        os._exit(1)
-
-    threading.Thread(target=watch, daemon=True).start()
 
 
 def _solve_chunk(items: list[tuple[str, dict, float, bool]]) -> list[tuple[str, dict]]:
@@ -487,10 +484,10 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
         _run(_solve_chunk, _chunks(todo, options.chunk), options, arrived)
         grid = _assemble(points, results, axes, shape, mission)
         lengths = _critical_lengths(points, results, axes, shape, base, current, field, options, cache)
-    except KeyboardInterrupt:
-        raise SweepInterrupted(f"sweep interrupted: {len(results)} of {total} points are saved"
+    except KeyboardInterrupt as stop:
+        raise SweepInterrupted(f"sweep {stop_words(stop)}: {len(results)} of {total} points are saved"
                                + (f" in {cache.folder}; run the same command again to resume" if cache.folder else
-                                  " (no cache folder: nothing kept)")) from None
+                                  " (no cache folder: nothing kept)"), stop) from None
     solve_time = time.perf_counter() - t_solve
     solved = [r for k, r in results.items() if k in queued]
     cpu = sum(r.get("time_s", 0.0) for r in solved)

@@ -22,6 +22,8 @@ import pickle
 import threading
 from collections.abc import Callable, Iterator
 
+from etcheck.numerics.lifetime import die_with_parent, kill_and_reap
+
 #: dots per inch of the figures (sharp on paper at the figures' printed size)
 PRINT_DPI = 220
 #: white border kept around the drawn content [inch] (matplotlib's default for a tight bounding box)
@@ -94,10 +96,12 @@ def draw(jobs: dict[str, Callable[[], dict[str, FigureImage]]]) -> dict[str, Fig
         return {k: v for name in names for k, v in jobs[name]().items()}
     theirs = names[1::2]
     read, write = os.pipe()
+    parent = os.getpid()
     pid = os.fork()
     if pid == 0:  # the helper: draw its jobs, send the PNGs, leave without any clean-up of the parent's state
         code = 1
         try:
+            die_with_parent(parent)
             os.close(read)
             out = {k: (str(v), v.png) for name in theirs for k, v in jobs[name]().items()}
             with os.fdopen(write, "wb") as fh:
@@ -106,10 +110,16 @@ def draw(jobs: dict[str, Callable[[], dict[str, FigureImage]]]) -> dict[str, Fig
         finally:
             os._exit(code)
     os.close(write)
-    mine = {k: v for name in names[0::2] for k, v in jobs[name]().items()}
-    with os.fdopen(read, "rb") as fh:
-        data = fh.read()
-    _, status = os.waitpid(pid, 0)
+    try:
+        mine = {k: v for name in names[0::2] for k, v in jobs[name]().items()}
+        with os.fdopen(os.dup(read), "rb") as fh:
+            data = fh.read()
+        _, status = os.waitpid(pid, 0)
+    except BaseException:  # a failed figure here or a stop signal: the helper's figures are not needed
+        kill_and_reap(pid)
+        raise
+    finally:
+        os.close(read)
     if status != 0 or not data:  # the helper failed: draw its figures here (an error is raised here, with its traceback)
         return mine | {k: v for name in theirs for k, v in jobs[name]().items()}
     for k, (text, png) in pickle.loads(data).items():
