@@ -60,10 +60,22 @@ def orbit_notes(spec: OrbitSpec, env: AxialFieldEnvelope) -> list[str]:
         notes.append(f"orbit: worst case over libration up to {math.degrees(spec.libration_in_plane):.3g}° in the orbit plane "
                      f"and {math.degrees(spec.libration_out_of_plane):.3g}° out of it; on the vertical the worst is "
                      f"{env.worst_nominal * 1e6:.4g} µT")
+    if past_leap_seconds(spec):
+        notes.append("orbit: the window reaches past the leap-second table: UTC - TAI is assumed constant after it "
+                     "(a leap second announced later would shift the instants by 1 s: a negligible change of the field)")
     if not env.converged:
         notes.append(f"orbit: the worst axial field changed by {env.step_change:.2g} (relative) at the last halving of "
                      f"the step ({env.step:g} s), above the tolerance {env.tolerance:g}")
     return notes
 
 
-__all__ = ["orbit_notes", "statement", "with_orbit_field"]
+def past_leap_seconds(spec: OrbitSpec) -> bool:
+    """Whether the end of the orbit's window lies past the leap-second table (ERFA's "dubious year")."""
+    from etcheck.orbit import frames
+
+    with frames.quiet():
+        end = frames.parse_utc(spec.start) + spec.duration * u.s
+    return frames.past_leap_second_table(end)
+
+
+__all__ = ["orbit_notes", "past_leap_seconds", "statement", "with_orbit_field"]

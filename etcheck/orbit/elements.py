@@ -267,7 +267,8 @@ def trajectory(orbit: KeplerianElements | TwoLineElements, start, t) -> Trajecto
         pos, vel = tle_state(orbit, start, t)
         rot = frames.teme_to_itrs(start, t)
     else:
-        since = float((start - frames.parse_utc(orbit.epoch)).to_value("s"))
+        with frames.quiet():  # past the leap-second table UTC - TAI is taken as constant (frames.quiet)
+            since = float((start - frames.parse_utc(orbit.epoch)).to_value("s"))
         pos, vel = kepler_state(orbit, t + since)
         rot = frames.gcrs_to_itrs(start, t) if orbit.frame == "GCRS" else frames.teme_to_itrs(start, t)
     radial = _unit(pos)

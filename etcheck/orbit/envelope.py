@@ -203,6 +203,8 @@ def axial_field_envelope(
 
     k = int(np.argmax(series.axial_worst))
     start = frames.parse_utc(spec.start)
+    with frames.quiet():  # UTC arithmetic goes through TAI: constant past the leap-second table
+        worst_utc = frames.iso(start + series.time[k] * u.s)
     levels = np.array(PERCENTILE_LEVELS)
     counts, edges = np.histogram(series.axial_worst, bins=bins, range=(0.0, float(series.axial_worst[k]) or 1e-9))
     return AxialFieldEnvelope(
@@ -210,7 +212,7 @@ def axial_field_envelope(
         worst=float(series.axial_worst[k]),
         worst_nominal=float(np.max(np.abs(series.axial_nominal))),
         worst_time=float(series.time[k]),
-        worst_utc=frames.iso(start + series.time[k] * u.s),
+        worst_utc=worst_utc,
         worst_latitude=float(series.latitude[k]),
         worst_longitude=float(series.longitude[k]),
         worst_altitude=float(series.altitude[k]),

@@ -81,7 +81,8 @@ def igrf_itrs(position: np.ndarray, start, t: np.ndarray, model: str = DEFAULT_M
     for b in np.unique(block):
         idx = np.flatnonzero(block == b)
         for chunk in np.array_split(idx, max(1, math.ceil(idx.size / _BLOCK_SAMPLES))):
-            mid = start + 0.5 * (t[chunk].min() + t[chunk].max()) * u.s
+            with frames.quiet():  # UTC arithmetic goes through TAI: constant past the leap-second table
+                mid = start + 0.5 * (t[chunk].min() + t[chunk].max()) * u.s
             Br, Bt, Bp = ppigrf.igrf_gc(
                 r[chunk] / 1e3, theta_deg[chunk], phi_deg[chunk], _datetime(mid), coeff_fn=IGRF_MODELS[model]
             )

@@ -49,6 +49,16 @@ def quiet():
         yield
 
 
+def past_leap_second_table(t: Time) -> bool:
+    """Whether the UTC instant ``t`` lies past the years ERFA's leap-second table vouches for (its "dubious
+    year"): UTC - TAI is then taken as it is at the table's end, as astropy and ERFA do."""
+    t = t.utc
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", erfa.ErfaWarning)
+        erfa.dat(*erfa.jd2cal(t.jd1, t.jd2))
+    return any(issubclass(w.category, erfa.ErfaWarning) for w in caught)
+
+
 def parse_utc(value) -> Time:
     """A UTC instant from an ISO 8601 string, ``datetime`` or ``date`` (naive = UTC).
 

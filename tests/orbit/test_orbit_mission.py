@@ -290,3 +290,25 @@ def test_sweep_table_accepts_orbit_axes():
     data["sweep"] = {"inclination": {"from": "0 deg", "to": "98 deg", "points": 3}}
     m = mission_from_dict(copy.deepcopy(data))
     assert m.sweep[0].name == "inclination" and m.sweep[0].values[-1] == pytest.approx(math.radians(98))
+
+
+def test_a_window_past_the_leap_second_table_prints_nothing_on_stderr_and_says_so(tmp_path):
+    """An orbit in 2029 (past ERFA's leap-second table): astropy's ErfaWarning is caught where it arises, the
+    CLI's stderr stays empty and the mission's notes state the assumption."""
+    import subprocess
+    import sys
+
+    text = (ROOT / "missions" / "proseds-orbit.toml").read_text()
+    path = tmp_path / "orbit-2029.toml"
+    path.write_text(text.replace('epoch = "2003-01-15T00:00:00"', 'epoch = "2029-06-15T00:00:00"'))
+    assert "2029-06-15" in path.read_text()
+    out = subprocess.run([sys.executable, "-m", "etcheck", str(path), "--draft", "--format", "json",
+                          "--out", str(tmp_path / "out")], capture_output=True, text=True, timeout=120)
+    assert out.returncode in (0, 1), out.stderr
+    assert out.stderr == ""
+    notes = json.loads(next((tmp_path / "out").rglob("results.json")).read_text())["mission"]["notes"]
+    assert any("past the leap-second table" in n for n in notes)
+
+
+def test_a_window_within_the_leap_second_table_has_no_such_note(mission):
+    assert not any("leap-second" in n for n in mission.notes)

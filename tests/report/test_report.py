@@ -86,3 +86,24 @@ def test_rewrite_replaces_atomically(set_results, tmp_path):
     assert paths[0].read_bytes() == first
     leftovers = [p for p in (tmp_path / "set").iterdir() if p.name.endswith(".tmp")]
     assert leftovers == []
+
+
+def test_a_write_stopped_by_a_signal_leaves_the_old_report_and_no_temporary_file(set_results, tmp_path, monkeypatch):
+    """SIGTERM while a report is being written (raised here where it is synced to disk) leaves the previous report
+    whole and removes the temporary file."""
+    import os
+    import signal
+
+    from etcheck.numerics.lifetime import Stopped
+
+    paths = write_reports(set_results, tmp_path / "set", ("json",))
+    before = paths[0].read_bytes()
+
+    def stopped(fd):
+        raise Stopped(signal.SIGTERM)
+
+    monkeypatch.setattr(os, "fsync", stopped)
+    with pytest.raises(Stopped):
+        write_reports(set_results | {"verdict": "changed"}, tmp_path / "set", ("json",))
+    assert paths[0].read_bytes() == before
+    assert [p.name for p in (tmp_path / "set").iterdir()] == [paths[0].name]
