@@ -33,12 +33,15 @@ from etcheck.checks.sections import (
     PostbucklingSection,
     ScaledSection,
     SceneSection,
+    SkippedPart,
     StraightRodSection,
 )
 from etcheck.checks.static_buckling import static_buckling, static_limits
-from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions, accuracy, linear_stability
+from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_stability
 from etcheck.checks.validity import validity
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
+from etcheck.numerics import memory
+from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.parallel import ahead
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind
@@ -86,9 +89,12 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     rung0 = static_buckling(scaled)
     static: StraightRodSection = {**rung0, "limits": static_limits(rung0, mission, sc)}
     linear = accuracy_rows = None
+    skipped: list[SkippedPart] = []
     options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
-        options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=())
+        options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=(), time_budget=None)
+    # the report's extras not computed by then are skipped (the margins never are)
+    deadline = None if options.time_budget is None else started + options.time_budget
     if chosen.rung == 1 and chosen.complete:
         # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
         # nothing from the rest: where a core is free a helper computes it meanwhile
@@ -100,8 +106,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         else:
             later = ahead(table) if options.accuracy_beside else nullcontext(table)
         with later as accuracy_later:
-            linear = linear_stability(scaled, options, chosen.route)
-            accuracy_rows = accuracy_later()
+            linear, skipped = linear_stability(scaled, options, chosen.route, deadline)
+            accuracy_rows = Extras(skipped, deadline, options.time_budget)("accuracy table", accuracy_later)
     margins = straight_margins(mission, sc, scaled, chosen, static, linear)
     alts = alternatives(mission, sc, scaled, options)  # the same margins under the other attachments of the ends
     margins = with_alternatives(margins, alts)
@@ -136,6 +142,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "validity": validity(mission, scaled, chosen, post),
         "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
+        "resources": {"memory_budget_bytes": memory.budget(), "time_budget_s": options.time_budget,
+                      "skipped": skipped},
     }
     if study is not None:
         results["uncertainty"] = study
@@ -171,7 +179,10 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
     # imported here on purpose: rungs 2-3 (continuation, branch stability) load only for a scene that needs them
     from etcheck.checks.buckled import postbuckling_check
 
-    return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
+    try:
+        return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
+    except OverBudget as exc:  # rungs 2-3 need more memory than the budget: not answered, with the reason
+        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c, "reason": str(exc)}
 
 
 def _scene_dict(mission: Mission, sc: Scene) -> SceneSection:

@@ -279,6 +279,22 @@ class AccuracyRow(TypedDict):
     reference_N: int
 
 
+class SkippedPart(TypedDict):
+    """A part of a sign-off's extras that was not computed (``resources.skipped``): which, and why (past the time
+    budget, or over the memory budget)."""
+
+    part: str
+    why: str
+
+
+class ResourcesSection(TypedDict):
+    """The budgets a check ran under and what it skipped to stay within them (``resources``)."""
+
+    memory_budget_bytes: int
+    time_budget_s: float | None
+    skipped: list[SkippedPart]
+
+
 # --------------------------------------------------------------------------- rungs 2-3: the buckled tether
 
 
@@ -738,5 +754,6 @@ class CheckResults(ResultsHeader):
     validity: list[str]
     orbit: NotRequired[OrbitSection | None]
     elapsed_s: float
+    resources: ResourcesSection
     uncertainty: NotRequired[UncertaintySection]
 

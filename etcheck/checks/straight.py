@@ -21,9 +21,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from etcheck.checks.plan import EXACT, SPECTRAL
-from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum
+from etcheck.checks.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum, SkippedPart
 from etcheck.jsonable import finite_or_none
+from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.parallel import split_map
+from etcheck.numerics.timelimit import OutOfTime, within
 from etcheck.rod.core.spectrum import spectrum
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.convergence import accuracy_table, reference_resolution
@@ -50,7 +52,12 @@ class WhirlOptions:
     forked helper while the spectra are computed here (where a core is free: its
     solves are timed, and read up to twice as long beside other work, such as
     the CLI's report process loading the report stack); ``draft``: critical
-    values and verdict only.
+    values and verdict only; ``time_budget``: seconds after which a sign-off
+    skips what it has not computed of the report's extras (the operating
+    spectrum, Campbell diagram, stability map, accuracy table), saying so
+    (None: no limit; the CLI's default is
+    :data:`etcheck.checks.fidelity.TIME_BUDGET`). The margins
+    are always answered.
     """
 
     tol: float = 1e-10
@@ -63,6 +70,7 @@ class WhirlOptions:
     accuracy_N: tuple[int, ...] = (8, 12, 16, 24, 32)
     accuracy_beside: bool = True
     draft: bool = False
+    time_budget: float | None = None
 
     def __post_init__(self) -> None:
         if not (0 < self.tol < 1e-2 and 0 < self.eig_tol < 1e-2):
@@ -231,8 +239,9 @@ def _exact_rows(p, w_rows, B_hi: float, rest: float, tol: float) -> list[list[fl
     return split_map(row, [float(w) for w in w_rows])
 
 
-def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL) -> LinearSection:
-    """All rung-1 answers for the scene, dimensionless and in SI.
+def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL,
+                     deadline: float | None = None) -> tuple[LinearSection, list[SkippedPart]]:
+    """All rung-1 answers for the scene, dimensionless and in SI, and the parts skipped.
 
     Returns a JSON-able dict: the operating spectrum (with two-resolution
     errors), the critical load at the operating spin and tension
@@ -254,32 +263,76 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     collocation, see :func:`etcheck.checks.plan.straight_route`): the critical
     values from :func:`etcheck.rod.straight.exact.exact_critical`, the map rows
     from its first load roots, no spectrum and no Campbell diagram.
+
+    The operating spectrum, the Campbell diagram and the map are the report's extras: each is skipped, and
+    listed with the reason (``part``, ``why``), where it would end past ``deadline`` (a ``time.perf_counter()``
+    value) or exceed the memory budget (:mod:`etcheck.numerics.memory`); the critical values never are.
     """
     exact = route == EXACT
-    p, sc = scaled.params, scaled.scales
-    wc = sc.frequency
-    damped = p.gamma > 0
+    p = scaled.params
+    skipped: list[SkippedPart] = []
+    extra = Extras(skipped, deadline, options.time_budget)
     op = None
     if not (options.draft or exact):  # the spectrum at the operating point: the report's eigenvalues
-        op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N)
-        if not op.converged:  # shown as such; the critical values below do not depend on it
-            fix = " (raise [check] resolution or leave it out)" if options.N else ""
-            op = replace(op, message=f"NOT CONVERGED to the tolerance {options.eig_tol:.0e}: {op.message}{fix}; "
-                                     f"each eigenvalue carries its own error estimate")
+        op = extra("operating spectrum", lambda: _operating(p, options, deadline))
 
     # the critical points are located at the resolution the operating spectrum
     # needed (boundary layers under strong tension need more than the default)
     N = options.N or max(24, op.N_check if op else 24)
+    out = _critical_values(scaled, options, route, op, N)
+    if options.draft or (exact and p.gamma == 0):  # no frequencies and no map on the exact undamped route
+        return out, skipped
+    if not exact and op is None:
+        skipped += [{"part": part, "why": "it is drawn at the operating spectrum's resolution, which was skipped"}
+                    for part in ("Campbell diagram", "stability map")]
+        return out, skipped
+    return out | _pictures(scaled, options, route, op, N, out, extra), skipped
+
+
+def _operating(p, options: WhirlOptions, deadline: float | None):
+    """The operating point's spectrum (its ladder stops before a resolution that would end past ``deadline``)."""
+    op = spectrum(p, k=options.k, tol=options.eig_tol, N=options.N, deadline=deadline)
+    if not op.converged:  # shown as such; the critical values below do not depend on it
+        fix = " (raise [check] resolution or leave it out)" if options.N else ""
+        op = replace(op, message=f"NOT CONVERGED to the tolerance {options.eig_tol:.0e}: {op.message}{fix}; "
+                                 f"each eigenvalue carries its own error estimate")
+    return op
+
+
+class Extras:
+    """Runs a part of the report's extras within the deadline and the memory budget: its value, or None with the
+    part and the reason appended to ``skipped``."""
+
+    def __init__(self, skipped: list[SkippedPart], deadline: float | None, budget: float | None) -> None:
+        self.skipped, self.deadline, self.budget = skipped, deadline, budget
+
+    def __call__(self, part: str, fn):
+        try:
+            return within(self.deadline, fn)
+        except OutOfTime:
+            why = (f"not computed within the sign-off's time budget ({self.budget:g} s of computation; "
+                   "--time-budget changes it); the margins do not depend on it")
+        except OverBudget as exc:
+            why = str(exc)
+        self.skipped.append({"part": part, "why": why})
+        return None
+
+
+def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: int) -> LinearSection:
+    """The rung-1 section without its pictures: critical load and spin, spin windows, the operating point."""
+    exact = route == EXACT
+    p, sc = scaled.params, scaled.scales
+    wc = sc.frequency
+    damped = p.gamma > 0
     windows: list = []
     scanned_to = None
     if damped:
-        load, spin, stable, rest = _damped_critical(p, options, route)
+        load, spin, stable, _ = _damped_critical(p, options, route)
     else:  # flutter possible
         load_point, spin_point, windows, scanned_to, stable = _undamped_critical(p, options, N, op, exact)
         load = _critical(load_point, "critical load at the operating spin")
         spin = _critical(spin_point, "critical spin at the operating load")
-
-    out = {
+    return {
         "model": ("rung 1, exact characteristic determinant" if exact else
                   "rung 1 (linear spectral)" + (", critical values from the static pencils" if damped else "")),
         "route": route,
@@ -301,48 +354,33 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
         "campbell": None,
         "stability_map": None,
     }
-    if options.draft:
-        return out
 
+
+def _pictures(scaled: Scaled, options: WhirlOptions, route: str, op, N: int, out: LinearSection,
+              extra: Extras) -> dict:
+    """The Campbell diagram and the stability map (each through ``extra``: skipped past the deadline)."""
+    p, sc = scaled.params, scaled.scales
+    wc = sc.frequency
+    load, spin = out["critical_load"], out["critical_spin"]
     # ranges of the pictures: past the boundary and the operating point
     B_ref = load["value"] if CriticalKind(load["kind"]).located else None
     w_ref = spin["value"] if CriticalKind(spin["kind"]).located and spin["value"] else None
     B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1, p.ends)[0])
     w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
-    B_grid = np.linspace(0.0, B_hi, options.map_points)
-    w_grid = np.linspace(0.0, w_hi, options.map_points)
     w_rows = np.linspace(0.0, w_hi, options.row_points)
-    growth = cuts = campbell_data = None
-    curve_B = curve_w = np.array([])
-    if exact and not damped:  # no frequencies and no map on this route: the critical values and windows above
-        return out
-    if exact:  # no frequencies on this route; the damped rows end at the first determinant root
-        cuts = _exact_rows(p, w_rows, B_hi, rest, options.tol)
-    else:
+    campbell_data = None
+    if route != EXACT:
         omegas = np.linspace(0.0, w_hi, options.campbell_points)
-        # one resolution for the diagram, checked at the operating spectrum's finer one on a few spins
-        cd = campbell(p, omegas, k=options.k, N=N, N_check=op.N if op.N > N else None)
-        campbell_data = {
-            "omega": omegas.tolist(),
-            "spin_rpm": (omegas * wc * RPM).tolist(),
-            "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
-            "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
-            "N": cd.N,
-            "N_check": cd.N_check,
-            "checked_spin_rpm": (omegas[cd.checked] * wc * RPM).tolist(),
-            "error": finite_or_none(cd.error),
-        }
-        curves = static_curves(p, B_hi, w_hi, omega_rows=w_rows, N=N)
-        curve_B, curve_w = curves.B, curves.omega_points
-        if damped:  # stability changes only at static points: cut each row there exactly
-            cuts = stable_rows(p, curves, B_hi)
-        else:  # undamped: flutter can occur anywhere, sample a grid
-            growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
+        campbell_data = extra("Campbell diagram", lambda: _campbell(p, omegas, options, N, op, wc))
+    grid = extra("stability map", lambda: _map(p, options, route, N, B_hi, w_hi, w_rows))
+    if grid is None:
+        return {"campbell": campbell_data}
+    B_grid, w_grid, growth, cuts, curve_B, curve_w = grid
     rows = None if cuts is None else [
         {"omega": float(w), "spin_rpm": float(w * wc * RPM), "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
         for w, iv in zip(w_rows, cuts)
     ]
-    return out | {
+    return {
         "campbell": campbell_data,
         "stability_map": {
             "B": B_grid.tolist(),
@@ -357,6 +395,40 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
             },
         },
     }
+
+
+def _campbell(p, omegas: np.ndarray, options: WhirlOptions, N: int, op, wc: float) -> dict:
+    """The Campbell diagram at one resolution, checked at the operating spectrum's finer one on a few spins."""
+    cd = campbell(p, omegas, k=options.k, N=N, N_check=op.N if op.N > N else None)
+    return {
+        "omega": omegas.tolist(),
+        "spin_rpm": (omegas * wc * RPM).tolist(),
+        "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
+        "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
+        "N": cd.N,
+        "N_check": cd.N_check,
+        "checked_spin_rpm": (omegas[cd.checked] * wc * RPM).tolist(),
+        "error": finite_or_none(cd.error),
+    }
+
+
+def _map(p, options: WhirlOptions, route: str, N: int, B_hi: float, w_hi: float, w_rows: np.ndarray):
+    """(B grid, omega grid, growth (undamped) or None, stable rows (damped) or None, static points B, omega)."""
+    B_grid = np.linspace(0.0, B_hi, options.map_points)
+    w_grid = np.linspace(0.0, w_hi, options.map_points)
+    growth = cuts = None
+    curve_B = curve_w = np.array([])
+    if route == EXACT:  # no frequencies on this route; the damped rows end at the first determinant root
+        rest = _damped_critical(p, options, route)[3]
+        cuts = _exact_rows(p, w_rows, B_hi, rest, options.tol)
+    else:
+        curves = static_curves(p, B_hi, w_hi, omega_rows=w_rows, N=N)
+        curve_B, curve_w = curves.B, curves.omega_points
+        if p.gamma > 0:  # stability changes only at static points: cut each row there exactly
+            cuts = stable_rows(p, curves, B_hi)
+        else:  # undamped: flutter can occur anywhere, sample a grid
+            growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
+    return B_grid, w_grid, growth, cuts, curve_B, curve_w
 
 
 def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: int = 10) -> list[AccuracyRow]:

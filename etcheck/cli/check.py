@@ -8,6 +8,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from etcheck import __version__
+from etcheck.checks.fidelity import TIME_BUDGET
 from etcheck.cli.common import EXIT_TEXT, add_output_options, formats, guarded
 from etcheck.report.background import renderer
 
@@ -25,11 +26,17 @@ def add_parser(sub) -> None:
     p.add_argument("--draft", action="store_true",
                    help="margins and verdict only, at a looser tolerance (1e-6): no maps, Campbell diagram, "
                    "accuracy table or post-buckling analysis (same as [check] fidelity = \"draft\")")
+    p.add_argument("--time-budget", type=float, default=TIME_BUDGET, metavar="SECONDS",
+                   help=f"seconds of computation after which a sign-off skips the report's extras it has not "
+                   f"computed yet (operating spectrum, Campbell diagram, stability map, accuracy table), saying so "
+                   f"in the report; the margins are always answered (default {TIME_BUDGET:g}; 0: no limit)")
     p.set_defaults(run=run, parser=p)
 
 
 def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     fmts = formats(args, parser)
+    if not args.time_budget >= 0:  # NaN included
+        parser.error(f"--time-budget: {args.time_budget:g} is not a number of seconds >= 0")
 
     def action(render):
         from etcheck.checks.pipeline import check
@@ -44,7 +51,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         if sys.stderr.isatty():
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         # while a report process loads the report stack, the accuracy table's timed solves run after the rest
-        result = check(mission, replace(DEFAULT_OPTIONS, accuracy_beside=render is in_process))
+        result = check(mission, replace(DEFAULT_OPTIONS, accuracy_beside=render is in_process,
+                                        time_budget=args.time_budget or None))
         return result, write_reports(result.results, Path(args.out) / mission.slug, fmts, renderer=render)
 
     with renderer(fmts) as render:  # started first: the report stack loads while the check runs
@@ -71,6 +79,8 @@ def summary(results: dict, paths: list[Path]) -> None:
             other = "not answered" if a["verdict"] == "incomplete" else "unlimited" if a["value"] is None else \
                 f"{a['value']:.4g}"
             print(f"    if both ends were {a['ends'][0]}: margin {other} -> {a['verdict']}")
+    for part in results.get("resources", {}).get("skipped", []):
+        print(f"  skipped {part['part']}: {part['why']}")
     for line in probability_lines(results):
         print(line)
     for path in paths:

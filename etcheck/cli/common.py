@@ -13,7 +13,8 @@ from etcheck.numerics.lifetime import stop_words
 
 EXIT_TEXT = """exit codes:
   0  the run finished and every margin meets the required margin
-  1  a margin fails, the check is incomplete, or some sweep points have no answer (never a silent pass)
+  1  a margin fails, the check is incomplete, or some sweep points have no answer (never a silent pass);
+     or a solve would exceed the memory budget (--memory-budget): not answered, with the reason
   2  bad input or usage (mission file, options, report cannot be written): the message names the field
   3  a numerical solve failed (nothing is reported from it)
   130 interrupted by Ctrl-C (SIGINT), 143 stopped by SIGTERM, 129 by SIGHUP: helpers stopped, no report
@@ -47,7 +48,7 @@ def guarded(action: Callable[[], Any], interrupted: str):
     try:
         return action()
     except EtcheckError as exc:
-        print(f"etcheck: {'error: ' if exc.exit_code < 128 else ''}{exc}", file=sys.stderr)
+        print(f"etcheck: {'error: ' if exc.exit_code in (2, 3) else ''}{exc}", file=sys.stderr)  # not an error: 1, 128+
         return exc.exit_code
     except KeyboardInterrupt as exc:
         return stopped(exc, interrupted)

@@ -10,6 +10,7 @@ import sys
 from etcheck import __version__
 from etcheck.cli import accuracy, check, damping_map, diagram, sweep
 from etcheck.cli.common import EXIT_TEXT, stopped
+from etcheck.numerics import memory
 from etcheck.numerics.blas import pin_before_numpy
 from etcheck.numerics.heap import keep_freed_memory
 from etcheck.numerics.lifetime import stop_on_signals
@@ -30,6 +31,10 @@ def parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", metavar="COMMAND", title="commands")
     for module in COMMANDS:
         module.add_parser(sub)
+    for command in sub.choices.values():
+        command.add_argument("--memory-budget", metavar="SIZE", default=None,
+                             help=f"most memory one process may use, e.g. \"2 GB\" (default: ${memory.VARIABLE} or "
+                             f"{memory.DEFAULT}); a solve that would need more is not answered (exit 1, with the reason)")
     return p
 
 
@@ -45,8 +50,32 @@ def main(argv: list[str] | None = None) -> int:
     if args.command is None:
         p.print_help()
         return 2
-    with stop_on_signals():  # SIGTERM, SIGHUP, SIGINT: helpers stopped, nothing half-written, 128 + the signal
+    with stop_on_signals(), memory_budget(args):  # stop signals: helpers stopped, nothing half-written, 128 + signal
         return args.run(args, args.parser)
+
+
+@contextlib.contextmanager
+def memory_budget(args: argparse.Namespace):
+    """The budget of --memory-budget (else the environment's) checked, and set in the environment for the
+    command's helpers and workers while it runs; a usage error (exit 2) naming the option or the variable."""
+    given = args.memory_budget
+    text = given if given is not None else os.environ.get(memory.VARIABLE)
+    if text:
+        try:
+            memory.parse(text)
+        except ValueError as exc:
+            args.parser.error(f"{'--memory-budget' if given is not None else memory.VARIABLE}: {exc}")
+    before = os.environ.get(memory.VARIABLE)
+    if given is not None:
+        os.environ[memory.VARIABLE] = given
+    try:
+        yield
+    finally:
+        if given is not None:
+            if before is None:
+                os.environ.pop(memory.VARIABLE, None)
+            else:
+                os.environ[memory.VARIABLE] = before
 
 
 def run() -> None:

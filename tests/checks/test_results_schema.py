@@ -92,6 +92,8 @@ SECTIONS = {
     "margins[].alternatives[]": S.AlternativeMargin,
     "attachment": S.AttachmentSection,
     "attachment.alternatives[]": S.AttachmentAlternative,
+    "resources": S.ResourcesSection,
+    "resources.skipped[]": S.SkippedPart,
     "orbit": S.OrbitSection,
     "orbit.sampling": S.OrbitSampling,
     "orbit.worst": S.OrbitWorst,

@@ -63,13 +63,19 @@ def _time_panels(o: dict, series: dict, unit: float, unit_name: str, title: str)
         mg = _arr(margin)
         m = o["margin"]
         ax2 = axes[1, 0]
-        ax2.semilogy(t, mg, color="#14632c", lw=1.0, label="load margin = critical I·B0 / (|I| B_axial(t))")
+        positive = mg[mg > 0]
+        log = positive.size > 0  # a margin of 0 all along (no load is safe) has no place on a log axis
+        label = "load margin = critical I·B0 / (|I| B_axial(t))"
+        if log:
+            ax2.semilogy(t, np.where(mg > 0, mg, np.nan), color="#14632c", lw=1.0, label=label)
+        else:
+            ax2.plot(t, mg, color="#14632c", lw=1.0, label=label)
         ax2.axhline(m["required"], color="#c0392b", lw=1.2, ls="--", label=f"required {m['required']:g}")
-        if m["smallest"] is not None:
+        if m["smallest"] is not None and (m["smallest"] > 0 or not log):
             ax2.axhline(m["smallest"], color="k", lw=0.8, ls=":", label=f"smallest {m['smallest']:.4g}")
         ax2.set_ylabel("load margin (–)")
-        lo, hi = np.nanmin(mg), max(np.nanmax(mg), m["required"])
-        ax2.set_ylim(lo / 3, hi * 30)
+        hi = max(float(np.nanmax(mg)), m["required"])
+        ax2.set_ylim(*((float(np.min(positive)) / 3, hi * 30) if log else (0.0, 1.5 * hi)))
         ax2.legend(fontsize=7, loc="upper left", ncol=3, framealpha=0.9)
     axes[-1, 0].set_xlabel(f"time since {o['start'][:16]} UTC [{unit_name}]")
     fig.tight_layout()

@@ -61,6 +61,7 @@ from etcheck.numerics.chebyshev import (
     lobatto_weights,
     resample_matrix,
 )
+from etcheck.numerics.memory import matrix_bytes, require
 from etcheck.rod.core.base_state import BaseState, StraightBaseState
 from etcheck.rod.core.ends import ALL_WELDED, SWIVEL, WELDED, Ends, is_welded
 from etcheck.rod.core.parameters import RodParameters
@@ -265,6 +266,7 @@ def linear_operator(params: RodParameters, base: BaseState, N: int):
     module docstring for the variable and row ordering. A1 vanishes unless
     omega != 0 or gamma != 0; the boundary rows are all in A0.
     """
+    require(f"the linearised operator at N = {int(N)}", matrix_bytes(NFIELDS * (int(N) + 1), count=3))
     col = collocation(int(N))
     E0, E1, G0, G1, G2 = coefficient_blocks(params, base, col.t)
     A0 = _assemble(E0, G0, col)

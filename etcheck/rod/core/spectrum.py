@@ -34,7 +34,8 @@ raised along ``LADDER`` until all wanted eigenvalues agree to ``tol``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import time
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -42,6 +43,8 @@ import numpy as np
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.chebyshev import lobatto_weights, resample_matrix
 from etcheck.numerics.eigen import eliminate_static, match_spectra, qep_dense, qep_shift_invert
+from etcheck.numerics.memory import BASELINE, WORKSPACE, describe, fits, matrix_bytes, require
+from etcheck.numerics.timelimit import predicted_past
 from etcheck.rod.core.base_state import BaseState, straight
 from etcheck.rod.core.linear import NFIELDS, collocation, linear_operator
 from etcheck.rod.core.parameters import RodParameters
@@ -59,6 +62,7 @@ __all__ = [
     "spectrum_from",
     "select_pairs",
     "check_resolution",
+    "solve_bytes",
 ]
 
 #: Real shift of the shift-invert (small, irrational-looking, not an eigenvalue
@@ -282,7 +286,7 @@ def _normalise_modes(Y: np.ndarray, N: int, s_plot: np.ndarray) -> np.ndarray:
 @single_blas_thread
 def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, N: int | None = None,
              tol: float = 1e-8, with_modes: bool = False, n_mode_points: int = 101,
-             N_max: int = 128) -> Spectrum:
+             N_max: int = 128, deadline: float | None = None) -> Spectrum:
     """The k least-|lambda| eigenvalue pairs with two-resolution error estimates.
 
     Dimensionless eigenvalues lambda of eqs. (82)-(85) (growth rate
@@ -294,28 +298,33 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
     whether ``tol`` was met. Each error estimate is the distance to the partner at the check resolution,
     at least :func:`roundoff_floor` of the finer resolution. A base state known at a resolution of its own (a
     buckled state, ``base.N``) starts the ladder there: below it the operator samples the state's interpolant,
-    and the solves of the climb cannot agree with the finer ones.
+    and the solves of the climb cannot agree with the finer ones. The climb stops early, unconverged and saying
+    why, at the finest resolution within the memory budget (:mod:`etcheck.numerics.memory`) and before a
+    resolution predicted to end past ``deadline`` (a ``time.perf_counter()`` value; its cost from the last
+    solve's, as N^3).
     """
     if base is None:
         base = straight(params)
     nev = 2 * k + 8
-    if N is not None:
-        pairs = [(int(N), check_resolution(int(N)))]
-    else:
-        N_min = int(getattr(base, "N", 0))  # the resolution the base state is known at (none: analytic)
-        ladder = [n for n in LADDER if N_min <= n <= N_max] or [max(N_min, min(N_max, LADDER[-1]))]
-        pairs = list(zip(ladder[:-1], ladder[1:])) or [(ladder[0], check_resolution(ladder[0]))]
+    dense = prefers_dense(params, nev)
+    pairs, short = _within_memory(_pairs(base, N, N_max), dense)
     cache: dict[int, tuple] = {}
+    seconds: dict[int, float] = {}
 
     def solve(n: int, vec: bool):
         if n not in cache or (vec and cache[n][1] is None):
+            t0 = time.perf_counter()
             out = lowest_eigenvalues(params, base, n, nev, vectors=vec)
+            seconds[n] = time.perf_counter() - t0
             cache[n] = out if vec else (out, None)
         return cache[n]
 
     result = None
     resolved_before = -1
     for n_c, n_f in pairs:
+        if result is not None and predicted_past(deadline, _predicted(seconds, n_c, n_f)):
+            short = f"N = {n_f} would take about {_predicted(seconds, n_c, n_f):.2g} s, past the time budget"
+            break
         lam_c, _ = solve(n_c, False)
         lam_f, V_f = solve(n_f, with_modes)
         result = (n_c, n_f, lam_f, V_f, *_judged(lam_c, lam_f, k, n_f, tol))
@@ -323,9 +332,50 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
         # done when every wanted value is resolved, or when the resolved set no
         # longer grows with N (the rest is discretisation junk, not modes)
         if converged and (np.all(ok) or np.count_nonzero(ok) == resolved_before):
+            short = None
             break
         resolved_before = int(np.count_nonzero(ok)) if converged else -1
-    return _spectrum(*result, tol, with_modes, n_mode_points)
+    out = _spectrum(*result, tol, with_modes, n_mode_points)
+    if short is not None and not out.converged:
+        out = replace(out, message=f"{out.message}; {short}: the ladder stopped before it")
+    return out
+
+
+def _pairs(base: BaseState, N: int | None, N_max: int) -> list[tuple[int, int]]:
+    """The (coarse, fine) resolutions :func:`spectrum` climbs through."""
+    if N is not None:
+        return [(int(N), check_resolution(int(N)))]
+    N_min = int(getattr(base, "N", 0))  # the resolution the base state is known at (none: analytic)
+    ladder = [n for n in LADDER if N_min <= n <= N_max] or [max(N_min, min(N_max, LADDER[-1]))]
+    return list(zip(ladder[:-1], ladder[1:])) or [(ladder[0], check_resolution(ladder[0]))]
+
+
+def _within_memory(pairs: list[tuple[int, int]], dense: bool) -> tuple[list[tuple[int, int]], str | None]:
+    """The pairs up to the finest within the memory budget (OverBudget where not even the first fits), and what
+    the next would need (None: all fit)."""
+    fitting = [pair for pair in pairs if fits(solve_bytes(pair[1], dense))] or pairs[:1]
+    require(f"the spectrum at N = {fitting[0][1]}", solve_bytes(fitting[0][1], dense))
+    if len(fitting) == len(pairs):
+        return pairs, None
+    n = pairs[len(fitting)][1]
+    return fitting, f"N = {n} would need {describe(BASELINE + solve_bytes(n, dense))} of memory, past the budget"
+
+
+def _predicted(seconds: dict[int, float], n_c: int, n_f: int) -> float:
+    """Seconds of the solves at n_c and n_f not done yet, from the finest one done (cost as N^3)."""
+    last = max(seconds)
+    return sum(seconds[last] * (n / last) ** 3 for n in (n_c, n_f) if n not in seconds)
+
+
+#: one solve at resolution N in 12(N+1)-square float64 matrices: the operator and the dense QZ of its reduced
+#: companion form (10.3-10.6 measured with tracemalloc from N = 12 to 48), or the operator, the LU of the
+#: shift-invert and ARPACK's vectors (6.5-8.4 from N = 16 to 96)
+SOLVE_DENSE, SOLVE_SHIFT = 11, 9
+
+
+def solve_bytes(N: int, dense: bool) -> float:
+    """Bytes of one eigenvalue solve of the linearisation at resolution N (dense QZ or shift-invert)."""
+    return matrix_bytes(NFIELDS * (int(N) + 1), count=SOLVE_DENSE if dense else SOLVE_SHIFT) + WORKSPACE
 
 
 def spectrum_from(lam_c: np.ndarray, lam_f: np.ndarray, N: int, N_check: int, k: int, tol: float

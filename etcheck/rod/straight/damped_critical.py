@@ -33,11 +33,12 @@ from functools import lru_cache
 import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.memory import fits
 from etcheck.rod.core.ends import is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution, roundoff_floor
 from etcheck.rod.straight.analytic import critical_loads, static_roots
-from etcheck.rod.straight.spectral import DOUBLE, straight_family
+from etcheck.rod.straight.spectral import DOUBLE, family_bytes, straight_family
 
 __all__ = [
     "DRAFT_LADDER",
@@ -118,17 +119,21 @@ def _first_root(params: RodParameters, axis: str, tol: float, sign: float, ladde
         root = static_roots(params.ends, 1)[0]
         return PencilRoot("B", float(critical_loads(params.R, params.f, 1, params.ends)[0]), 3.0 * root.error, 0,
                           True, "rung 0 (chi roots)" if is_welded(params.ends) else "rung 0 (closed form)")
+    # the ladder ends at the finest rung whose families fit the memory budget (the first one is always tried)
+    fitting = [n for n in ladder if fits(family_bytes(check_resolution(n)))] or list(ladder[:1])
+    model = "rung 1 (static pencil)" if len(fitting) == len(ladder) else \
+        f"rung 1 (static pencil; N = {fitting[-1]} is the finest resolution within the memory budget)"
     err, value, N = math.inf, math.nan, ladder[0]
-    for N in ladder:
+    for N in fitting:
         a = _smallest_positive(params, axis, N, sign)
         b = _smallest_positive(params, axis, check_resolution(N), sign)
         if math.isinf(a) and math.isinf(b):
-            return PencilRoot(axis, math.inf, 0.0, N, True, "rung 1 (static pencil)")
+            return PencilRoot(axis, math.inf, 0.0, N, True, model)
         value, last = b, err
         err = abs(a - b) / max(abs(b), floor, 1e-300) if math.isfinite(a) and math.isfinite(b) else math.inf
         if err <= tol or (err < _STALL_BELOW and err > 0.3 * last):
             break  # met, or stalled at round-off: finer grids would not improve it (an ill-conditioned root)
-    return PencilRoot(axis, sign * value, err, N, err <= tol, "rung 1 (static pencil)")
+    return PencilRoot(axis, sign * value, err, N, err <= tol, model if err > tol else "rung 1 (static pencil)")
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from functools import lru_cache
 import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.optimize import brentq, minimize_scalar
 from etcheck.rod.core.ends import clamped_count, euler_load, first_bending_root, is_welded
 from etcheck.rod.core.parameters import RodParameters
@@ -351,8 +352,12 @@ def pencil_or_exact(params: RodParameters, tol: float = 1e-8, ladder: tuple[int,
     critical spin as the load nears the static load) a root falls like a square root and the pencil's
     round-off, 32 N^2 eps relative, is amplified by end / (2 (end - at)); the determinant's stays near eps
     (SET 8e-6 below its static load: the spin root 2.8e-7 off at N = 48, 1e-13 by the determinant).
-    Same semantics as both; dimensionless."""
-    d = damped_critical(params, tol, ladder, spin)
+    Same semantics as both; dimensionless. Where even the coarsest pencils would exceed the memory budget
+    (:mod:`etcheck.numerics.memory`), the exact determinant alone (it builds no large matrix)."""
+    try:
+        d = damped_critical(params, tol, ladder, spin)
+    except OverBudget:
+        return exact_critical(params, tol, spin)
     if d.converged:
         return d
     e = exact_critical(params, tol, spin)

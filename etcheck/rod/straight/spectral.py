@@ -37,12 +37,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from enum import StrEnum
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.eigen import factor_static, match_spectra, pencil_eigenvalues, qep_dense
+from etcheck.numerics.memory import WORKSPACE, Memo, matrix_bytes, require
 from etcheck.numerics.parallel import split_map
 from etcheck.rod.core.base_state import straight
 from etcheck.rod.core.linear import NFIELDS, linear_operator, static_differences
@@ -66,6 +67,7 @@ __all__ = [
     "Campbell",
     "StraightFamily",
     "straight_family",
+    "family_bytes",
     "static_points",
     "divergence_loads",
     "critical_load",
@@ -116,6 +118,14 @@ _AXES = ("B", "omega", "T")
 
 
 _BLOCKS = ("A00", "AB", "AT", "Aw", "A10", "A1w", "A2")
+#: a family at resolution N in 12(N+1)-square float64 matrices: held with every block, its reduced forms and its
+#: parts (9.4 measured with tracemalloc), and at most while they are built and used (15.7-16.2 from N = 16 to 96)
+FAMILY_HELD, FAMILY_PEAK = 10, 16
+
+
+def family_bytes(N: int, peak: bool = True) -> float:
+    """Bytes of a :class:`StraightFamily` at resolution N: at most while it is built (``peak``), or held."""
+    return matrix_bytes(NFIELDS * (int(N) + 1), count=FAMILY_PEAK if peak else FAMILY_HELD) + WORKSPACE
 
 
 def _uncoupled(fam) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -172,6 +182,7 @@ class StraightFamily:
     """
 
     def __init__(self, params: RodParameters, N: int):
+        require(f"the straight tether's collocation operators at N = {int(N)}", family_bytes(N))
         self.params = params
         self.N = int(N)
         self._p0 = p0 = params.with_(B=0.0, omega=0.0, T=0.0)
@@ -269,9 +280,8 @@ class StraightFamily:
         return np.sort(x[real].real)
 
 
-@lru_cache(maxsize=32)
-def _family_cached(params: RodParameters, N: int) -> StraightFamily:
-    return StraightFamily(params, N)
+#: the families most recently asked for, within a share of the memory budget (etcheck.numerics.memory.Memo)
+_family_cached = Memo(StraightFamily, lambda params, N: family_bytes(N, peak=False))
 
 
 def straight_family(params: RodParameters, N: int) -> StraightFamily:

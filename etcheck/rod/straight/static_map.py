@@ -46,15 +46,23 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 import scipy.linalg as sla
 
 from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.memory import Memo
 from etcheck.numerics.parallel import split_map
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.spectral import DOUBLE, K_MODES, THRESHOLD, StraightFamily, nearly_isotropic, straight_family
+from etcheck.rod.straight.spectral import (
+    DOUBLE,
+    K_MODES,
+    THRESHOLD,
+    StraightFamily,
+    family_bytes,
+    nearly_isotropic,
+    straight_family,
+)
 
 __all__ = ["StaticPlane", "StaticCurves", "plane", "static_curves", "stable_rows"]
 
@@ -176,9 +184,12 @@ class StaticPlane:
         return float(np.sum(np.sign(speed.real)))
 
 
-@lru_cache(maxsize=16)
-def _plane(params: RodParameters, N: int, T: float) -> StaticPlane:
+def _plane_of(params: RodParameters, N: int, T: float) -> StaticPlane:
     return StaticPlane(straight_family(params, N), T)
+
+
+#: the planes most recently asked for, within a share of the memory budget; each holds its family
+_plane = Memo(_plane_of, lambda params, N, T: family_bytes(N, peak=False))
 
 
 def plane(params: RodParameters, N: int) -> StaticPlane:

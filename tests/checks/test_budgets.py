@@ -1,0 +1,91 @@
+"""A check within its time and memory budgets: the margins always answered, the extras skipped with the reason."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import jsonschema
+import pytest
+
+from etcheck.checks.pipeline import check
+from etcheck.checks.straight import DEFAULT_OPTIONS
+from etcheck.numerics.timelimit import OutOfTime, within
+
+ROOT = Path(__file__).resolve().parents[2]
+SET = ROOT / "missions" / "set.toml"
+SCHEMA = json.loads((ROOT / "docs" / "results.schema.json").read_text(encoding="utf-8"))
+
+
+@pytest.fixture(scope="module")
+def full():
+    return check(SET).results
+
+
+def test_without_a_budget_nothing_is_skipped(full):
+    assert full["resources"]["skipped"] == [] and full["resources"]["time_budget_s"] is None
+    assert full["linear"]["campbell"] and full["linear"]["stability_map"] and full["accuracy"]
+
+
+def test_past_the_time_budget_the_extras_are_skipped_and_the_margins_answered(full):
+    t0 = time.perf_counter()
+    got = check(SET, replace(DEFAULT_OPTIONS, time_budget=0.05)).results
+    assert time.perf_counter() - t0 < 0.5 * full["elapsed_s"] + 1.0
+    jsonschema.validate(got, SCHEMA)
+    assert [(m["name"], m["value"], m["verdict"]) for m in got["margins"]] == \
+        [(m["name"], m["value"], m["verdict"]) for m in full["margins"]]
+    parts = {s["part"]: s["why"] for s in got["resources"]["skipped"]}
+    assert "operating spectrum" in parts and "time budget (0.05 s of computation" in parts["operating spectrum"]
+    assert got["linear"]["operating_spectrum"] is None and got["linear"]["campbell"] is None
+    assert got["resources"]["time_budget_s"] == 0.05
+
+
+def test_a_deadline_stops_the_work_and_its_helpers():
+    def forever():
+        while True:
+            time.sleep(0.01)
+
+    t0 = time.perf_counter()
+    with pytest.raises(OutOfTime):
+        within(time.perf_counter() + 0.2, forever)
+    assert time.perf_counter() - t0 < 1.0
+    assert within(None, lambda: 7) == 7
+    with pytest.raises(OutOfTime):
+        within(time.perf_counter() - 1.0, lambda: 7)  # already past: not started
+
+
+def _etcheck(*args: str, budget: str, out: Path) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "etcheck", *args, "--format", "json", "--out", str(out),
+                           "--memory-budget", budget], capture_output=True, text=True, timeout=300, cwd=ROOT)
+
+
+def test_within_a_small_memory_budget_the_margins_fall_back_to_routes_that_fit(full, tmp_path):
+    """SET's damped pencils at 210 MB: the critical values from the exact determinant (no large matrix), the same
+    verdict; the operating spectrum (and what is drawn at its resolution) skipped, saying what it would need."""
+    proc = _etcheck(str(SET), budget="210 MB", out=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    got = json.loads((tmp_path / "set" / "results.json").read_text())
+    assert got["verdict"] == full["verdict"] == "pass"
+    for a, b in zip(got["margins"], full["margins"]):
+        assert a["value"] == pytest.approx(b["value"], rel=1e-8)
+    assert got["resources"]["memory_budget_bytes"] == 210_000_000
+    why = {s["part"]: s["why"] for s in got["resources"]["skipped"]}["operating spectrum"]
+    assert why.startswith("not answered: the spectrum at N = 24 would need") and "past the budget of 210 MB" in why
+    assert "skipped operating spectrum: not answered" in proc.stdout
+
+
+def test_what_no_route_can_answer_within_the_budget_is_not_answered_with_exit_1(tmp_path):
+    """The [uncertainty] study's pencils do not fit 210 MB: exit 1 and the reason, no traceback."""
+    proc = _etcheck(str(ROOT / "missions" / "set-tolerances.toml"), budget="210 MB", out=tmp_path)
+    assert proc.returncode == 1
+    assert proc.stderr.startswith("etcheck: not answered: ") and "would need" in proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+def test_a_budget_that_is_not_a_size_is_a_usage_error(tmp_path):
+    proc = _etcheck(str(SET), budget="lots", out=tmp_path)
+    assert proc.returncode == 2 and "--memory-budget: cannot read 'lots' as a memory size" in proc.stderr
