@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -50,7 +51,8 @@ class AccuracyRow:
 
 
 def first_load(params: RodParameters, N: int) -> float:
-    """The smallest load root B > 0 of A0 at the scene's spin and tension, resolution N (nan if none).
+    """The smallest load root B > 0 of A0 at the scene's spin and tension, resolution N (nan if none, or where the
+    unloaded operator K is singular to working precision: no root is read through it).
 
     A0(B) = K + B AB with AB nonzero on 2N rows (the load term of eq. (71)):
     B = -1/mu for the eigenvalues mu of AB[rows] K^-1 I[:, rows] (one LU of K,
@@ -62,7 +64,13 @@ def first_load(params: RodParameters, N: int) -> float:
     rows = np.nonzero(np.any(AB != 0.0, axis=1))[0]
     sel = np.zeros((K.shape[0], rows.size))
     sel[rows, np.arange(rows.size)] = 1.0
-    mu = sla.eigvals(AB[rows] @ sla.solve(K, sel, check_finite=False), check_finite=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", sla.LinAlgWarning)
+        try:
+            X = sla.solve(K, sel, check_finite=False)
+        except sla.LinAlgWarning:  # K (the unloaded rod at this spin and tension) is singular to working precision
+            return math.nan
+    mu = sla.eigvals(AB[rows] @ X, check_finite=False)
     mu = mu[np.abs(mu) > 0]
     B = -1.0 / mu
     B = B[(np.abs(B.imag) <= 1e-8 * np.abs(B)) & (B.real > 1e-12)].real
