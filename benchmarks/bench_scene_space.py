@@ -1,6 +1,7 @@
 """Time, peak memory, exit codes and stderr of ``etcheck`` over random valid missions (a measurement, not a test).
 
     python benchmarks/bench_scene_space.py [--n 40] [--seed 1] [--timeout 120] [--only 3,17] [--keep DIR]
+    python benchmarks/bench_scene_space.py --routes 24,48,96,128   # peak memory per route, stated and measured
 
 Draws ``--n`` valid missions (seeded: the same missions for the same seed) over the scene space a user can reach:
 lengths 10 m - 30 km, bending stiffness 1e-3 - 1e3 N m2 with R = EI2/EI1 down to 1e-7 (tapes), mass per length,
@@ -53,42 +54,13 @@ def random_mission(rng: np.random.Generator, name: str) -> tuple[dict, str]:
     R = float(10 ** rng.uniform(-7.0, 0.0)) if rng.random() < 0.5 else float(rng.choice([1.0, 0.5526, 0.1, 0.01]))
     mass = 10 ** rng.uniform(-3.5, 0.5)
     wc = math.sqrt(F_CLAMPED * EI1 / (mass * L**4))  # reference frequency [rad/s]
-    tether: dict = {"length": f"{L!r} m", "bending_stiffness": [f"{EI1!r} N m2", f"{EI1 * R!r} N m2"],
-                    "mass_per_length": f"{mass!r} kg/m"}
-    tether["poisson_ratio"] = round(float(rng.uniform(0.2, 0.45)), 3)
-    if rng.random() < 0.5:
-        tether["rotary_inertia_ratio"] = float(10 ** rng.uniform(-10.0, -2.0))
-    else:  # a section of a metal or a composite: P = EI1 / (E A L^2)
-        tether["youngs_modulus"] = f"{float(rng.choice([70.0, 117.0, 132.0])):g} GPa"
-        tether["cross_section_area"] = f"{10 ** rng.uniform(-1.0, 1.5):.4g} mm2"
-    damping = rng.integers(4)
-    if damping == 1:
-        tether["damping_time"] = "0 s"
-    elif damping == 2:
-        tether["damping_time"] = f"{10 ** rng.uniform(-4.0, 0.0) / wc!r} s"  # gamma 1e-4 .. 1
+    tether, damping = _tether(rng, L, EI1, R, mass, wc)
     spin_factor = float(rng.choice([0.0, 0.0, 0.1, 0.5, 1.0, 3.0, 10.0, 100.0, 1000.0]))
-    field_uT = float(rng.choice([30.0, 50.0, 70.0]))
     operation: dict = {"spin_rate": f"{spin_factor * math.sqrt(R) * wc!r} rad/s"}
     data: dict = {"mission": {"name": name, "description": "drawn by benchmarks/bench_scene_space.py"},
                   "tether": tether, "operation": operation, "check": {}}
-    orbit = rng.random() < 0.25
-    if orbit:
-        year = int(rng.integers(2020, 2030))
-        data["orbit"] = {"altitude": f"{rng.uniform(300.0, 1500.0):.0f} km", "inclination": f"{rng.uniform(0, 100):.1f} deg",
-                         "epoch": f"{year}-{int(rng.integers(1, 13)):02d}-15T00:00:00",
-                         "duration": str(rng.choice(["1 h", "6 h", "1 d"]))}
-        field_uT = 50.0
-    elif rng.random() < 0.3:
-        operation["axial_field"] = [f"{0.3 * field_uT:g} uT", f"{field_uT:g} uT"]
-    else:
-        operation["axial_field"] = f"{field_uT:g} uT"
-    tension = rng.integers(3)
-    if tension == 1:
-        operation["end_tension"] = f"{float(rng.choice([0.3, 30.0, 1000.0])) * F_CLAMPED * EI1 / L**2!r} N"
-    elif tension == 2:
-        tether["end_masses"] = [f"{10 ** rng.uniform(0, 3):.3g} kg", f"{10 ** rng.uniform(-1, 2):.3g} kg"]
-        if not orbit:
-            operation["orbit_altitude"] = f"{rng.uniform(300.0, 1500.0):.0f} km"
+    field_uT = _field(rng, data, float(rng.choice([30.0, 50.0, 70.0])))
+    tension = _tension(rng, data, EI1, L)
     critical = SET_IB0 * math.sqrt(EI1 * EI1 * R / (38.0 * 21.0)) * (100.0 / L) ** 3
     ratio = 10 ** rng.uniform(-4.0, 4.0)
     current = ratio * critical / (field_uT * 1e-6)
@@ -99,15 +71,59 @@ def random_mission(rng: np.random.Generator, name: str) -> tuple[dict, str]:
         check["tolerance"] = float(10 ** rng.uniform(-11.0, -4.0))
     if rng.random() < 0.15:
         check["resolution"] = int(rng.choice([16, 24, 32, 48, 64, 96, 128]))
-    uncertain = rng.random() < 0.15
-    if uncertain:
+    if rng.random() < 0.15:
         data["uncertainty"] = {"bending_stiffness": {"distribution": "normal", "sigma": "10 %"},
                                "current": {"distribution": "uniform", "bounds": [f"{0.9 * current!r} A", f"{current!r} A"]}}
-    what = (f"L={L:.3g} m R={R:.2g} spin={spin_factor:g}x load={ratio:.2g}x"
-            f"{' damped' if damping == 2 else ' undamped' if damping == 1 else ''}"
-            f"{' tension' if tension == 1 else ' end-masses' if tension == 2 else ''}{' orbit' if orbit else ''}"
-            f"{' N=' + str(check['resolution']) if 'resolution' in check else ''}{' [uncertainty]' if uncertain else ''}")
+    what = (f"L={L:.3g} m R={R:.2g} spin={spin_factor:g}x load={ratio:.2g}x{damping}{tension}"
+            f"{' orbit' if 'orbit' in data else ''}{' N=' + str(check['resolution']) if 'resolution' in check else ''}"
+            f"{' [uncertainty]' if 'uncertainty' in data else ''}")
     return data, what
+
+
+def _tether(rng: np.random.Generator, L: float, EI1: float, R: float, mass: float, wc: float) -> tuple[dict, str]:
+    """The [tether] table (rotary inertia as a ratio or a section, damping none, zero or a time) and its damping."""
+    tether: dict = {"length": f"{L!r} m", "bending_stiffness": [f"{EI1!r} N m2", f"{EI1 * R!r} N m2"],
+                    "mass_per_length": f"{mass!r} kg/m", "poisson_ratio": round(float(rng.uniform(0.2, 0.45)), 3)}
+    if rng.random() < 0.5:
+        tether["rotary_inertia_ratio"] = float(10 ** rng.uniform(-10.0, -2.0))
+    else:  # a section of a metal or a composite: P = EI1 / (E A L^2)
+        tether["youngs_modulus"] = f"{float(rng.choice([70.0, 117.0, 132.0])):g} GPa"
+        tether["cross_section_area"] = f"{10 ** rng.uniform(-1.0, 1.5):.4g} mm2"
+    damping = int(rng.integers(4))
+    if damping == 1:
+        tether["damping_time"] = "0 s"
+    elif damping == 2:
+        tether["damping_time"] = f"{10 ** rng.uniform(-4.0, 0.0) / wc!r} s"  # gamma 1e-4 .. 1
+    return tether, {0: "", 1: " undamped", 2: " damped", 3: ""}[damping]
+
+
+def _field(rng: np.random.Generator, data: dict, field_uT: float) -> float:
+    """The axial field: an [orbit] table (epochs 2020-2029), a range or a value; its largest value [uT]."""
+    if rng.random() < 0.25:
+        year = int(rng.integers(2020, 2030))
+        data["orbit"] = {"altitude": f"{rng.uniform(300.0, 1500.0):.0f} km", "inclination": f"{rng.uniform(0, 100):.1f} deg",
+                         "epoch": f"{year}-{int(rng.integers(1, 13)):02d}-15T00:00:00",
+                         "duration": str(rng.choice(["1 h", "6 h", "1 d"]))}
+        return 50.0
+    if rng.random() < 0.3:
+        data["operation"]["axial_field"] = [f"{0.3 * field_uT:g} uT", f"{field_uT:g} uT"]
+    else:
+        data["operation"]["axial_field"] = f"{field_uT:g} uT"
+    return field_uT
+
+
+def _tension(rng: np.random.Generator, data: dict, EI1: float, L: float) -> str:
+    """No end tension, an end tension (T-bar 0.3, 30 or 1000) or end masses on an orbit; its words."""
+    tension = rng.integers(3)
+    if tension == 1:
+        data["operation"]["end_tension"] = f"{float(rng.choice([0.3, 30.0, 1000.0])) * F_CLAMPED * EI1 / L**2!r} N"
+        return " tension"
+    if tension == 2:
+        data["tether"]["end_masses"] = [f"{10 ** rng.uniform(0, 3):.3g} kg", f"{10 ** rng.uniform(-1, 2):.3g} kg"]
+        if "orbit" not in data:
+            data["operation"]["orbit_altitude"] = f"{rng.uniform(300.0, 1500.0):.0f} km"
+        return " end-masses"
+    return ""
 
 
 @dataclass
@@ -207,6 +223,50 @@ def report(runs: list[Run]) -> None:
         print(f"  {route[:90]:90s} n={len(peaks):3d}  {_dist(peaks)}")
 
 
+def routes(Ns: list[int]) -> None:
+    """Stated against measured (tracemalloc) peak memory and the time of each route's largest step per resolution,
+    for SET's operating point (dense QZ: with damping 0.2, where the Kelvin-Voigt cluster is among the wanted
+    eigenvalues)."""
+    import tracemalloc
+
+    from etcheck.rod.core.parameters import RodParameters
+    from etcheck.rod.core.spectrum import lowest_eigenvalues, solve_bytes
+    from etcheck.rod.straight.exact import exact_critical
+    from etcheck.rod.straight.spectral import StraightFamily, family_bytes
+
+    p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, B=0.3, omega=0.25, T=0.0, gamma=0.04375)
+
+    def measured(fn, *args) -> tuple[float, float]:
+        tracemalloc.start()
+        t0 = time.perf_counter()
+        before = tracemalloc.get_traced_memory()[0]
+        fn(*args)
+        peak = tracemalloc.get_traced_memory()[1] - before
+        tracemalloc.stop()
+        return peak, time.perf_counter() - t0
+
+    def family(N: int) -> None:
+        fam = StraightFamily(p, N)
+        fam.pencil_roots("B", 0.0, p.omega, 0.0)
+        fam.eigenvalues(p.B, p.omega, 0.0, 28)
+
+    print("\n== peak memory per route, stated (what the budget is charged) and measured (tracemalloc), MB; time s")
+    print(f"{'route':52s} {'N':>4s} {'stated':>8s} {'measured':>9s} {'time':>7s}")
+    rows = [("collocation family: static pencils and its parts", lambda N: family_bytes(N), family),
+            ("eigenvalues by shift-invert (ARPACK)", lambda N: solve_bytes(N, False),
+             lambda N: lowest_eigenvalues(p, None, N, 28)),
+            ("eigenvalues by dense QZ (heavy damping, fast spin)", lambda N: solve_bytes(N, True),
+             lambda N: lowest_eigenvalues(p.with_(gamma=0.2), None, N, 28))]
+    for name, stated, fn in rows:
+        for N in Ns:
+            if "QZ" in name and N > 96:  # minutes on a busy machine
+                continue
+            peak, seconds = measured(fn, N)
+            print(f"{name:52s} {N:4d} {stated(N) / 1e6:8.1f} {peak / 1e6:9.1f} {seconds:7.2f}", flush=True)
+    peak, seconds = measured(exact_critical, p.with_(P=0.0010001))
+    print(f"{'exact determinant (damped critical values)':52s} {'-':>4s} {'-':>8s} {peak / 1e6:9.1f} {seconds:7.2f}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--n", type=int, default=40, help="missions drawn (default 40)")
@@ -215,7 +275,11 @@ def main() -> None:
     ap.add_argument("--only", default="", help="comma-separated mission numbers to run (default: all)")
     ap.add_argument("--kinds", default="draft,sign-off")
     ap.add_argument("--keep", default=None, help="keep the missions and outputs in this folder")
+    ap.add_argument("--routes", default="", help="only the peak memory per route at these resolutions, e.g. 24,48,96")
     a = ap.parse_args()
+    if a.routes:
+        routes([int(x) for x in a.routes.split(",")])
+        return
     rng = np.random.default_rng(a.seed)
     missions = [random_mission(rng, f"scene {i}") for i in range(a.n)]
     only = {int(x) for x in a.only.split(",") if x.strip()}

@@ -53,6 +53,7 @@ from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.blas import one_blas_thread
 from etcheck.numerics.lifetime import die_with_parent, stop_words
+from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.optimize import brentq
 from etcheck.numerics.parallel import serial
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
@@ -154,6 +155,8 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
         out |= _damped(params, tol, spin) if params.gamma > 0 else _undamped(params, tol, spin)
     except (np.linalg.LinAlgError, ValueError, ArithmeticError) as exc:
         out |= {"status": STATUS_FAILED, "reason": f"solver error: {type(exc).__name__}: {exc}"}
+    except OverBudget as exc:  # no route fits the memory budget: this point is not answered, the others are
+        out |= {"status": STATUS_FAILED, "reason": str(exc)}
     out = _finite(out, spin)
     if out["status"] != STATUS_OK:
         out["stable"] = None
