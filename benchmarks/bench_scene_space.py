@@ -272,6 +272,8 @@ def main() -> None:
     ap.add_argument("--n", type=int, default=40, help="missions drawn (default 40)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--timeout", type=float, default=120.0, help="a run is killed after this many seconds")
+    ap.add_argument("--uncertainty-timeout", type=float, default=30.0,
+                    help="the same for a mission with an [uncertainty] table (its study's time is not targeted here)")
     ap.add_argument("--only", default="", help="comma-separated mission numbers to run (default: all)")
     ap.add_argument("--kinds", default="draft,sign-off")
     ap.add_argument("--keep", default=None, help="keep the missions and outputs in this folder")
@@ -291,7 +293,7 @@ def main() -> None:
         if only and i not in only:
             continue
         for kind in a.kinds.split(","):
-            r = measure(i, data, what, kind, folder, a.timeout)
+            r = measure(i, data, what, kind, folder, a.uncertainty_timeout if "uncertainty" in data else a.timeout)
             runs.append(r)
             flag = "  STDERR" if noise(r.stderr) else ""
             print(f"#{i:3d} {kind:8s} exit {r.code:3d} {r.seconds:7.2f} s {r.peak_mb:7.0f} MB  {what}{flag}", flush=True)

@@ -23,6 +23,7 @@ DRAFT_TOLERANCE = 1e-6
 TIME_BUDGET = 6.0
 
 LEFT_OUT = ("stability map", "Campbell diagram", "eigenvalues at the operating point (damped tethers)",
+            "stable spin windows and, without spin, the critical spin (undamped tethers)",
             "accuracy table", "post-buckling analysis (rungs 2-3)")
 
 

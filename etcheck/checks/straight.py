@@ -329,7 +329,8 @@ def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: i
     if damped:
         load, spin, stable, _ = _damped_critical(p, options, route)
     else:  # flutter possible
-        load_point, spin_point, windows, scanned_to, stable = _undamped_critical(p, options, N, op, exact)
+        load_point, spin_point, windows, scanned_to, stable = _undamped_critical(
+            p, options, N, op, exact, windows=not options.draft, spin=not (options.draft and p.omega == 0))
         load = _critical(load_point, "critical load at the operating spin")
         spin = _critical(spin_point, "critical spin at the operating load")
     return {
