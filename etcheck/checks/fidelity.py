@@ -20,7 +20,7 @@ DRAFT_TOLERANCE = 1e-6
 #: the CLI's seconds of a sign-off's computation after which the report's extras not yet computed (operating
 #: spectrum, Campbell diagram, stability map, accuracy table) are skipped, saying so: with the imports, the report
 #: process and the reports a sign-off stays within about 10 s on two cores; the margins are always answered
-TIME_BUDGET = 6.0
+TIME_BUDGET = 5.0
 
 LEFT_OUT = ("stability map", "Campbell diagram", "eigenvalues at the operating point (damped tethers)",
             "stable spin windows and, without spin, the critical spin (undamped tethers)",
