@@ -180,7 +180,7 @@ def _both_stiffnesses(model: MarginModel, kind: str, els: list[Elasticity],
                           (" (GJ follows from poisson_ratio)" if model.gj_ratio is not None else "")), els
     up = model.margin(model.values({"bending_stiffness": math.exp(step)}), kind).value
     dn = model.margin(model.values({"bending_stiffness": math.exp(-step)}), kind).value
-    tot = (math.log(up) - math.log(dn)) / (2 * step)
+    tot = (math.log(up) - math.log(dn)) / (2 * step) if up > 0 and dn > 0 else math.nan  # a margin of 0 nearby
     els = [replace(e, value=0.5 * tot, method="half of both together (isotropic, by symmetry)")
            if e.input in ("EI1", "EI2") else e for e in els]
     return Elasticity("bending_stiffness", tot, f"central difference, relative step {step:g}"), els
