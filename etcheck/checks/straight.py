@@ -159,15 +159,18 @@ def _damped_critical(p, options: WhirlOptions, route: str,
     return load, spin, dc.stable, dc.spin_at_rest.value
 
 
-def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool, windows: bool = True, spin: bool = True):
+def _undamped_critical(p, options: WhirlOptions, N: int, op, exact: bool, windows: bool = True, spin: bool = True,
+                       extra: Extras | None = None):
     """Critical load, critical spin point, stable spin windows, the spin they were sought up to and the
     operating point's stability of an undamped tether (dimensionless): from the exact undamped determinant
     (:func:`etcheck.rod.straight.undamped.undamped_critical`); where that cannot isolate a change of
     stability (a tangency of two roots), from the spectral scans of :mod:`etcheck.rod.straight.spectral` on the
     collocation route, and "not located" on the exact route (its margins are then incomplete).
-    ``windows=False``: the stable spin windows are not sought; ``spin=False``: nor the critical spin."""
+    ``windows=False``: the stable spin windows are not sought; ``spin=False``: nor the critical spin. With
+    ``extra`` (a sign-off) the windows are sought within its time budget, and the critical values are answered
+    without them where they are skipped."""
     try:
-        u = undamped_critical(p, tol=options.tol, windows=windows, spin=spin)
+        u = _exact_undamped(p, options, windows, spin, extra)
         return u.critical_load, u.critical_spin, list(u.windows), u.scanned_to, u.stable
     except (ArithmeticError, ValueError) as exc:
         why = f"the exact undamped determinant gave no answer: {exc}"
@@ -195,6 +198,15 @@ def critical_values(p, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPE
                                                     spin=spin or not p.B > 0)
     return (_critical(load_point, "critical load at the operating spin"),
             _critical(spin_point, "critical spin at the operating load"))
+
+
+def _exact_undamped(p, options: WhirlOptions, windows: bool, spin: bool, extra: Extras | None):
+    """:func:`~etcheck.rod.straight.undamped.undamped_critical`, its stable spin windows through ``extra`` where
+    given (without them, the same line up to its first static spin, where they are skipped)."""
+    if not windows or extra is None:
+        return undamped_critical(p, tol=options.tol, windows=windows, spin=spin)
+    got = extra("stable spin windows", lambda: undamped_critical(p, tol=options.tol, spin=spin))
+    return got if got is not None else undamped_critical(p, tol=options.tol, windows=False, spin=spin)
 
 
 def _operating_spectrum(op, wc: float) -> OperatingSpectrum:
@@ -279,7 +291,7 @@ def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, ro
     # the critical points are located at the resolution the operating spectrum
     # needed (boundary layers under strong tension need more than the default)
     N = options.N or max(24, op.N_check if op else 24)
-    out = _critical_values(scaled, options, route, op, N)
+    out = _critical_values(scaled, options, route, op, N, extra)
     if options.draft or (exact and p.gamma == 0):  # no frequencies and no map on the exact undamped route
         return out, skipped
     if not exact and op is None:
@@ -318,7 +330,8 @@ class Extras:
         return None
 
 
-def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: int) -> LinearSection:
+def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: int,
+                     extra: Extras | None = None) -> LinearSection:
     """The rung-1 section without its pictures: critical load and spin, spin windows, the operating point."""
     exact = route == EXACT
     p, sc = scaled.params, scaled.scales
@@ -330,7 +343,8 @@ def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: i
         load, spin, stable, _ = _damped_critical(p, options, route)
     else:  # flutter possible
         load_point, spin_point, windows, scanned_to, stable = _undamped_critical(
-            p, options, N, op, exact, windows=not options.draft, spin=not (options.draft and p.omega == 0))
+            p, options, N, op, exact, windows=not options.draft, spin=not (options.draft and p.omega == 0),
+            extra=extra)
         load = _critical(load_point, "critical load at the operating spin")
         spin = _critical(spin_point, "critical spin at the operating load")
     return {

@@ -32,7 +32,8 @@ from typing import Any
 from etcheck.errors import EtcheckError
 
 __all__ = ["VARIABLE", "DEFAULT", "BASELINE", "OverBudget", "parse", "budget", "describe", "matrix_bytes", "fits",
-           "require", "Memo", "held", "release", "WORKSPACE"]
+           "require", "Memo", "held", "release", "WORKSPACE",
+           "items_within"]
 
 #: the environment variable that sets the budget (the CLI's --memory-budget sets it for its helpers too)
 VARIABLE = "ETCHECK_MEMORY_BUDGET"
@@ -89,6 +90,13 @@ def describe(nbytes: float) -> str:
 def matrix_bytes(rows: int, cols: int | None = None, count: float = 1.0, complex_: bool = False) -> float:
     """Bytes of ``count`` dense float64 (``complex_``: complex128) matrices of rows x cols (square by default)."""
     return float(count) * rows * (rows if cols is None else cols) * (16 if complex_ else 8)
+
+
+def items_within(per_item: float, share: float) -> int:
+    """How many items of ``per_item`` bytes fit ``share`` of what the budget leaves besides the baseline (at
+    least one): the block size of a vectorised evaluation whose values do not depend on its blocks (beyond the
+    last bits of numpy's vectorised functions)."""
+    return max(1, int(share * (budget() - BASELINE) / per_item))
 
 
 def held() -> float:

@@ -101,3 +101,14 @@ def test_what_no_route_can_answer_within_the_budget_is_not_answered_with_exit_1(
 def test_a_budget_that_is_not_a_size_is_a_usage_error(tmp_path):
     proc = _etcheck(str(SET), budget="lots", out=tmp_path)
     assert proc.returncode == 2 and "--memory-budget: cannot read 'lots' as a memory size" in proc.stderr
+
+
+def test_an_undamped_sign_off_past_its_budget_has_the_same_margins_without_its_spin_windows():
+    from helpers import set_like
+
+    data = set_like(name="undamped", damping_time="0 s", spin_rate="0.1041 rpm")
+    full = check(data).results
+    cut = check(data, replace(DEFAULT_OPTIONS, time_budget=1e-6)).results
+    assert [(m["value"], m["verdict"]) for m in cut["margins"]] == [(m["value"], m["verdict"]) for m in full["margins"]]
+    assert "stable spin windows" in {s["part"] for s in cut["resources"]["skipped"]}
+    assert full["linear"]["spin_windows_scanned_to_rpm"] > cut["linear"]["spin_windows_scanned_to_rpm"]

@@ -163,3 +163,20 @@ def test_the_families_of_a_memo_stay_within_its_share(budget):
         _family(SET.with_(P=0.001 * (1 + i / 10)), 48)
     share = memory.MEMO_SHARE * memory.budget()
     assert memory.held() <= max(share, family_bytes(48, peak=False))
+
+
+def test_the_exact_determinant_is_evaluated_in_blocks_that_fit_the_budget(budget):
+    """The same values (to round-off: numpy's vectorised logarithms and exponentials differ in the last bit with
+    the position in a block) in blocks of a tenth of a small budget, and a peak within it (one block of 1e5
+    points held 530 MB)."""
+    from etcheck.rod.straight.undamped_kernel import characteristic_counted
+
+    p = SET.with_(gamma=0.0)
+    mu = np.linspace(0.1, 1e3, 20_000)
+    whole, _ = characteristic_counted(p, mu, omega=0.5)
+    budget("300 MB")
+    assert memory.items_within(6e3, 0.1) < mu.size
+    blocks, _ = characteristic_counted(p, mu, omega=0.5)
+    np.testing.assert_allclose(blocks, whole, rtol=1e-12, atol=1e-12 * np.max(np.abs(whole)))
+    peak = _peak(lambda: characteristic_counted(p, np.linspace(0.1, 1e3, 100_000), omega=0.5))
+    assert peak < 60e6
