@@ -37,7 +37,7 @@ from etcheck.checks.sections import (
     StraightRodSection,
 )
 from etcheck.checks.static_buckling import static_buckling, static_limits
-from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_stability
+from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
 from etcheck.checks.validity import validity
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
 from etcheck.numerics import memory
@@ -106,7 +106,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         else:
             later = ahead(table) if options.accuracy_beside else nullcontext(table)
         with later as accuracy_later:
-            linear, skipped = linear_stability(scaled, options, chosen.route, deadline)
+            linear, skipped = linear_answers(scaled, options, chosen.route, deadline)
             accuracy_rows = Extras(skipped, deadline, options.time_budget)("accuracy table", accuracy_later)
     margins = straight_margins(mission, sc, scaled, chosen, static, linear)
     alts = alternatives(mission, sc, scaled, options)  # the same margins under the other attachments of the ends

@@ -251,8 +251,13 @@ def _exact_rows(p, w_rows, B_hi: float, rest: float, tol: float) -> list[list[fl
     return split_map(row, [float(w) for w in w_rows])
 
 
-def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL,
-                     deadline: float | None = None) -> tuple[LinearSection, list[SkippedPart]]:
+def linear_stability(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL) -> LinearSection:
+    """All rung-1 answers for the scene, dimensionless and in SI, without a deadline: :func:`linear_answers`."""
+    return linear_answers(scaled, options, route)[0]
+
+
+def linear_answers(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, route: str = SPECTRAL,
+                   deadline: float | None = None) -> tuple[LinearSection, list[SkippedPart]]:
     """All rung-1 answers for the scene, dimensionless and in SI, and the parts skipped.
 
     Returns a JSON-able dict: the operating spectrum (with two-resolution

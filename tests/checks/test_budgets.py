@@ -15,6 +15,7 @@ import pytest
 from etcheck.checks.pipeline import check
 from etcheck.checks.straight import DEFAULT_OPTIONS
 from etcheck.numerics.timelimit import OutOfTime, within
+from etcheck.report import results_json
 
 ROOT = Path(__file__).resolve().parents[2]
 SET = ROOT / "missions" / "set.toml"
@@ -34,7 +35,7 @@ def test_without_a_budget_nothing_is_skipped(full):
 def test_past_the_time_budget_the_extras_are_skipped_and_the_margins_answered(full):
     """A budget spent before the extras start (1 us): every extra skipped with the reason, the same margins."""
     got = check(SET, replace(DEFAULT_OPTIONS, time_budget=1e-6)).results
-    jsonschema.validate(got, SCHEMA)
+    jsonschema.validate(json.loads(results_json(got)), SCHEMA)
     assert [(m["name"], m["value"], m["verdict"]) for m in got["margins"]] == \
         [(m["name"], m["value"], m["verdict"]) for m in full["margins"]]
     parts = {s["part"]: s["why"] for s in got["resources"]["skipped"]}
@@ -48,7 +49,7 @@ def test_past_the_time_budget_the_extras_are_skipped_and_the_margins_answered(fu
 def test_a_budget_that_runs_out_midway_keeps_what_was_finished(full):
     """0.3 s: whatever was finished by then is in the results, whole; each part either there or listed."""
     got = check(SET, replace(DEFAULT_OPTIONS, time_budget=0.3)).results
-    jsonschema.validate(got, SCHEMA)
+    jsonschema.validate(json.loads(results_json(got)), SCHEMA)
     skipped = {s["part"] for s in got["resources"]["skipped"]}
     lin = got["linear"]
     for part, value in (("operating spectrum", lin["operating_spectrum"]), ("Campbell diagram", lin["campbell"]),
@@ -91,11 +92,11 @@ def test_within_a_small_memory_budget_the_margins_fall_back_to_routes_that_fit(f
 
 
 def test_what_no_route_can_answer_within_the_budget_is_not_answered_with_exit_1(tmp_path):
-    """The [uncertainty] study's pencils do not fit 210 MB: exit 1 and the reason, no traceback."""
-    proc = _etcheck(str(ROOT / "missions" / "set-tolerances.toml"), budget="210 MB", out=tmp_path)
+    """A bifurcation diagram's spectra do not fit 201 MB (1 MB beside the baseline): exit 1 and the reason."""
+    proc = _etcheck("diagram", str(SET), budget="201 MB", out=tmp_path)
     assert proc.returncode == 1
     assert proc.stderr.startswith("etcheck: not answered: ") and "would need" in proc.stderr
-    assert "Traceback" not in proc.stderr
+    assert "Traceback" not in proc.stderr and not any(tmp_path.rglob("*.json"))
 
 
 def test_a_budget_that_is_not_a_size_is_a_usage_error(tmp_path):

@@ -156,11 +156,11 @@ def test_a_spectrum_whose_first_pair_does_not_fit_is_not_answered(budget):
 def test_the_families_of_a_memo_stay_within_its_share(budget):
     """Many parameter sets at a fine resolution (as an uncertainty study's samples): the memo holds what the
     budget's share allows (it held 32 families whatever their size: 2.5 GB at N = 128)."""
-    from etcheck.rod.straight.spectral import _family
+    from etcheck.rod.straight.spectral import straight_family
 
     budget("400 MB")
     for i in range(6):
-        _family(SET.with_(P=0.001 * (1 + i / 10)), 48)
+        straight_family(SET.with_(P=0.001 * (1 + i / 10)), 48)
     share = memory.MEMO_SHARE * memory.budget()
     assert memory.held() <= max(share, family_bytes(48, peak=False))
 
