@@ -9,7 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from etcheck.errors import EtcheckError
-from etcheck.numerics.lifetime import stop_words
+from etcheck.numerics.lifetime import requested, stop_words
 
 EXIT_TEXT = """exit codes:
   0  the run finished and every margin meets the required margin
@@ -47,12 +47,16 @@ def guarded(action: Callable[[], Any], interrupted: str):
     """
     try:
         return action()
-    except EtcheckError as exc:
-        print(f"etcheck: {'error: ' if exc.exit_code in (2, 3) else ''}{exc}", file=sys.stderr)  # not an error: 1, 128+
-        return exc.exit_code
     except KeyboardInterrupt as exc:
         return stopped(exc, interrupted)
-    except Exception as exc:  # a bug, not the user's fault: say so, no traceback
+    except Exception as exc:
+        stop = requested()  # a stop signal whose exception another one hid (e.g. a pool whose workers it stopped)
+        if stop is not None and not (isinstance(exc, EtcheckError) and exc.exit_code >= 128):
+            return stopped(stop, interrupted)
+        if isinstance(exc, EtcheckError):
+            print(f"etcheck: {'error: ' if exc.exit_code in (2, 3) else ''}{exc}", file=sys.stderr)  # 1, 128+: none
+            return exc.exit_code
+        # a bug, not the user's fault: say so, no traceback
         print(f"etcheck: internal error ({type(exc).__name__}: {exc}); {interrupted}. "
               "Please report this with the mission file.", file=sys.stderr)
         return 3

@@ -34,7 +34,8 @@ import sys
 import threading
 import time
 
-__all__ = ["Stopped", "die_with_parent", "stop_on_signals", "stop_children", "children", "kill_and_reap", "stop_words"]
+__all__ = ["Stopped", "die_with_parent", "stop_on_signals", "stop_children", "children", "kill_and_reap", "stop_words",
+           "requested"]
 
 #: prctl option: the signal the kernel sends this process when its parent thread ends (linux/prctl.h)
 _PR_SET_PDEATHSIG = 1
@@ -126,9 +127,31 @@ def kill_and_reap(pid: int) -> None:
         os.waitpid(pid, 0)
 
 
+#: the stop signals received within :func:`stop_on_signals` (emptied when it ends)
+_REQUESTED: list[int] = []
+
+
+def requested() -> Stopped | None:
+    """The stop a signal asked for within :func:`stop_on_signals`, if any. Another exception may have hidden it:
+    :class:`Stopped` raised where Python only prints it (a fork's at-fork hook) or the error of work whose helper
+    was stopped with it (a broken process pool); the caller then reports the stop, not that error."""
+    return Stopped(_REQUESTED[0]) if _REQUESTED else None
+
+
 def _stop(signum: int, frame) -> None:
+    _REQUESTED.append(signum)
     stop_children()
     raise Stopped(signum)
+
+
+def _quiet(hook):
+    """``sys.unraisablehook`` that says nothing of a :class:`Stopped` raised where it could not propagate."""
+
+    def unraisable(u) -> None:
+        if not isinstance(u.exc_value, Stopped):
+            hook(u)
+
+    return unraisable
 
 
 @contextlib.contextmanager
@@ -138,9 +161,13 @@ def stop_on_signals():
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    _REQUESTED.clear()
     before = {s: signal.signal(s, _stop) for s in STOP_SIGNALS}
+    hook, sys.unraisablehook = sys.unraisablehook, _quiet(sys.unraisablehook)
     try:
         yield
     finally:
         for s, handler in before.items():
             signal.signal(s, handler)
+        sys.unraisablehook = hook
+        _REQUESTED.clear()

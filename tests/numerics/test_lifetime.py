@@ -102,3 +102,22 @@ def test_stopped_is_a_keyboard_interrupt_that_names_its_signal():
     assert pickle.loads(pickle.dumps(exc)).signum == 15  # it may cross a process pool
     assert stop_words(exc) == "stopped by SIGTERM"
     assert stop_words(KeyboardInterrupt()) == "interrupted"
+
+
+@linux
+def test_a_stop_hidden_by_another_exception_is_still_known():
+    """A Stopped raised where Python only prints it (an at-fork hook) is not printed; requested() tells it."""
+    out = _run("""
+        import os, signal
+        from etcheck.numerics.lifetime import requested, stop_on_signals
+        with stop_on_signals():
+            os.register_at_fork(after_in_parent=lambda: os.kill(os.getpid(), signal.SIGTERM))
+            pid = os.fork()
+            if pid == 0:
+                os._exit(0)
+            os.waitpid(pid, 0)
+            print(requested().signum)
+        print(requested())
+    """)
+    assert out.stdout.split() == [str(int(signal.SIGTERM)), "None"], out.stderr
+    assert out.stderr == ""  # not "Exception ignored in ... Stopped"
