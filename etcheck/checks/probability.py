@@ -180,8 +180,10 @@ def _limit_state(model: MarginModel, kind: str, moving, powers: dict[str, float]
     if closed:
         cond = max(closed, key=lambda i: coords[i].spread)
         return LimitState(model, kind, coords, cond)
-    els = {e.input: e.value for e in sens.elasticities} if sens else {}
-    cond = max(range(len(coords)), key=lambda i: abs(els.get(coords[i].name) or 0.0) * coords[i].dist.log_spread())
+    # an elasticity that is not a finite number (the margin jumps at the mission's values: a tether at its critical
+    # spin) says nothing of the direction: the margins at z = -+0.5 decide it
+    els = {e.input: e.value for e in sens.elasticities if e.value is not None and math.isfinite(e.value)} if sens else {}
+    cond = max(range(len(coords)), key=lambda i: abs(els.get(coords[i].name, 0.0)) * coords[i].dist.log_spread())
     ls = LimitState(model, kind, coords, cond)
     e = els.get(coords[cond].name)
     ls.rising = ls.rises_along_cond() if not e else e > 0
@@ -189,32 +191,34 @@ def _limit_state(model: MarginModel, kind: str, moving, powers: dict[str, float]
 
 
 def _adverse_corner(ls: LimitState, sens: MarginSensitivity | None) -> Probability | None:
-    """P < FLOOR at the cost of one margin where the margin meets the required margin even with every input at
-    CAP = 8.3 standard deviations on its adverse side (the sign of its elasticity at the mission's values, both
-    sides where that is 0): taking the margin monotone in each input (as the conditioning does), failure needs
-    an input beyond 8.3 standard deviations, P <= n 2 Phi(-8.3) = n 1e-16. None where that does not hold, an
-    elasticity is unknown or every margin is a closed form (integrated exactly anyway)."""
+    """P < FLOOR at the cost of a few margins where the margin meets the required margin at the mission's values
+    and with every input at CAP = 8.3 standard deviations on either side (on its adverse side for an exact power):
+    taking the margin monotone in each input (as the conditioning does), failure needs an input beyond 8.3
+    standard deviations, P <= n 2 Phi(-8.3) = n 1e-16. None where that does not hold, where more than 8 corners
+    would be needed, or where every margin is a closed form (integrated exactly anyway)."""
     if sens is None or not any(c.shape for c in ls.coords):
         return None
-    els = {e.input: e.value for e in sens.elasticities}
     sides = []
     for c in ls.coords:
-        e = c.power if c.power is not None else els.get(c.name) if c.dist is not None else 1.0
-        if e is None:
-            return None
-        sides.append((-CAP, CAP) if e == 0 else (-CAP if e > 0 else CAP,))
+        if c.dist is None:  # the merged lognormal power inputs: ln m grows with z (term sigma z)
+            sides.append((-CAP,))
+        elif c.power is not None:  # an exact power: its adverse side is known
+            sides.append((0.0,) if c.power == 0 else (-CAP if c.power > 0 else CAP,))
+        else:  # a solved input: both sides (an elasticity's sign at the mission's values is no proof)
+            sides.append((-CAP, CAP))
     corners = np.array(np.meshgrid(*sides)).reshape(len(sides), -1).T
     if len(corners) > 8:
         return None
+    corners = np.vstack([np.zeros((1, len(sides))), corners])  # the mission's own values must pass too
     lnM, err = ls.log_margins(corners)
     worst = float(np.min(lnM + ls.power_sum(corners) - np.abs(err)))
     if not worst >= ls.log_required:
         return None
     n = len(ls.coords)
     return Probability("", 0.0, None, FLOOR, None, None, None, EXACT,
-                       f"exact bound: the margin meets the required margin with every input at 8.3 standard "
-                       f"deviations on its adverse side ({len(corners)} margin evaluation"
-                       f"{'s' if len(corners) > 1 else ''}); taking it monotone in each input, P <= {n} x 1e-16",
+                       f"exact bound: the margin meets the required margin at the mission's values and with every "
+                       f"input at 8.3 standard deviations on either side ({len(corners)} margin evaluations); "
+                       f"taking it monotone in each input, P <= {n} x 1e-16",
                        ls.evaluations, len(corners), None, (), (), "",
                        note=f"below {FLOOR:g}: reported as a bound")
 

@@ -273,6 +273,31 @@ def test_samples_use_the_checks_route_and_tolerance():
         assert model.route == r["plan"]["route"]
 
 
+def test_a_margin_that_jumps_at_the_missions_values_is_not_bounded_away():
+    """A round undamped wire spun just below its critical spin: its load margin jumps from 0 (a little less
+    stiffness: the unloaded wire whirls) to several (a little more); the elasticities there are not numbers. The
+    probability is the stiffness's below the jump (about 1/2), never a bound from a corner read off the sign of an
+    elasticity (it was reported "P < 1e-9" while the margin at the mission's values fails)."""
+    data = {"mission": {"name": "round wire at its critical spin"},
+            "tether": {"length": "210.27193663352168 m",
+                       "bending_stiffness": ["22.478308558557828 N m2", "22.478308558557828 N m2"],
+                       "mass_per_length": "0.931712715561038 kg/m", "poisson_ratio": 0.358,
+                       "youngs_modulus": "117 GPa", "cross_section_area": "0.7153 mm2"},
+            "operation": {"spin_rate": "0.002485466629165135 rad/s", "axial_field": "70 uT",
+                          "current": "0.15450771080900946 A"},
+            "check": {"required_margin": 1.66},
+            "uncertainty": {"bending_stiffness": {"distribution": "normal", "sigma": "10 %"}}}
+    m = mission_from_dict(data)
+    model = study_model(m)
+    sens = next(s for s in sensitivities(model) if s.margin == LOAD_AT_SPIN)
+    nominal = model.margin(model.values(), LOAD_AT_SPIN).value
+    assert nominal < 1.66
+    p = failure_probability(model, LOAD_AT_SPIN, m.uncertainty, sens)
+    above = model.margin(model.values({"bending_stiffness": 1.001}), LOAD_AT_SPIN).value
+    assert above > 1.66  # the jump lies within a thousandth of the stiffness: P is Phi of a z below 0.01
+    assert p.value == pytest.approx(0.5, abs=0.005)
+
+
 @pytest.mark.parametrize("ends", [["pinned", "pinned"], ["pinned", "welded"]])
 def test_margin_model_takes_the_ends(ends):
     """The study's margins are the check's for the mission's ends: rung 0's closed form with their beta_1, and
