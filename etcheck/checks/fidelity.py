@@ -24,7 +24,8 @@ TIME_BUDGET = 5.0
 
 LEFT_OUT = ("stability map", "Campbell diagram", "eigenvalues at the operating point (damped tethers)",
             "stable spin windows and, without spin, the critical spin (undamped tethers)",
-            "accuracy table", "post-buckling analysis (rungs 2-3)")
+            "accuracy table", "post-buckling analysis (rungs 2-3)",
+            "how far the margin moves with each assumption", "design limits")
 
 
 @dataclass(frozen=True)

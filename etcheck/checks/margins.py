@@ -26,9 +26,10 @@ class Verdict(StrEnum):
     PASS = "pass"
     FAIL = "fail"
     INCOMPLETE = "incomplete"  # a question the chosen model cannot answer: never a pass
+    OUTSIDE = "outside"  # the scene is outside the model's validity (etcheck.checks.validity): never a pass
 
 
-PASS, FAIL, INCOMPLETE = Verdict.PASS, Verdict.FAIL, Verdict.INCOMPLETE
+PASS, FAIL, INCOMPLETE, OUTSIDE = Verdict.PASS, Verdict.FAIL, Verdict.INCOMPLETE, Verdict.OUTSIDE
 
 #: the names of the margins of a check
 LOAD_AT_REST = "magnetic load |I B0|"
@@ -89,7 +90,11 @@ def incomplete_margin(name: str, unit: str, operating: float, required: float, r
     return Margin(name, unit, None, operating, None, required, INCOMPLETE, rung, None, why)
 
 
-def overall_verdict(margins: list[Margin]) -> str:
+def overall_verdict(margins: list[Margin], within_validity: bool = True) -> str:
+    """The check's verdict: "outside" where the scene is outside the model's validity (whatever its margins
+    say: the model does not describe the tether), else fail, incomplete or pass from the margins."""
+    if not within_validity:
+        return OUTSIDE
     verdicts = {m.verdict for m in margins}
     if FAIL in verdicts:
         return FAIL

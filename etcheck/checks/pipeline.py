@@ -12,12 +12,17 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import cast
 
+from etcheck.checks.assumptions import assumptions
 from etcheck.checks.attachment import alternatives, attachment_section, with_alternatives
+from etcheck.checks.design_limits import design_limits
 from etcheck.checks.fidelity import fidelity_of
+from etcheck.checks.flight import flight
 from etcheck.checks.margins import (
     FAIL,
     INCOMPLETE,
+    OUTSIDE,
     PASS,
+    Margin,
     buckled_margins,
     needs_postbuckling,
     overall_verdict,
@@ -28,7 +33,9 @@ from etcheck.checks.orbit_load import orbit_results
 from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, plan
 from etcheck.checks.results import results_header
 from etcheck.checks.sections import (
+    AssumptionsSection,
     CheckResults,
+    DesignLimitsSection,
     LinearSection,
     PostbucklingSection,
     ScaledSection,
@@ -38,7 +45,7 @@ from etcheck.checks.sections import (
 )
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
-from etcheck.checks.validity import validity
+from etcheck.checks.validity import model_validity, validity
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
 from etcheck.numerics import memory
 from etcheck.numerics.memory import OverBudget
@@ -47,7 +54,7 @@ from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import Scaled, Scene, scale, scene
 
-EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1}
+EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1, OUTSIDE: 1}
 N_LOADS = 5
 
 
@@ -119,6 +126,11 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         from etcheck.checks.uncertainty import uncertainty_study
 
         study = uncertainty_study(mission, sc, scaled, chosen, margins, options).as_dict()
+    scope = model_validity(mission, sc)
+    verdict = overall_verdict(margins, scope["within"])
+    extras = Extras(skipped, deadline, options.time_budget)
+    decides, limits = _what_decides(mission, sc, margins, chosen.complete and not fid.draft, options, extras)
+    margin_records = [m.as_dict() for m in margins]
     results: CheckResults = {
         **results_header(mission),
         "scene": _scene_dict(mission, sc),
@@ -136,9 +148,13 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "linear": linear,
         "postbuckling": post,
         "accuracy": accuracy_rows,
-        "margins": [m.as_dict() for m in margins],
-        "verdict": overall_verdict(margins),
+        "margins": margin_records,
+        "verdict": verdict,
         "attachment": attachment_section(scaled, alts),
+        "model_validity": scope,
+        "assumptions": decides,
+        "design_limits": limits,
+        "flight": flight(mission, verdict, margin_records, scope),
         "validity": validity(mission, scaled, chosen, post),
         "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
@@ -148,6 +164,21 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     if study is not None:
         results["uncertainty"] = study
     return CheckResult(results=results)
+
+
+def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bool, options: WhirlOptions,
+                  extras: Extras) -> tuple[AssumptionsSection | None, DesignLimitsSection | None]:
+    """How far the smallest margin of the straight tether moves with each assumption, and how far each input may
+    go (None for both in a draft or an incomplete check: ``wanted`` False; each None where the sign-off's time
+    budget ran out first, said in ``resources.skipped``)."""
+    if not wanted:
+        return None, None
+    straight = [m for m in margins if m.value is not None and m.rung < 3]
+    governing = min(straight, key=lambda m: m.value) if straight else None
+    decides = extras("how far the margin moves with each assumption", lambda: assumptions(
+        mission, sc, governing.name if governing else None, governing.value if governing else None, options,
+        governing.alternatives if governing else ()))
+    return decides, extras("design limits", lambda: design_limits(mission, sc, options))
 
 
 def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,

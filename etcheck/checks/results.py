@@ -13,7 +13,8 @@ from etcheck.checks.sections import ResultsHeader
 from etcheck.input.mission import Mission
 
 #: version of the results.json layout (bump when a field changes meaning or moves)
-SCHEMA_VERSION = 3  # 2: fidelity, plan.route, margin route; 3: the uncertainty probabilities
+SCHEMA_VERSION = 4  # 2: fidelity, plan.route, margin route; 3: the uncertainty probabilities; 4: verdict "outside",
+#   model_validity, assumptions, design_limits, flight, natural frequencies under the end tension
 
 
 def results_header(mission: Mission, schema_version: int = SCHEMA_VERSION) -> ResultsHeader:

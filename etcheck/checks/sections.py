@@ -17,6 +17,9 @@ record's docstring); ``X | None`` values are null when not answered.
 # no ``from __future__ import annotations``: TypedDict reads NotRequired from evaluated annotations only
 from typing import NotRequired, TypedDict
 
+# the sections page 1 reads (validity, assumptions, design limits, flight) live in their own module
+from etcheck.checks.sections_verdict import AssumptionsSection, DesignLimitsSection, FlightSection, ModelValidity
+
 # the records of the inputs as read are built in the input layer (which may not import this one)
 from etcheck.input.echo import MissionEcho, TensionProfile, UncertaintyInputs
 
@@ -122,6 +125,11 @@ class NaturalFrequency(TypedDict):
 
 
 class NaturalFrequencies(TypedDict):
+    """The straight tether's natural frequencies under its end tension (``tension_N``), without magnetic load
+    and spin; ``model`` says how they were found."""
+
+    model: str
+    tension_N: float
     bending_weak: list[NaturalFrequency]
     bending_stiff: list[NaturalFrequency]
     torsion: list[NaturalFrequency]
@@ -751,6 +759,10 @@ class CheckResults(ResultsHeader):
     margins: list[MarginRecord]
     verdict: str  # a Verdict value
     attachment: AttachmentSection
+    model_validity: ModelValidity
+    assumptions: AssumptionsSection | None
+    design_limits: DesignLimitsSection | None
+    flight: FlightSection | None
     validity: list[str]
     orbit: NotRequired[OrbitSection | None]
     elapsed_s: float

@@ -2,8 +2,8 @@
 
 At zero spin and zero end tension the critical loads are B_k = beta_k^3 sqrt(R)/f
 with beta_k the double zeros of chi(beta) (arXiv:0810.3668, eq. (91) and Fig. 4),
-or of its closed-form analogue for pinned ends (docs/model.md); the unperturbed
-frequencies are those of the paper's Sec. VI B, for the tether's ends. Dimensionless
+or of its closed-form analogue for pinned ends (docs/model.md); the natural frequencies are those of the
+paper's Sec. VI B for the tether's ends, under the mission's end tension. Dimensionless
 answers with their SI counterparts (I·B0 in N/m, frequencies in rad/s and Hz).
 """
 
@@ -13,8 +13,15 @@ import math
 
 import numpy as np
 
-from etcheck.checks.sections import NaturalFrequency, StaticBuckling, StaticCriticalLoad, StaticLimits
+from etcheck.checks.sections import (
+    NaturalFrequencies,
+    NaturalFrequency,
+    StaticBuckling,
+    StaticCriticalLoad,
+    StaticLimits,
+)
 from etcheck.input.mission import Mission
+from etcheck.rod.core.ends import describe
 from etcheck.rod.straight import analytic
 from etcheck.scaling import Scaled, Scene
 
@@ -26,7 +33,8 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
     """Rung 0 answers for the scene: critical loads, frequencies, mode shape.
 
     All loads are at omega = 0, T = 0 (eq. (91), or its analogue for the
-    scene's ends); dimensionless B and I B0 in N/m.
+    scene's ends); dimensionless B and I B0 in N/m. The natural frequencies are the tether's under its end
+    tension T (no load, no spin).
     """
     p, scales = scaled.params, scaled.scales
     ends = p.ends
@@ -55,7 +63,6 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
     exceeded = sum(r.beta <= op_beta for r in roots)
     if op_beta > roots[-1].beta:
         exceeded = analytic.asymptotic_count(op_beta, ends)
-    wc = scales.frequency
     return {
         "model": "rung 0 (analytic)",
         "critical_loads": loads,
@@ -65,12 +72,23 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
         "first_mode": {"s": s.tolist(), "x": x.tolist(), "y": y.tolist()},
         "chi_curve": {"beta": beta_grid.tolist(),
                       "chi_scaled": analytic.characteristic_scaled(beta_grid, ends).tolist()},
-        "natural_frequencies": {
-            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak", ends), wc),
-            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff", ends), wc),
-            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5, ends), wc),
-        },
+        "natural_frequencies": _natural_frequencies(p, scales),
     }
+
+
+def _natural_frequencies(p, scales) -> NaturalFrequencies:
+    """The frequencies of the straight tether under its end tension (no load, no spin); a compressive end force
+    is left out (under it the frequencies are lower, and the first reaches zero at the Euler load), and said."""
+    T = max(p.T, 0.0)
+    model = (f"exact: the Rayleigh beam {describe(p.ends)} under the end tension, each axis (arXiv:0810.3668 "
+             "Sec. VI B with T); torsion does not feel the tension")
+    if p.T < 0:
+        model += "; the end force is compressive: these are the frequencies without it (under it they are lower)"
+    wc, ends = scales.frequency, p.ends
+    return {"model": model, "tension_N": T * scales.force,
+            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak", ends, T), wc),
+            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff", ends, T), wc),
+            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5, ends), wc)}
 
 
 def _frequencies(mus, wc: float) -> list[NaturalFrequency]:

@@ -67,7 +67,10 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 def summary(results: dict, paths: list[Path]) -> None:
     """A few lines on stdout: verdict, margins, where the reports are."""
     draft = " (DRAFT: margins only, not for signature)" if results.get("fidelity", {}).get("name") == "draft" else ""
-    print(f"etcheck {__version__}: {results['mission']['name']}: {results['verdict'].upper()}{draft}")
+    verdict = "OUTSIDE THE MODEL'S VALIDITY" if results["verdict"] == "outside" else results["verdict"].upper()
+    print(f"etcheck {__version__}: {results['mission']['name']}: {verdict}{draft}")
+    for reason in results["model_validity"]["reasons"]:
+        print(f"  outside the model's validity: {reason}")
     if "attachment" in results:
         print(f"  ends: {results['attachment']['described']}")
     for m in results["margins"]:

@@ -13,8 +13,9 @@ from etcheck.numerics.lifetime import requested, stop_words
 
 EXIT_TEXT = """exit codes:
   0  the run finished and every margin meets the required margin
-  1  a margin fails, the check is incomplete, or some sweep points have no answer (never a silent pass);
-     or a solve would exceed the memory budget (--memory-budget): not answered, with the reason
+  1  a margin fails, the check is incomplete, the scene is outside the model's validity, or some sweep points
+     have no answer (never a silent pass); or a solve would exceed the memory budget (--memory-budget): not
+     answered, with the reason
   2  bad input or usage (mission file, options, report cannot be written): the message names the field
   3  a numerical solve failed (nothing is reported from it)
   130 interrupted by Ctrl-C (SIGINT), 143 stopped by SIGTERM, 129 by SIGHUP: helpers stopped, no report

@@ -81,6 +81,9 @@ def _summary(results: dict, paths: list[Path]) -> None:
     g, c = results["grid"], results["cost"]
     print(f"etcheck sweep: {results['mission']['name']}: {c['points']} points "
           f"({c['solved']} solved, {c['from_cache']} from the cache) in {c['wall_s']:.1f} s")
+    v = g["verdicts"]
+    print(f"  {v['pass']} of {sum(v.values())} points meet the required margin within the model's validity; "
+          f"{g['stable_short']} straight-stable but short of it; {v['outside']} outside the model's validity")
     print(f"  straight-stable {g['regions']['straight-stable']}, buckled-stable {g['regions']['buckled-stable']}, "
           f"straight-unstable {g['regions']['straight-unstable']}, "
           f"no answer {g['regions']['failed']}; largest estimated error {g['max_error'] or 0:.1e}")

@@ -50,6 +50,7 @@ class OperationEcho(TypedDict):
 
     current: list[str]
     axial_field: list[str] | None  # None: from the [orbit], not yet evaluated
+    cross_field: list[str] | None  # None: not given (from the [orbit], or etcheck's default)
     spin_rate: str
     spin_rate_rpm: float
     end_tension: str
@@ -92,6 +93,13 @@ class OrbitEcho(TypedDict):
     model: str
 
 
+class FlightEcho(TypedDict):
+    """``mission.flight``: what the tether did in flight ("coiled" or "straight") and who reported it."""
+
+    outcome: str
+    reported: str
+
+
 class MissionEcho(TypedDict):
     """``mission``: the mission file as read (:meth:`etcheck.input.mission.Mission.echo`)."""
 
@@ -104,6 +112,8 @@ class MissionEcho(TypedDict):
     operation: OperationEcho
     check: CheckEcho
     notes: list[str]
+    assumed: list[str]  # the fields the mission marks as assumptions ("table.field")
+    flight: FlightEcho | None  # what the tether did in flight (None: not flown, or not said)
     orbit: NotRequired[OrbitEcho]
 
 

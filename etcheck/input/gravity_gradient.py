@@ -126,7 +126,7 @@ class GravityGradient:
     def as_dict(self) -> TensionProfile:
         """JSON-able profile (SI, keys carry their unit)."""
         return {
-            "model": "gravity gradient, tether on the local vertical of a circular orbit",
+            "model": "gravity gradient, tether on the local vertical at rest in the orbiting frame (no libration)",
             "used": "minimum",
             "used_N": self.minimum,
             "minimum_N": self.minimum,
@@ -237,13 +237,33 @@ def _orbit_rate(operation: dict, orbit: OrbitSpec | None, rate_keys: list[str], 
     if "orbit_rate" in operation:
         return _operation_value(operation, "orbit_rate", "angular_rate", source), "operation.orbit_rate"
     if "orbit_altitude" in operation:
-        h = _operation_value(operation, "orbit_altitude", "length", source)
-        return circular_rate(h), f"circular orbit at operation.orbit_altitude = {h / 1e3:.6g} km, mean motion"
+        return _altitude_rate(operation, source)
     if orbit is not None:
         return orbit_rate_of(orbit)
     raise MissionError(source, "operation.orbit_rate", "tether.end_masses given without the orbit rate",
                        'add orbit_rate = "1.1e-3 rad/s" or orbit_altitude = "350 km" under [operation], '
                        "or an [orbit] table")
+
+
+def _altitude_rate(operation: dict, source: str) -> tuple[float, str]:
+    """operation.orbit_altitude: one altitude (a circular orbit, its mean motion) or [perigee, apogee] (the
+    conservative apogee rate, :func:`apogee_rate`), and a line describing the orbit."""
+    value = operation["orbit_altitude"]
+    if not isinstance(value, list):
+        h = _operation_value(operation, "orbit_altitude", "length", source)
+        return circular_rate(h), f"circular orbit at operation.orbit_altitude = {h / 1e3:.6g} km, mean motion"
+    if len(value) != 2:
+        raise MissionError(source, "operation.orbit_altitude", f"expected one altitude or [perigee, apogee], got "
+                           f"{len(value)} values", 'e.g. orbit_altitude = ["192 km", "850 km"]')
+    hp, ha = (_operation_value({"orbit_altitude": v}, "orbit_altitude", "length", source) for v in value)
+    if hp > ha:
+        raise MissionError(source, "operation.orbit_altitude", f"perigee {value[0]!r} above apogee {value[1]!r}",
+                           "write it as [perigee, apogee]")
+    if ha - hp < 1.0:
+        return circular_rate(hp), f"circular orbit at operation.orbit_altitude = {hp / 1e3:.6g} km, mean motion"
+    return apogee_rate(hp, ha), (f"orbit {hp / 1e3:.6g} km x {ha / 1e3:.6g} km (operation.orbit_altitude), at "
+                                 "apogee, where the gradient and the tension are smallest: 3 Omega^2 = (3 - e) mu_E "
+                                 "/ r_a^3")
 
 
 #: operation.KEY -> (accepted, problem when not): an orbit rate (rad/s) is positive, a circular altitude (m)

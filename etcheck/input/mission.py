@@ -73,7 +73,9 @@ class Field:
 #: etcheck.input.gravity_gradient; [sweep] by etcheck.input.sweep_axes; [uncertainty] by etcheck.input.uncertainty.
 SCHEMA: dict[str, dict[str, Field]] = {
     "mission": {"name": Field("text", required=True, default=""), "description": Field("text", default=""),
-                "source": Field("text", default="")},
+                "source": Field("text", default=""),
+                "assumed": Field("assumed_fields"),  # fields whose values are assumptions (flagged on page 1)
+                "flight": Field("flight")},  # { outcome = "coiled" | "straight", reported = "who said so" }
     "tether": {
         "length": Field("length", required=True, sign="positive"),
         "bending_stiffness": Field("stiffness_pair", required=True),
@@ -90,10 +92,11 @@ SCHEMA: dict[str, dict[str, Field]] = {
     "operation": {
         "current": Field("current_range", required=True),
         "axial_field": Field("field_range"),  # required unless [orbit] is given (exactly one of the two)
+        "cross_field": Field("field_range"),  # the field across the tether (its bow); not with [orbit]
         "spin_rate": Field("angular_rate", default=0.0 * u.rad / u.s),
         "end_tension": Field("force", default=0.0 * u.N),
         "orbit_rate": Field("angular_rate"),  # with tether.end_masses; or orbit_altitude, or the [orbit] table
-        "orbit_altitude": Field("length"),
+        "orbit_altitude": Field("length"),  # one altitude (circular) or [perigee, apogee]
     },
     "sweep": {name: Field("sweep_axis") for name in AXES},
     "orbit": {},
@@ -150,6 +153,12 @@ class Mission:
     orbit_envelope: AxialFieldEnvelope | None = field(default=None, compare=False, repr=False)
     # tether.end_masses + orbit rate: the tension profile; end_tension is then its minimum (conservative)
     gravity_gradient: GravityGradient | None = None
+    # [operation] cross_field: the field across the undeformed tether (its bow under the Lorentz load); None: not
+    # given (from the [orbit] when there is one, else etcheck's default, stated in the report)
+    cross_field: tuple[u.Quantity, u.Quantity] | None = None
+    assumed: tuple[str, ...] = ()  # [mission] assumed: the fields ("table.field") whose values are assumptions
+    flight: dict[str, str] | None = None  # [mission] flight: {"outcome", "reported"}, where the tether flew
+    given: frozenset[str] = frozenset()  # the fields the file gives ("table.field"); the rest took their defaults
 
     @property
     def slug(self) -> str:
@@ -166,6 +175,15 @@ class Mission:
             raise ValueError("the axial field of a mission with an [orbit] table is evaluated by the check's orbit "
                              "stage: pass the mission through etcheck.checks.orbit_field.with_orbit_field first")
         return max(abs(self.axial_field[0]), abs(self.axial_field[1]))
+
+    @property
+    def worst_cross_field(self) -> u.Quantity | None:
+        """The largest |field across the tether| given (None where not given)."""
+        return None if self.cross_field is None else max(abs(self.cross_field[0]), abs(self.cross_field[1]))
+
+    def is_assumed(self, *fields: str) -> bool:
+        """Whether the mission marks any of ``fields`` ("table.field", or "table" for a whole table) as assumed."""
+        return any(f == a or a.startswith(f + ".") for f in fields for a in self.assumed)
 
     @property
     def operating_load(self) -> u.Quantity:
@@ -205,6 +223,7 @@ class Mission:
             "operation": {
                 "current": pair(self.current),
                 "axial_field": None if self.axial_field is None else microtesla(self.axial_field),
+                "cross_field": None if self.cross_field is None else microtesla(self.cross_field),
                 "spin_rate": q(self.spin_rate),
                 "spin_rate_rpm": float(self.spin_rate.to(u.cycle / u.min).value),
                 "end_tension": q(self.end_tension),
@@ -218,6 +237,8 @@ class Mission:
                 "tolerance": self.tolerance,
             },
             "notes": list(self.notes),
+            "assumed": list(self.assumed),
+            "flight": self.flight,
         }
         if self.orbit is not None:
             out["orbit"] = orbit_echo(self.orbit)
@@ -275,6 +296,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     ends = read_field(t, "tether", "end_conditions", source)
     current = _range(o, "operation", "current", "current", source)
     bfield, orbit = _axial_field(o, data, source)
+    cross = _cross_field(o, orbit, source)
     spin, spin_notes = _spin_rate(o, source)
     tension, gg, tension_notes = _tension(t, o, orbit, length, mass, source)
     settings = {key: read_field(c, "check", key, source) for key in SCHEMA["check"]}
@@ -283,8 +305,9 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
                "axial_field": None if bfield is None else max(abs(bfield[0]), abs(bfield[1])),
                "spin_rate": spin, "end_tension": tension, "damping_time": damping}
     uncertainty, uncertainty_notes = _uncertainty(data, source, nominal, gj_derived=nu is not None)
+    assumed, assumed_notes = _assumed(m, data, source)
     notes = (*_end_notes(ends), *torsion_notes, *inertia_notes, *spin_notes, *tension_notes,
-             *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping))
+             *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping), *assumed_notes)
     return Mission(
         name=name,
         description=read_field(m, "mission", "description", source),
@@ -311,6 +334,10 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         uncertainty=uncertainty,
         orbit=orbit,
         gravity_gradient=gg,
+        cross_field=cross,
+        assumed=assumed,
+        flight=_flight(m, source),
+        given=frozenset(f"{table}.{key}" for table, fields in data.items() if table != "orbit" for key in fields),
     )
 
 
@@ -478,6 +505,59 @@ def _axial_field(o: dict[str, Any], data: dict[str, Any], source: str):
     from etcheck.input.orbit_table import parse_orbit  # astropy.time and SGP4 only for a mission with an orbit
 
     return None, parse_orbit(data["orbit"], source)
+
+
+def _cross_field(o: dict[str, Any], orbit: OrbitSpec | None, source: str) -> tuple[u.Quantity, u.Quantity] | None:
+    """operation.cross_field as a range in T (None where not given); not with an [orbit] table, which gives it."""
+    if "cross_field" not in o:
+        return None
+    if orbit is not None:
+        raise MissionError(source, "operation.cross_field", "given together with an [orbit] table",
+                           "leave it out: the field across the tether is then computed along the orbit")
+    return _range(o, "operation", "cross_field", "field", source)
+
+
+def _assumed(m: dict[str, Any], data: dict[str, Any], source: str) -> tuple[tuple[str, ...], list[str]]:
+    """[mission] assumed: a list of "table.field" names (or a table's name for all of it) whose values are
+    assumptions rather than data, and a note for each that this file does not give (it took its default);
+    MissionError naming an unknown entry."""
+    if "assumed" not in m:
+        return (), []
+    value = m["assumed"]
+    if not isinstance(value, list) or not all(isinstance(x, str) for x in value):
+        raise MissionError(source, "mission.assumed", f"expected a list of field names, got {value!r}",
+                           'e.g. assumed = ["tether.end_masses", "operation.axial_field"]')
+    for name in value:
+        table, _, key = name.partition(".")
+        known = table in SCHEMA and table != "mission" and (not key or table == "orbit" or key in SCHEMA[table])
+        if not known:
+            raise MissionError(source, "mission.assumed", f"unknown field {name!r}",
+                               'name fields as "table.field", e.g. "tether.end_masses"')
+    given = [n for n in value if (n.partition(".")[2] in data.get(n.partition(".")[0], {})
+                                  if "." in n else n in data)]
+    notes = [f"mission.assumed lists {n}, which this file does not give: it took its default" for n in value
+             if n not in given]
+    return tuple(given), notes
+
+
+#: what a flown tether did: left the straight state (buckled, coiled, tangled) or stayed straight
+FLIGHT_OUTCOMES = ("coiled", "straight")
+
+
+def _flight(m: dict[str, Any], source: str) -> dict[str, str] | None:
+    """[mission] flight = { outcome = "coiled" | "straight", reported = "who reported it" } (None: not flown)."""
+    if "flight" not in m:
+        return None
+    value = m["flight"]
+    if not isinstance(value, dict) or set(value) - {"outcome", "reported"} or "outcome" not in value:
+        raise MissionError(source, "mission.flight", f"expected {{ outcome = ..., reported = ... }}, got {value!r}",
+                           'e.g. flight = { outcome = "coiled", reported = "flight report, 1995" }')
+    if value["outcome"] not in FLIGHT_OUTCOMES:
+        raise MissionError(source, "mission.flight", f"unknown outcome {value['outcome']!r}",
+                           f"use one of {', '.join(FLIGHT_OUTCOMES)}")
+    if not isinstance(value.get("reported", ""), str):
+        raise MissionError(source, "mission.flight", "reported must be text", "say who reported the outcome")
+    return {"outcome": value["outcome"], "reported": value.get("reported", "")}
 
 
 def _spin_rate(o: dict[str, Any], source: str) -> tuple[u.Quantity, list[str]]:

@@ -45,7 +45,8 @@ def vec(values, digits: int = 4, unit: str = "") -> Markup:
 
 
 class FigureNumbers:
-    """``fignum()`` in a template: the next figure number (one counter per rendered document)."""
+    """``fignum()`` (``secnum()``) in a template: the next figure (section) number, one counter per rendered
+    document; ``.n`` the last one given."""
 
     def __init__(self) -> None:
         self.n = 0
@@ -82,7 +83,8 @@ def _fig(source: str) -> Markup:
 
 
 def _render(template: str, **context) -> str:
-    return environment().get_template(template).render(fignum=FigureNumbers(), **context)
+    # one counter for the figures, one for the sections (secnum.n: the current section's number)
+    return environment().get_template(template).render(fignum=FigureNumbers(), secnum=FigureNumbers(), **context)
 
 
 def render_html(results: dict) -> str:
@@ -111,7 +113,8 @@ def render_sweep_html(results: dict) -> str:
 
 def render_diagram_html(results: dict) -> str:
     """The self-contained HTML report of a bifurcation diagram."""
-    figs = {name: _fig(fig) for name, fig in diagram_figures(results["diagram"], results["scales"]["length_m"]).items()}
+    figs = {name: _fig(fig) for name, fig in diagram_figures(results["diagram"], results["scales"]["length_m"],
+                                                             results.get("operating")).items()}
     return _render(TEMPLATES["diagram"], r=results, d=results["diagram"], figs=figs)
 
 

@@ -36,6 +36,8 @@ FIELDS = {
     "N": ("resolution", "", "Chebyshev resolution that met the tolerance (0: rung 0)"),
     "buckled_deflection_m": ("buckled_deflection", "m", "maximum lateral deflection of the coiled tether on b1 "
                              "(sweeps with --buckled, straight-unstable points)"),
+    "bow_over_length": ("bow_over_length", "", "bow at mid-span under the lateral Lorentz load / length (the model's "
+                        "limit: bow_limit)"),
 }
 TEXT = ("status", "region", "verdict", "model", "reason")
 UNLIMITED = ("load_margin", "spin_margin")

@@ -86,9 +86,13 @@ def diagram_study(mission: Mission, omega: float | None = None, R: float | None 
     if options.B_max is not None:
         _refuse_below_first_pitchfork(params, options)
     d = bifurcation_diagram(params, scaled.scales, options)
+    op = scaled.params
+    here = "" if op.omega == params.omega else f"; the mission spins at ω = {op.omega:.3g}"
     return results_header(mission) | {
         "spin_rpm": params.omega * scaled.scales.frequency * RPM,
         "R_override": R,
+        "operating": {"B": op.B, "omega": op.omega, "IB0_N_per_m": op.B * scaled.scales.load,
+                      "label": f"mission operating load, straight tether{here}"},
         "scales": {"length_m": scaled.scales.length, "load_N_per_m": scaled.scales.load,
                    "force_N": scaled.scales.force},
         "diagram": d,

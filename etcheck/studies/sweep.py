@@ -47,6 +47,7 @@ from etcheck.checks.buckled import buckled_point
 from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.plan import EXACT, straight_route
 from etcheck.checks.results import results_header
+from etcheck.checks.validity import BOW_LIMIT, P_LIMIT, cross_field, mid_span_bow
 from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
@@ -67,9 +68,9 @@ from etcheck.rod.straight.undamped import has_real_pair, undamped_critical
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 
-SWEEP_SCHEMA = 1
-#: Rod theory assumes a slender rod: P = I1 / (A L^2) << 1.
-P_MAX = 0.1
+SWEEP_SCHEMA = 2  # 2: the bow of each point and the verdict "outside", the verdict counts
+#: Rod theory assumes a slender rod: P = I1 / (A L^2) << 1 (the check's limit).
+P_MAX = P_LIMIT
 STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE = "ok", "failed", "outside validated range"
 REGION_STABLE, REGION_UNSTABLE, REGION_FAILED = "straight-stable", "straight-unstable", "failed"
 REGION_BUCKLED = "buckled-stable"
@@ -529,14 +530,15 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     required = mission.required_margin
     fields = ("load_N_per_m", "critical_load_N_per_m", "load_margin", "load_error", "spin_rpm", "critical_spin_rpm",
               "spin_margin", "spin_error", "critical_spin_at_rest_rpm", "B", "omega", "T", "gamma", "P", "N",
-              "buckled_deflection_m")
+              "buckled_deflection_m", "bow_over_length")
     data: dict[str, np.ndarray] = {f: np.full(shape, np.nan) for f in fields}
     text = {f: np.full(shape, "", dtype=object) for f in ("status", "region", "model", "reason", "verdict")}
-    for idx, _, sc, scaled, key in points:
+    meets = np.zeros(shape, dtype=bool)
+    for (idx, _, sc, scaled, key), bow in zip(points, _bows(points, mission)):
         r, p, scales = results[key], scaled.params, scaled.scales
         wc, load_scale = scales.frequency, scales.load
         d = {"load_N_per_m": sc.load, "spin_rpm": sc.spin_rate * RPM, "B": p.B, "omega": p.omega, "T": p.T,
-             "gamma": p.gamma, "P": p.P, "N": r.get("N") or np.nan}
+             "gamma": p.gamma, "P": p.P, "N": r.get("N") or np.nan, "bow_over_length": bow}
         ok = r["status"] == STATUS_OK
         if ok:
             Bc, wcrit, wrest = r["B_c"], r["omega_c"], r["omega_rest"]
@@ -555,8 +557,8 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
         text["region"][idx] = (REGION_FAILED if not ok else REGION_STABLE if r["stable"] else
                                REGION_BUCKLED if r.get("buckled_stable") else REGION_UNSTABLE)
         if ok:
-            good = r["stable"] and d["load_margin"] >= required and d["spin_margin"] >= required
-            text["verdict"][idx] = "pass" if good else "fail"
+            meets[idx] = r["stable"] and d["load_margin"] >= required and d["spin_margin"] >= required
+            text["verdict"][idx] = "outside" if bow > BOW_LIMIT else "pass" if meets[idx] else "fail"
         else:
             text["verdict"][idx] = "no answer"
     out = {f: finite_or_none(v) for f, v in data.items()}
@@ -566,8 +568,29 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     out["counts"] = {s: status.count(s) for s in (STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE)}
     region = text["region"].ravel().tolist()
     out["regions"] = {s: region.count(s) for s in (REGION_STABLE, REGION_BUCKLED, REGION_UNSTABLE, REGION_FAILED)}
+    verdict = text["verdict"].ravel().tolist()
+    out["verdicts"] = {s: verdict.count(s) for s in ("pass", "fail", "outside", "no answer")}
+    stable = text["region"] == REGION_STABLE
+    out["meet_margin"] = int(meets.sum())  # stable and both margins met, within the model's validity or not
+    out["stable_short"] = int((stable & ~meets).sum())  # straight-stable but short of the required margin
+    out["bow_limit"] = BOW_LIMIT
     out["max_error"] = max([e for e in np.concatenate([data["load_error"].ravel(), data["spin_error"].ravel()])
                             if np.isfinite(e)], default=None)
+    return out
+
+
+def _bows(points, mission: Mission) -> list[float]:
+    """The bow at mid-span over the length of each point under the lateral Lorentz load
+    (:func:`etcheck.checks.validity.mid_span_bow`): the field across the tether as the mission states it, else
+    the point's own axial field where the sweep sets one (field or orbit axes), else the check's."""
+    current = float(mission.worst_current.to_value("A"))
+    stated = mission.worst_cross_field
+    fixed = float(stated.to_value("T")) if stated is not None else cross_field(mission)[0]
+    out = []
+    for _, values, sc, _, _ in points:
+        b_perp = fixed if stated is not None else values.get("axial_field", fixed)
+        q = abs(values.get("current", current)) * b_perp
+        out.append(mid_span_bow(q, sc.length, sc.tension, sc.EI2) / sc.length)
     return out
 
 

@@ -58,8 +58,10 @@ def test_each_margin_has_the_same_margin_under_the_other_attachment(spun):
     for m in mixed["margins"]:
         lo, hi = sorted(a["value"] for a in m["alternatives"])
         assert lo < m["value"] < hi  # the all-pinned and all-welded attachments bound one of each
-    # the verdict hangs on the attachment: SET passes welded, its spin margin fails with both ends pinned
-    assert welded["verdict"] == "pass" and pinned["verdict"] == "fail"
+    # the verdict hangs on the attachment: SET passes welded, its spin margin fails with both ends pinned (and
+    # pinned it bows five times as far under the field across it, 4.3 % of its length: outside the model)
+    assert welded["verdict"] == "pass" and "fail" in {m["verdict"] for m in pinned["margins"]}
+    assert pinned["verdict"] == "outside"
     assert welded["attachment"]["alternatives"][0]["verdict"] == "fail"
 
 
@@ -94,7 +96,8 @@ def test_buckled_rungs_refused_for_pinned_ends():
     post = r["postbuckling"]
     assert post is not None and post["computed"] is False
     assert "welded ends only" in post["reason"] and "not computed" in r["attachment"]["buckled"]
-    assert all(m["rung"] != 3 for m in r["margins"]) and r["verdict"] == "fail"
+    assert all(m["rung"] != 3 for m in r["margins"]) and "fail" in {m["verdict"] for m in r["margins"]}
+    assert r["verdict"] == "outside"  # untensioned at 600 m it also bows far past the straight model's limit
     html = render(r, ("html",))["html"].decode()
     assert "Not computed:" in html and "welded ends only" in html
     valid(r)

@@ -71,7 +71,8 @@ def test_buckled_tape_is_beyond_rungs_2_3_and_says_why():
     """Past its first critical load a tape's coil has boundary layers rung 2 cannot resolve: said, not attempted."""
     r = check(set_like(name="tape", **(TAPE | {"current": "200 A"}))).results
     post = r["postbuckling"]
-    assert r["verdict"] == "fail" and post is not None and post["computed"] is False
+    assert "fail" in [m["verdict"] for m in r["margins"]] and post is not None and post["computed"] is False
+    assert r["verdict"] == "outside"  # 200 A across the tether bows it far past the model's limit
     assert "beyond rungs 2-3" in post["reason"]
 
 

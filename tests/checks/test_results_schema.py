@@ -26,6 +26,7 @@ from etcheck.checks import fidelity as fidelity_module
 from etcheck.checks import margins as margins_module
 from etcheck.checks import plan as plan_module
 from etcheck.checks import sections as S
+from etcheck.checks import sections_verdict as V
 from etcheck.checks.pipeline import check
 from etcheck.checks.results import SCHEMA_VERSION
 from etcheck.input import echo as E
@@ -47,6 +48,7 @@ SECTIONS = {
     "mission.operation.gravity_gradient": E.TensionProfile,
     "mission.check": E.CheckEcho,
     "mission.orbit": E.OrbitEcho,
+    "mission.flight": E.FlightEcho,
     "scene": S.SceneSection,
     "scene.tension_profile": E.TensionProfile,
     "scaled": S.ScaledSection,
@@ -94,6 +96,14 @@ SECTIONS = {
     "attachment.alternatives[]": S.AttachmentAlternative,
     "resources": S.ResourcesSection,
     "resources.skipped[]": S.SkippedPart,
+    "model_validity": V.ModelValidity,
+    "model_validity.checks[]": V.ValidityCheck,
+    "model_validity.lateral": V.LateralLoad,
+    "assumptions": V.AssumptionsSection,
+    "assumptions.rows[]": V.AssumptionRecord,
+    "design_limits": V.DesignLimitsSection,
+    "design_limits.limits[]": V.DesignLimit,
+    "flight": V.FlightSection,
     "orbit": S.OrbitSection,
     "orbit.sampling": S.OrbitSampling,
     "orbit.worst": S.OrbitWorst,
@@ -285,6 +295,9 @@ def test_uncertainty_section_validates():
         pytest.param(lambda r: r["scene"].update(length_m=None), id="null for a number"),
         pytest.param(lambda r: r.update(verdict="pass", margins=[dict(r["margins"][0], verdict="fail")]),
                      id="pass over a failed margin"),
+        pytest.param(lambda r: r["model_validity"].update(within=False), id="pass outside the model's validity"),
+        pytest.param(lambda r: r.update(verdict="outside"), id="outside within the model's validity"),
+        pytest.param(lambda r: r["model_validity"]["checks"][0].update(within="yes"), id="mistyped validity"),
     ],
 )
 def test_the_schema_rejects_spoilt_results(spoil):
@@ -306,7 +319,9 @@ def test_nan_never_reaches_results_json():
 def test_enums_are_the_codes():
     margin = SCHEMA["properties"]["margins"]["items"]["properties"]
     verdicts = {margins_module.PASS, margins_module.FAIL, margins_module.INCOMPLETE}
-    assert set(SCHEMA["properties"]["verdict"]["enum"]) == verdicts == set(margin["verdict"]["enum"])
+    assert set(margin["verdict"]["enum"]) == verdicts
+    assert set(SCHEMA["properties"]["verdict"]["enum"]) == verdicts | {margins_module.OUTSIDE} == set(
+        margins_module.Verdict)
     assert set(margin["model"]["enum"]) == set(plan_module.RUNG_NAMES.values()) | {plan_module.EXACT_MODEL}
     assert set(margin["rung"]["enum"]) == set(plan_module.RUNG_NAMES)
     routes = {"", plan_module.SPECTRAL, plan_module.EXACT}

@@ -70,7 +70,8 @@ def _answer(data: dict):
 
 def _assert_well_formed(results: dict) -> None:
     json.dumps(results, allow_nan=False)  # strict JSON: no NaN, no Infinity
-    assert results["verdict"] in ("pass", "fail", "incomplete")
+    assert results["verdict"] in ("pass", "fail", "incomplete", "outside")
+    assert (results["verdict"] == "outside") == bool(results["model_validity"]["reasons"])
     assert results["margins"]
     for m in results["margins"]:
         assert m["model"]

@@ -64,9 +64,17 @@ def _figure_captions(html: str) -> list[str]:
 
 @pytest.mark.parametrize("path,renderer", EXAMPLES)
 def test_every_figure_numbered_in_order_and_nothing_crosses_the_page_edge(path, renderer, undrawn_figures):
-    html = renderer(json.loads(path.read_text()))  # rendered once for both checks
+    results = json.loads(path.read_text())
+    html = renderer(results)  # rendered once for every check
+    doc = None
+    if str(path.relative_to(REPORTS)) in LAID_OUT or path.name == "results.json":
+        import weasyprint
+
+        doc = weasyprint.HTML(string=html).render()  # laid out once
     if str(path.relative_to(REPORTS)) in LAID_OUT:
-        assert _overflow(html) == []
+        assert _overflow(doc) == []
+    if path.name == "results.json":
+        _assert_page_one_states_what_decides_the_verdict(results, _page_texts(doc))
     captions = _figure_captions(html)
     assert html.count("<figure>") == len(captions) > 0
     numbers = [int(m.group(1)) if (m := re.match(r"\s*Figure (\d+): \S", c)) else None for c in captions]
@@ -75,11 +83,8 @@ def test_every_figure_numbered_in_order_and_nothing_crosses_the_page_edge(path, 
         assert label not in html, label
 
 
-def _overflow(html: str) -> list[str]:
-    """Boxes whose right edge passes the page's content box (WeasyPrint layout), with their text."""
-    import weasyprint
-
-    doc = weasyprint.HTML(string=html).render()
+def _overflow(doc) -> list[str]:
+    """Boxes whose right edge passes the page's content box (a WeasyPrint layout), with their text."""
     bad = []
     for n, page in enumerate(doc.pages, 1):
         pb = page._page_box
@@ -98,11 +103,43 @@ def _overflow(html: str) -> list[str]:
 
 
 def test_overflow_check_can_fail():
+    import weasyprint
+
     wide = "<html><body><table><tr><td style='white-space: nowrap'>" + "0.00753 " * 60 + "</td></tr></table></body></html>"
-    assert _overflow(wide)
+    assert _overflow(weasyprint.HTML(string=wide).render())
 
 
 def test_round_off_prints_as_zero():
     text = str(vec([1.4e-19, -0.0075294, 7.3e-33], 4, "N"))
     assert text == "(0, -0.007529, 0) N", text
     assert "10<sup>" in str(vec([1.4e-6, 0.0075], 4))  # a small but real component stays
+
+
+def _page_texts(doc) -> list[str]:
+    """The text of each page of a WeasyPrint layout, in reading order."""
+    texts = []
+    for page in doc.pages:
+        words, stack = [], [page._page_box]
+        while stack:
+            box = stack.pop(0)
+            if type(box).__name__ == "MarginBox":
+                continue
+            if getattr(box, "text", None):
+                words.append(box.text)
+            stack[0:0] = list(getattr(box, "children", []) or [])
+        texts.append(" ".join(words))
+    return texts
+
+
+def _assert_page_one_states_what_decides_the_verdict(results: dict, pages: list[str]) -> None:
+    """Page 1 of a check report: the verdict (with the reason where outside the model's validity), the
+    assumptions, the model's validity and the design limits; nowhere a word that needs a screen."""
+    first = pages[0]
+    for words in ("Margins", "What decides the verdict", "end attachment", "current along the tether",
+                  "end tension", "field along the tether", "material damping", "the model assumes the tether is",
+                  "straight under the lateral Lorentz load", "longest tether", "largest current", "smallest tension",
+                  "largest spin rate"):
+        assert words in first, (words, first[:300])
+    if results["verdict"] == "outside":
+        assert "OUTSIDE THE MODEL'S VALIDITY" in first and "bows by" in first
+    assert "hover" not in " ".join(pages)

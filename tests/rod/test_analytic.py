@@ -21,6 +21,7 @@ import pytest
 import scipy.linalg
 from scipy.optimize import brentq
 
+from etcheck.rod.core.parameters import F_CLAMPED
 from etcheck.rod.straight import analytic
 
 mp = pytest.importorskip("mpmath")
@@ -346,3 +347,39 @@ def test_bending_frequencies_large_rotary_inertia_match_rung1(P, R):
     mu = np.sort(s.eigenvalues.imag)
     for target in np.concatenate([weak, stiff]):
         assert np.min(np.abs(mu - target)) <= 1e-8 * target, target
+
+
+# --- natural frequencies under tension -----------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("ends", [("welded", "welded"), ("pinned", "pinned"), ("welded", "pinned")])
+@pytest.mark.parametrize("R, P, T", [(0.55, 1e-3, 2.0), (2.56e-6, 2e-10, 1.44), (0.9, 1e-2, 50.0)])  # R = 1: double roots
+def test_tensioned_frequencies_are_roots_of_the_exact_undamped_determinant(R, P, T, ends):
+    """Each frequency mu of the weak and stiff equations under tension is a real root -lambda^2 = mu^2 of the
+    exact characteristic function E of the undamped straight rod at B = omega = 0 (its own formulation, the
+    4x4 blocks of both axes at once): E changes sign across mu^2 (1 +- 1e-7)."""
+    from etcheck.rod.core.parameters import RodParameters
+    from etcheck.rod.straight.undamped_kernel import characteristic_mu
+
+    p = RodParameters(P=P, R=R, Gamma=0.75, f=F_CLAMPED, B=0.0, omega=0.0, T=T, gamma=0.0, ends=ends)
+    for axis in ("weak", "stiff"):
+        for mu in analytic.bending_frequencies(P, R, F_CLAMPED, 3, axis, ends, T):
+            lo, hi = characteristic_mu(p, np.array([mu**2 * (1 - 1e-7), mu**2 * (1 + 1e-7)]))
+            assert lo * hi < 0, (axis, mu)
+
+
+def test_taut_tape_is_a_string_with_end_layers():
+    """The tape tether's weak axis under 0.0106 N: n pi sqrt(T) (the string) to within its clamped boundary
+    layers, 2 eps_u = 2 sqrt(R / (f T)) relative, and far above the unloaded 8.4e-7 Hz-like sqrt(R) mode."""
+    R, P, T = 2.556164383561644e-06, 2.0857142857142857e-10, 1.4446060436451282
+    mu = analytic.bending_frequencies(P, R, F_CLAMPED, 3, "weak", T=T)
+    string = np.arange(1, 4) * math.pi * math.sqrt(T)
+    assert mu == pytest.approx(string * (1 + 2 * math.sqrt(R / (F_CLAMPED * T))), rel=1e-6)
+    assert mu[0] > 1e3 * analytic.bending_frequencies(P, R, F_CLAMPED, 1, "weak")[0]
+
+
+def test_tension_zero_is_the_papers_spectrum_and_compression_is_refused():
+    assert analytic.bending_frequencies(1e-3, 0.55, F_CLAMPED, 5, "weak", T=0.0) == pytest.approx(
+        analytic.bending_frequencies(1e-3, 0.55, F_CLAMPED, 5, "weak"), rel=0)
+    with pytest.raises(ValueError):
+        analytic.bending_frequencies(1e-3, 0.55, F_CLAMPED, 5, "weak", T=-1.0)

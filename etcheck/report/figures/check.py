@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from etcheck.report.figures.common import draw
+from etcheck.report.figures.common import draw, legend_below
 from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
 from etcheck.report.figures.diagram import branch_plot, shapes_plot
@@ -44,18 +44,17 @@ def chi_plot(results: dict) -> str:
     if op <= beta[-1]:
         ax.axvline(op, color="#27ae60", lw=2, label=f"operating β = {op:.4g}")
     else:
-        ax.annotate(f"operating β = {op:.4g} (off scale) →", (beta[-1], 0.85 * top),
-                    ha="right", fontsize=8, color="#27ae60", fontweight="bold")
-        ax.plot([], [], color="#27ae60", lw=2, label=f"operating β = {op:.4g} (off scale)")
+        ax.plot([beta[-1]], [0.0], marker=">", color="#27ae60", ms=9, mec="k", clip_on=False, zorder=6, ls="none",
+                label=f"operating β = {op:.4g} (off scale, to the right)")
     ax.set_xlim(0, beta[-1])
     ax.set_ylim(-0.05 * top, top)
     ax.set_xlabel("β = ∛(f B / √R)  (dimensionless)")
     ax.set_ylabel("scaled χ (dimensionless)")
-    ax.legend(loc="upper left", fontsize=7, framealpha=0.9)
     ax.set_title("Characteristic function of the straight welded tether (ω = 0, T = 0)" if welded else
                  f"Characteristic function of the straight tether, {described.split(' (')[0]} (ω = 0, T = 0)",
                  fontsize=9)
     fig.tight_layout()
+    legend_below(ax, ncol=2)
     return _image(fig)
 
 
@@ -76,7 +75,6 @@ def mode_plot(results: dict) -> str:
     ax1.plot(s, y, color="#e67e22", ls="--", label="y (along d₂)")
     ax1.set_xlabel("arclength s [m]")
     ax1.set_ylabel("deflection / max (–)")
-    ax1.legend(fontsize=7, loc="lower center")
     ax1.set_title("First buckling mode (one of a double pair)", fontsize=9)
     ax2.plot(x, y, color="#7d3c98")
     ends, _ = _ends(results)
@@ -85,9 +83,10 @@ def mode_plot(results: dict) -> str:
     ax2.set_aspect("equal", adjustable="datalim")
     ax2.set_xlabel("x / max (–)")
     ax2.set_ylabel("y / max (–)")
-    ax2.legend(fontsize=7, loc="upper right")
     ax2.set_title("End view (coil)", fontsize=9)
     fig.tight_layout()
+    legend_below(ax1, ncol=2)
+    legend_below(ax2, ncol=1)
     return _image(fig)
 
 
@@ -136,9 +135,10 @@ def campbell_plot(results: dict) -> str:
     ax2.set_xlabel("spin rate [rpm]")
     ax1.set_title(f"Campbell diagram of the straight tether at the operating load\n"
                   f"(I·B0 = {lin['operating']['IB0_N_per_m']:.3g} N/m, rotating frame)", fontsize=9)
-    ax1.legend(fontsize=7, loc="upper left", framealpha=0.9)
     ax1.set_xlim(rpm[0], rpm[-1])
     fig.tight_layout()
+    handles, _ = ax1.get_legend_handles_labels()
+    legend_below(ax2, handles=handles, ncol=3)
     return _image(fig)
 
 
@@ -217,7 +217,6 @@ def stability_map_plot(results: dict) -> str:
         Line2D([], [], marker="o", color="#c0392b", ls="", label="critical load at operating spin"),
         Line2D([], [], marker="s", color="#c0392b", ls="", label="critical spin at operating load"),
     ]
-    ax.legend(handles=handles, fontsize=7, loc="upper right", framealpha=0.92)
     ax.set_xlabel("magnetic load I·B0 [N/m]")
     ax.set_ylabel("spin rate [rpm]")
     ax.ticklabel_format(style="sci", scilimits=(-3, 4), useMathText=True)  # a tape's 1e-4 N/m: "×10⁻⁴", not
@@ -225,6 +224,8 @@ def stability_map_plot(results: dict) -> str:
     ax.set_ylim(rpm[0], rpm[-1])
     ax.set_title(f"Safe operating region of the straight tether (T = {results['scene']['tension_N']:.3g} N, "
                  f"γ = {results['scaled']['gamma']:.3g})", fontsize=9)
+    fig.tight_layout()
+    legend_below(ax, handles=handles, ncol=3)
     return _image(fig)
 
 
@@ -345,8 +346,8 @@ def coil_region_plot(results: dict) -> str:
     ax.set_ylabel("magnetic load I·B0 [N/m]")
     ax.set_title(f"Coil (b1): where the coiled tether is stable (T = {results['scene']['tension_N']:.3g} N; "
                  "independent of the damping)", fontsize=9)
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
     fig.tight_layout()
+    legend_below(ax, ncol=2)
     return _image(fig)
 
 

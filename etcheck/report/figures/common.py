@@ -55,11 +55,44 @@ def pyplot():
     return plt
 
 
+#: space under an axes for its tick labels and x-axis label [inch]: a legend below starts past it
+BELOW_AXIS_INCH = 0.48
+
+
+def legend_below(ax, handles=None, ncol: int = 2, fontsize: float = 7, axis_label: bool = True):
+    """A legend under ``ax``, clear of the data and of the x-axis label (call it after the figure's layout:
+    it reads the axes' final height). The figure's PNG grows to hold it (:func:`image` crops to the content)."""
+    fig = ax.figure
+    height = ax.get_position().height * fig.get_figheight()
+    gap = (BELOW_AXIS_INCH if axis_label else 0.3) / height
+    kw = {} if handles is None else {"handles": handles}
+    return ax.legend(loc="upper center", bbox_to_anchor=(0.5, -gap), ncol=ncol, fontsize=fontsize, frameon=False,
+                     borderaxespad=0.0, **kw)
+
+
+#: called with every figure just before it is drawn (:func:`inspecting`); None: nothing
+_INSPECT: contextvars.ContextVar[Callable | None] = contextvars.ContextVar("etcheck_inspect", default=None)
+
+
+@contextlib.contextmanager
+def inspecting(callback: Callable) -> Iterator[None]:
+    """Within the block every figure is handed to ``callback(fig)`` before it is drawn (figures drawn in this
+    process: the layout tests read where legends and labels fall against the data)."""
+    token = _INSPECT.set(callback)
+    try:
+        yield
+    finally:
+        _INSPECT.reset(token)
+
+
 def image(fig) -> FigureImage:
     """Draw ``fig`` once at :data:`PRINT_DPI` and return it as a PNG ``<img>``, cropped to its content plus
     :data:`PAD_INCH` (as matplotlib's ``bbox_inches="tight"``); the figure is closed."""
     from PIL import Image
 
+    inspect = _INSPECT.get()
+    if inspect is not None:
+        inspect(fig)
     png = _cropped_png(fig)
     pyplot().close(fig)
     width, height = Image.open(io.BytesIO(png)).size
@@ -140,9 +173,11 @@ def _cropped_png(fig) -> bytes:
     h, w = rgba.shape[:2]
     ink = np.asarray(rgba).view(np.uint32)[..., 0] != 0xFFFFFFFF  # anything but the opaque white background
     rows, cols = np.flatnonzero(ink.any(axis=1)), np.flatnonzero(ink.any(axis=0))
-    if rows.size == 0 or rows[0] == 0 or cols[0] == 0 or rows[-1] == h - 1 or cols[-1] == w - 1:
+    tight = fig.get_tightbbox(canvas.get_renderer())  # inches: past the canvas where a legend lies wholly outside it
+    beyond = tight.x0 < 0 or tight.y0 < 0 or tight.x1 > fig.get_figwidth() or tight.y1 > fig.get_figheight()
+    if beyond or rows.size == 0 or rows[0] == 0 or cols[0] == 0 or rows[-1] == h - 1 or cols[-1] == w - 1:
         # content reaches past the canvas (e.g. a legend below the axes): draw again onto its tight bounding box
-        bbox = fig.get_tightbbox(canvas.get_renderer()).padded(PAD_INCH)
+        bbox = tight.padded(PAD_INCH)
         buf = io.BytesIO()
         fig.savefig(buf, format="png", dpi=PRINT_DPI, bbox_inches=bbox)
         crop = Image.open(buf)

@@ -17,7 +17,7 @@ import functools
 import numpy as np
 
 from etcheck.numerics.pchip import Pchip
-from etcheck.report.figures.common import draw
+from etcheck.report.figures.common import draw, legend_below
 from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
 
@@ -55,9 +55,10 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     plt = _plt()
     fig, ax = plt.subplots(figsize=(6.4, 3.6))
     seen: set[str] = set()
+    labels = []
     for n, b in enumerate(d["branches"]):
         c = COLOURS[n % len(COLOURS)]
-        _draw_branch(ax, b, xkey, ykey, c)
+        labels.append(_draw_branch(ax, b, xkey, ykey, c))
         seen |= _draw_special_points(ax, b, xkey, ykey, seen)
         if pitchfork_key and b.get(pitchfork_key) is not None:
             ax.plot([b[pitchfork_key]], [0.0], marker="o", color=c, ms=4, ls="none")
@@ -69,10 +70,31 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
-    if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=7, loc="best")
     fig.subplots_adjust(left=0.15)  # room for signed tick labels: the figure is drawn once (no second, cropping pass)
+    _spread(ax, labels)
+    if ax.get_legend_handles_labels()[0]:
+        legend_below(ax, ncol=3)
     return _image(fig)
+
+
+#: vertical step between branch labels that would fall on one another [points]
+LABEL_STEP = 9.0
+
+
+def _spread(ax, labels: list) -> None:
+    """Move branch labels apart where their anchors fall within a label's height of each other (several
+    branches ending at one point: b1, b2 and b3 on the axis of measure₂): stacked upwards in steps of
+    LABEL_STEP points, in the order drawn."""
+    ax.autoscale_view()
+    to_points = 72.0 / ax.figure.dpi
+    placed: list[tuple[float, float]] = []
+    for text in labels:
+        x, y = (v * to_points for v in ax.transData.transform(text.xy))
+        k = 0
+        while any(abs(x - px) < 3 * LABEL_STEP and abs(y + k * LABEL_STEP - py) < LABEL_STEP for px, py in placed):
+            k += 1
+        text.set_position((3.0, k * LABEL_STEP))
+        placed.append((x, y + k * LABEL_STEP))
 
 
 #: points drawn per step between two computed states of a branch
@@ -94,8 +116,9 @@ def _smooth(x: np.ndarray, y: np.ndarray, span: tuple[float, float]) -> tuple[np
     return Pchip.through(t, x)(fine), Pchip.through(t, y)(fine)
 
 
-def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str) -> None:
-    """One branch, solid where stable (or unknown) and dashed where unstable, labelled at its end."""
+def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str):
+    """One branch, solid where stable (or unknown) and dashed where unstable, labelled at its end (the label
+    returned)."""
     x, y = np.asarray(b[xkey], dtype=float), np.asarray(b[ykey], dtype=float)
     span = (float(np.ptp(x)) or 1.0, float(np.ptp(y)) or 1.0)
     mirror = ykey == "measure2" and b.get("symmetry") is None  # connecting branches come in mirror pairs
@@ -107,8 +130,8 @@ def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str) -> None:
         ax.plot(xs, ys, color=colour, **style)
         if mirror:
             ax.plot(xs, -ys, color=colour, alpha=0.6, **style)
-    ax.annotate(b["label"], (x[-1], y[-1]), xytext=(3, 0), textcoords="offset points", color=colour, fontsize=8,
-                fontweight="bold")
+    return ax.annotate(b["label"], (x[-1], y[-1]), xytext=(3, 0), textcoords="offset points", color=colour,
+                       fontsize=8, fontweight="bold")
 
 
 #: x key of a branch -> key of the same abscissa in its special points
@@ -185,10 +208,10 @@ def shapes_plot(shapes: list[tuple[str, dict]], length_m: float | None = None) -
         ax.set_ylabel(f"{name} [{unit}]", fontsize=8)
         ax.set_title(f"{name}–e3 projection", fontsize=8)
         ax.tick_params(labelsize=7)
-    if len(shapes) > 1:
-        ax1.legend(fontsize=7, loc="best")
     # the 3-D axes draw below their box: room for them, so that the figure is drawn once
     fig.subplots_adjust(left=0.0, right=0.98, top=0.93, bottom=0.15)
+    if len(shapes) > 1:
+        legend_below(ax2, ncol=1)
     return _image(fig)
 
 
@@ -208,30 +231,35 @@ def eigen_paths_plot(paths: dict, xlabel: str, title: str) -> str:
         a2.plot(x, im[:, j], color=c, lw=1.2)
         seen.add(lab)
     a1.axhline(0.0, color="k", lw=0.8)
-    a1.set_ylabel("Re λ (growth rate, units of ω_c)")
-    a2.set_ylabel("Im λ (frequency, units of ω_c)")
+    a1.set_ylabel("Re λ (growth rate, units of ω_ref)")
+    a2.set_ylabel("Im λ (frequency, units of ω_ref)")
     for ax in (a1, a2):
         ax.set_xlabel(xlabel)
-    a1.legend(fontsize=7)
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
+    legend_below(a1, ncol=3)
     return _image(fig)
 
 
-def diagram_figures(d: dict, length_m: float) -> dict[str, str]:
-    """The diagram report's figures by name, drawn two at a time in the report process (:func:`draw`)."""
+def diagram_figures(d: dict, length_m: float, operating: dict | None = None) -> dict[str, str]:
+    """The diagram report's figures by name, drawn two at a time in the report process (:func:`draw`);
+    ``operating`` (B, IB0_N_per_m, label): the mission's operating load, marked on the straight tether."""
+    def mark(key: str):
+        return None if operating is None else (operating[key], 0.0, operating["label"])
+
     jobs = {
         "measure1": lambda: {"measure1": branch_plot(d, "values", "measure1", "B (dimensionless load)",
                                                      r"measure$_1 = \int_0^1 |x^0(s)|\,ds$",
                                                      "bifurcation diagram (cf. arXiv:0810.3668 Fig. 5)",
-                                                     "pitchfork_B")},
+                                                     "pitchfork_B", mark=mark("B"))},
         "measure2": lambda: {"measure2": branch_plot(d, "values", "measure2", "B (dimensionless load)",
                                                      r"measure$_2 = \int_0^1 x^0 y^0\,ds$",
                                                      "connecting branches come in mirror pairs "
-                                                     "(cf. arXiv:0810.3668 Fig. 6)", "pitchfork_B")},
+                                                     "(cf. arXiv:0810.3668 Fig. 6)", "pitchfork_B", mark=mark("B"))},
         "physical": lambda: {"physical": branch_plot(d, "IB0_N_per_m", "max_deflection_m", "I·B0 [N/m]",
                                                      "maximum lateral deflection [m]",
-                                                     "the same branches in physical units", "pitchfork_IB0_N_per_m")},
+                                                     "the same branches in physical units", "pitchfork_IB0_N_per_m",
+                                                     mark=mark("IB0_N_per_m"))},
     }
     for b in d["branches"]:
         if b.get("eigenvalue_paths"):
@@ -284,9 +312,9 @@ def damping_maps(r: dict) -> str:
         ax.plot(star, w, color="k", lw=2, label="secondary pitchfork B*(ω)")
         ax.plot(prim, w, color="#888", lw=1.2, ls="--", label="b1 pitchfork (straight tether)")
         op = r["operating"]
-        if B[0] <= op["B"] <= B[-1] and w[0] <= op["omega"] <= w[-1]:
-            ax.plot([op["B"]], [op["omega"]], marker="*", color="#27ae60", mec="k", ms=10, ls="none",
-                    label="mission operating point")
+        if 0.0 <= op["B"] <= B[-1] and w[0] <= op["omega"] <= w[-1]:  # the axes run from B = 0
+            ax.plot([op["B"]], [op["omega"]], marker="*", color="#27ae60", mec="k", ms=10, ls="none", clip_on=False,
+                    zorder=6, label="mission operating point")
         ax.set_title(f"γ = {s['gammas'][k]:g} (γ_v = {s['damping_time_s'][k]:.3g} s)", fontsize=8)
         ax.set_xlim(0, B[-1])
         ax.set_ylim(w[0], w[-1])

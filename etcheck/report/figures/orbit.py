@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from etcheck.report.figures.common import image as _image
+from etcheck.report.figures.common import legend_below
 from etcheck.report.figures.common import pyplot as _plt
 
 
@@ -38,8 +39,8 @@ def ground_track_plot(results: dict) -> str:
     ax.axhline(0.0, color="k", lw=0.5, alpha=0.5)
     ax.set_xlabel("longitude [deg E]")
     ax.set_ylabel("geodetic latitude [deg N]")
-    ax.legend(loc="lower left", fontsize=7, framealpha=0.9)
     ax.set_title(f"Ground track over {o['duration_s'] / 3600:.4g} h from {o['start'][:16]} UTC ({o['model']})", fontsize=9)
+    legend_below(ax, ncol=1)
     return _image(fig)
 
 
@@ -56,8 +57,7 @@ def _time_panels(o: dict, series: dict, unit: float, unit_name: str, title: str)
     ax.axhline(o["worst"]["axial_field_T"] * 1e6, color="#c0392b", lw=0.8, ls=":",
                label=f"worst over the window {o['worst']['axial_field_T'] * 1e6:.4g} µT")
     ax.set_ylabel("axial field [µT]")
-    ax.set_ylim(0, 1.7 * o["worst"]["axial_field_T"] * 1e6)  # room for the legend above the curves
-    ax.legend(fontsize=7, loc="upper left", ncol=2, framealpha=0.9)
+    ax.set_ylim(0, 1.1 * o["worst"]["axial_field_T"] * 1e6)
     ax.set_title(title, fontsize=9)
     if margin is not None:
         mg = _arr(margin)
@@ -75,10 +75,12 @@ def _time_panels(o: dict, series: dict, unit: float, unit_name: str, title: str)
             ax2.axhline(m["smallest"], color="k", lw=0.8, ls=":", label=f"smallest {m['smallest']:.4g}")
         ax2.set_ylabel("load margin (–)")
         hi = max(float(np.nanmax(mg)), m["required"])
-        ax2.set_ylim(*((float(np.min(positive)) / 3, hi * 30) if log else (0.0, 1.5 * hi)))
-        ax2.legend(fontsize=7, loc="upper left", ncol=3, framealpha=0.9)
+        low = min(float(np.min(positive)), m["required"]) / 1.5 if log else 0.0
+        ax2.set_ylim(low, hi * 1.5)
     axes[-1, 0].set_xlabel(f"time since {o['start'][:16]} UTC [{unit_name}]")
     fig.tight_layout()
+    handles = [h for a in axes[:, 0] for h in a.get_legend_handles_labels()[0]]
+    legend_below(axes[-1, 0], handles=handles, ncol=2)
     return _image(fig)
 
 

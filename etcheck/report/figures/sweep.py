@@ -11,6 +11,7 @@ import numpy as np
 
 from etcheck.input.sweep_axes import AXES
 from etcheck.report.figures.common import image as _image
+from etcheck.report.figures.common import legend_below
 from etcheck.report.figures.common import pyplot as _plt
 from etcheck.report.sweep_files import grid_array
 
@@ -45,7 +46,6 @@ def margin_map(results: dict, field: str, title: str) -> str:
     fig, ax = plt.subplots(figsize=(6.6, 4.3))
     _shade_regions(ax, results, field, region, x, y)
     exact = _margin_contours(ax, results, field, x, y, xlog, ylog)
-    _label_regions(ax, region, x, y)
     if not exact:
         ax.plot([], [], color="k", lw=2, label="stability boundary (margin 1)")
     ax.plot([], [], color="#1f4e79", lw=2.6, ls="--", label=f"required margin {req:g}")
@@ -59,7 +59,8 @@ def margin_map(results: dict, field: str, title: str) -> str:
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.set_title(title, fontsize=9)
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, framealpha=0.85)
+    fig.tight_layout()
+    legend_below(ax, handles=_region_handles(region) + ax.get_legend_handles_labels()[0], ncol=2)
     return _image(fig)
 
 
@@ -107,19 +108,35 @@ def _margin_contours(ax, results: dict, field: str, x: np.ndarray, y: np.ndarray
         a, b = zip(*[(r["length_m"], r["other_display"]) for r in cl if r["length_m"] is not None])
         ax.plot(a, b, "-o", ms=2.5, lw=2.0, color="k", zorder=6,
                 label="stability boundary: critical length located exactly (Brent)")
+    _bow_limit(ax, results, x, y)
     _mark_operating(ax, results, x, y)
     return exact
 
 
-def _label_regions(ax, region: np.ndarray, x: np.ndarray, y: np.ndarray) -> None:
-    """Each region's name at its middle grid point."""
-    for name, colour in (("straight-stable", "#14632c"), ("buckled-stable", "#1f4e79"),
-                         ("straight-unstable", "#8e1b10")):
-        idx = np.argwhere(region == name)
-        if len(idx):
-            i, j = idx[len(idx) // 2]
-            ax.text(x[i], y[j], name, color=colour, fontsize=8, ha="center", va="center", fontweight="bold",
-                    bbox={"facecolor": "white", "alpha": 0.6, "edgecolor": "none", "pad": 1})
+def _bow_limit(ax, results: dict, x: np.ndarray, y: np.ndarray) -> None:
+    """Where the bow under the lateral Lorentz load reaches the model's limit (beyond it, away from the straight
+    tether's region, the model does not describe the tether), where the grid crosses it."""
+    if "bow_over_length" not in results["grid"]:
+        return
+    bow = grid_array(results, "bow_over_length")
+    limit = results["grid"]["bow_limit"]
+    if not (np.nanmin(bow) < limit < np.nanmax(bow)):
+        return
+    X, Y = np.meshgrid(x, y, indexing="ij")
+    ax.contour(X, Y, np.log10(bow), levels=[np.log10(limit)], colors="#e67e22", linewidths=1.8, linestyles="-.",
+               zorder=6)
+    ax.plot([], [], color="#e67e22", lw=1.8, ls="-.",
+            label=f"bow = {100 * limit:g} % of the length: past it, outside the model's validity")
+
+
+def _region_handles(region: np.ndarray) -> list:
+    """Legend entries of the regions present, by colour (a name written on the map would cover its contours
+    and points)."""
+    from matplotlib.patches import Patch
+
+    return [Patch(color=colour, label=name) for name, colour in
+            (("straight-stable", STABLE), ("buckled-stable", BUCKLED), ("straight-unstable", UNSTABLE))
+            if (region == name).any()]
 
 
 def _exact_edge(results: dict, x) -> tuple | None:
@@ -203,7 +220,8 @@ def critical_length_plot(results: dict) -> str:
         ax.set_xscale("log")
     ax.set_xlabel(f"{a['label']} [{a['unit']}]")
     ax.set_ylabel("critical length [m]")
-    ax.legend(fontsize=7)
+    fig.tight_layout()
+    legend_below(ax, ncol=2)
     return _image(fig)
 
 
@@ -233,7 +251,8 @@ def margin_lines(results: dict) -> str:
         ax.set_xscale("log")
     ax.set_xlabel(xlabel)
     ax.set_ylabel("margin = critical / operating [-]")
-    ax.legend(fontsize=7)
+    fig.tight_layout()
+    legend_below(ax, ncol=2)
     return _image(fig)
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from etcheck.report.figures.common import image as _image
+from etcheck.report.figures.common import legend_below
 from etcheck.report.figures.common import pyplot as _plt
 
 
@@ -27,7 +28,7 @@ def tornado_plot(results: dict) -> str:
                 ax.barh(i, (hi - nominal), left=nominal, color="#1f4e79", height=0.6,
                         label="input at the high end" if i == 0 else None)
             ax.set_yticks(range(len(rows)), [w["label"] for w in rows], fontsize=7)
-            ax.axvline(nominal, color="k", lw=1, label=f"nominal margin {nominal:.4g}")
+            ax.axvline(nominal, color="k", lw=1, label="nominal margin (each panel's)")
             ax.axvline(u["required_margin"], color="#27ae60", ls="--", lw=1.4,
                        label=f"required margin {u['required_margin']:g}")
             ax.set_xlabel("margin = critical / operating (dimensionless)")
@@ -37,7 +38,9 @@ def tornado_plot(results: dict) -> str:
             ax.set_yticks(range(len(rows)), [e["label"] for e in rows], fontsize=7)
             ax.axvline(0, color="k", lw=1)
             ax.set_xlabel("elasticity d ln margin / d ln input (dimensionless)")
-        ax.set_title(p["margin"], fontsize=9)
-        ax.legend(fontsize=6, loc="lower right", framealpha=0.9)
+        ax.set_title(f"{p['margin']} (nominal {nominal:.4g})" if nominal is not None else p["margin"], fontsize=9)
     fig.tight_layout()
+    handles = axes[0, 0].get_legend_handles_labels()[0]
+    if handles:
+        legend_below(axes[-1, 0], handles=handles, ncol=2)
     return _image(fig)

@@ -311,57 +311,65 @@ def buckling_mode(k: int, R: float, s: np.ndarray, ends: Ends = ALL_WELDED) -> t
     return x / scale, y / scale
 
 
-# --- unperturbed spectrum (T = gamma = omega = B = 0), Sec. VI B -----------------
+# --- the spectrum without load and spin (gamma = omega = B = 0; T = 0: Sec. VI B) -----------------
 
 
-def _wavenumbers(mu, P: float, stiffness: float):
-    """(a, b) of the Rayleigh beam at frequency mu (f = 1): solutions cos(a s), sin(a s), cosh(b s), sinh(b s)."""
-    root = np.sqrt(mu**4 * P**2 + 4 * mu**2 / stiffness)
-    a = np.sqrt(0.5 * mu**2 * P + 0.5 * root)
-    b = np.sqrt(np.maximum(0.5 * root - 0.5 * mu**2 * P, 0.0))
-    return a, b
+def _wavenumbers(mu, P: float, stiffness: float, tension: float = 0.0):
+    """(a, b) of the Rayleigh beam under tension at frequency mu (f = 1): solutions cos(a s), sin(a s),
+    cosh(b s), sinh(b s), with k^2 = b^2 and -a^2 the roots of S k^4 - (tension - P S mu^2) k^2 - mu^2 = 0
+    (S the stiffness: R for the x (weak) equation and 1 for y; Sec. VI B at tension 0)."""
+    c = tension / stiffness - P * mu**2
+    root = np.sqrt(c * c + 4 * mu**2 / stiffness)
+    return np.sqrt(0.5 * (root - c)), np.sqrt(np.maximum(0.5 * (root + c), 0.0))
 
 
-def _clamped_beam_function(mu, P: float, stiffness: float):
-    """Frequency equation of a clamped-clamped Rayleigh beam, Sec. VI B, f = 1 (mu scalar or array).
+def _clamped_beam_function(mu, P: float, stiffness: float, tension: float = 0.0):
+    """Frequency equation of a clamped-clamped Rayleigh beam under tension, f = 1 (mu scalar or array).
 
-    (a^2 - b^2) sin a sinh b - 2 a b (1 - cos a cosh b) = 0, divided by cosh b
-    so it stays bounded; ``stiffness`` is R for the x (weak) equation and 1 for y.
+    (a^2 - b^2) sin a sinh b - 2 a b (1 - cos a cosh b) = 0 with (a, b) of :func:`_wavenumbers`, divided by
+    cosh b so it stays bounded (1 / cosh b written without overflow: under strong tension b is large).
     """
-    a, b = _wavenumbers(mu, P, stiffness)
-    return (a * a - b * b) * np.sin(a) * np.tanh(b) - 2 * a * b * (1.0 / np.cosh(b) - np.cos(a))
+    a, b = _wavenumbers(mu, P, stiffness, tension)
+    sech = 2.0 * np.exp(-b) / (1.0 + np.exp(-2.0 * b))
+    return (a * a - b * b) * np.sin(a) * np.tanh(b) - 2 * a * b * (sech - np.cos(a))
 
 
-def _clamped_pinned_beam_function(mu, P: float, stiffness: float):
-    """Frequency equation of a clamped-pinned Rayleigh beam (f = 1): with X = C1 (cos a s - cosh b s) +
+def _clamped_pinned_beam_function(mu, P: float, stiffness: float, tension: float = 0.0):
+    """Frequency equation of a clamped-pinned Rayleigh beam under tension (f = 1): with X = C1 (cos a s - cosh b s) +
     C2 (sin a s - (a/b) sinh b s) (clamped at s = 0), X(1) = X''(1) = 0 give (a^2 + b^2) (sin a cosh b -
-    (a/b) cos a sinh b) = 0; written b sin a - a cos a tanh b (bounded; tan a = tanh a without rotary inertia)."""
-    a, b = _wavenumbers(mu, P, stiffness)
+    (a/b) cos a sinh b) = 0; written b sin a - a cos a tanh b (bounded; tan a = tanh a without rotary inertia
+    and tension)."""
+    a, b = _wavenumbers(mu, P, stiffness, tension)
     return b * np.sin(a) - a * np.cos(a) * np.tanh(b)
 
 
 def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "weak",
-                        ends: Ends = ALL_WELDED) -> np.ndarray:
-    """First n bending frequencies mu (lambda = +- i mu) of the straight rod.
+                        ends: Ends = ALL_WELDED, T: float = 0.0) -> np.ndarray:
+    """First n bending frequencies mu (lambda = +- i mu) of the straight rod under the end tension T.
 
-    Dimensionless, f-scaling; Sec. VI B transcendental equations with rotary
-    inertia P. ``axis="weak"`` is the x equation (stiffness R, first
-    frequency sqrt(R) as P -> 0 for welded ends), ``"stiff"`` the y equation (stiffness 1).
-    ``ends``: pinned at both, the modes sin(k s), k = n pi, mu^2 = k^4 / (P k^2 + 1 / stiffness)
-    (f = 1); one of each, the roots of :func:`_clamped_pinned_beam_function`.
+    Dimensionless, f-scaling; Sec. VI B transcendental equations with rotary inertia P, and the tension T
+    (f-scaled as in eq. (36)) of the undamped, unloaded, non-spinning straight rod (docs/model.md, section 6:
+    the weak equation is (R/f) u'''' - (T + P R lambda^2) u'' + lambda^2 u = 0). ``axis="weak"`` is the x
+    equation (stiffness R, first frequency sqrt(R) as P, T -> 0 for welded ends), ``"stiff"`` the y equation
+    (stiffness 1). ``ends``: pinned at both, the modes sin(k s), k = n pi, mu^2 = (S k^4 + f T k^2) /
+    (P S k^2 + 1) (f = 1); one of each, the roots of :func:`_clamped_pinned_beam_function`. Under a strong
+    tension the first ones approach the taut string's n pi sqrt(T).
     """
+    if T < 0:
+        raise ValueError("bending_frequencies: a compressive end force (T < 0) is not modelled here")
     stiffness = {"weak": R, "stiff": 1.0}[axis]
+    fT = f * T
     welded = clamped_count(ends)
     if welded == 0:
         k = np.arange(1, n + 1) * math.pi
-        return k**2 / np.sqrt(P * k**2 + 1.0 / stiffness) / math.sqrt(f)
+        return np.sqrt((stiffness * k**4 + fT * k**2) / (P * stiffness * k**2 + 1.0)) / math.sqrt(f)
     equation = _clamped_beam_function if welded == 2 else _clamped_pinned_beam_function
-    g = lambda mu: equation(mu, P, stiffness)  # noqa: E731
-    # Euler-Bernoulli spacing: mu_n ~ sqrt(stiffness) ((n + 1/2) pi)^2 (welded; (n + 1/4) pi mixed), and
-    # rotary inertia only lowers the frequencies; scan finely in the f = 1 frequency
-    # and refine the first n sign changes to the last bits.
-    mu_max = math.sqrt(stiffness) * ((n + 1.5) * math.pi) ** 2
-    grid = np.linspace(1e-6, mu_max, 400 * (n + 2))
+    g = lambda mu: equation(mu, P, stiffness, fT)  # noqa: E731
+    # the f = 1 frequency of the n-th mode is below that of a beam plus that of a string without rotary inertia
+    # (rotary inertia only lowers them): scan finely and refine the first n sign changes to the last bits
+    k = (n + 1.5) * math.pi
+    mu_max = math.sqrt(stiffness * k**4 + fT * k**2)
+    grid = np.linspace(1e-6 * mu_max / k**2, mu_max, 400 * (n + 2))
     values = g(grid)
     i = np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0][:n]
     if i.size < n:

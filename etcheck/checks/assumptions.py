@@ -1,0 +1,195 @@
+"""The assumptions that decide the verdict, one record each, with how far the margin moves with them.
+
+Page 1 of the report lists them: how the ends are attached, the current along the tether, the tension and
+where it comes from, the field along the tether and where it comes from, and the damping. Each record says
+the value as the check used it, where it comes from (``flag``: "data" as given, "assumed" where the mission
+lists the field under ``[mission] assumed``, "default" where etcheck chose it, "model" where the model
+assumes it), and how far the governing margin (the smallest margin of the straight tether) moves with it:
+its elasticity d ln margin / d ln input, and the margin under an alternative where one is computed (no
+tension; no damping). The margins come from the routes of :mod:`etcheck.checks.design_limits`.
+
+Elasticities: the load margin is critical load / (|I| B0) with a critical load that depends on neither, so
+its elasticity in the current and in the field is exactly -1; with damping the critical values do not depend
+on the damping (Kelvin-Tait-Chetaev: the static operator does not contain it), exactly 0. Elsewhere (the
+tension, a spin margin) central differences of ln margin in ln input with relative step :data:`STEP`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+
+from etcheck.checks.design_limits import Inputs, NoAnswer, inputs_of, not_sought, point_margins
+from etcheck.checks.sections import AlternativeMargin
+from etcheck.checks.sections_verdict import AssumptionRecord, AssumptionsSection
+from etcheck.checks.straight import WhirlOptions
+from etcheck.input.mission import DEFAULT_GAMMA, Mission
+from etcheck.rod.core.ends import describe
+from etcheck.scaling import Scene, scale
+
+#: relative step of the central differences (truncation ~ STEP^2, round-off ~ margin error / STEP)
+STEP = 1e-3
+
+DATA, ASSUMED, DEFAULT, MODEL = "data", "assumed", "default", "model"
+
+
+def assumptions(mission: Mission, base: Scene, margin_name: str | None, margin_value: float | None,
+                options: WhirlOptions, other_ends: tuple[AlternativeMargin, ...] = ()) -> AssumptionsSection:
+    """The records of the module docstring for the mission's worst-case scene ``base``; ``margin_name`` and
+    ``margin_value``: the governing margin as the check reported it, ``options`` the check's rung-1 settings,
+    ``other_ends`` the same margin under the other attachments of the ends (:mod:`etcheck.checks.attachment`)."""
+    started = time.perf_counter()
+    inp = inputs_of(mission, base, options)
+    rows = [_ends(mission, other_ends), _current(inp), _tension(inp), _field(inp), _damping(inp)]
+    return {"margin": margin_name, "margin_value": margin_value, "required": mission.required_margin,
+            "rows": rows, "time_s": time.perf_counter() - started}
+
+
+def _flag(mission: Mission, *fields: str) -> str:
+    return ASSUMED if mission.is_assumed(*fields) else DATA
+
+
+def _record(key: str, assumption: str, value: str, source: str, flag: str, note: str = "",
+            elasticity: float | None = None, method: str = "", alternative: str | None = None,
+            margin: float | None = None) -> AssumptionRecord:
+    return {"key": key, "assumption": assumption, "value": value, "source": source, "flag": flag,
+            "elasticity": elasticity, "elasticity_method": method, "alternative": alternative,
+            "margin_alternative": margin, "note": note}
+
+
+def _ends(mission: Mission, others: tuple[AlternativeMargin, ...]) -> AssumptionRecord:
+    """How the ends are held, and the governing margin under each other attachment (computed by the check)."""
+    ends = mission.end_conditions
+    if "tether.end_conditions" in mission.given:
+        source, flag = "tether.end_conditions", _flag(mission, "tether.end_conditions")
+    else:
+        source, flag = "not given: welded, as in the paper", DEFAULT
+    alt = others[0] if others else None
+    alternatives = "; ".join(f"{_short(a['ends'])}: {_value(a['value'])}" for a in others[1:])
+    return _record("ends", "end attachment", describe(ends), source, flag, alternatives, None, "",
+                   _short(alt["ends"]) if alt else None, alt["value"] if alt else None)
+
+
+def _short(ends: list[str]) -> str:
+    return f"both ends {ends[0]}" if ends[0] == ends[1] else describe(tuple(ends))
+
+
+def _value(x: float | None) -> str:
+    return "unlimited" if x is None else f"{x:.3g}"
+
+
+def _current(inp: Inputs) -> AssumptionRecord:
+    m = inp.mission
+    lo, hi = (float(x.to_value("A")) for x in m.current)
+    value = f"{inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
+    value += "; uniform along the tether"
+    el, how = _load_elasticity(inp)
+    return _record("current", "current along the tether", value, "operation.current; uniform: the model's",
+                   _flag(m, "operation.current"), "a bare tether collects its current along its length, so the "
+                   "current varies along it (the load is then circulatory and flutter is possible): not modelled",
+                   el, how)
+
+
+def _tension(inp: Inputs) -> AssumptionRecord:
+    m, T = inp.mission, inp.base.tension
+    gg = m.gravity_gradient
+    if gg is not None:
+        source = (f"gravity gradient: end masses {gg.upper_mass:.4g} kg, {gg.lower_mass:.4g} kg (tether.end_masses), "
+                  f"Ω = {gg.orbit_rate:.4g} rad/s ({_rate_source(gg.rate_source)})")
+        value = f"{T:.4g} N, the smallest ({gg.minimum_at}; {gg.maximum:.4g} N at the centre)"
+        flag = _flag(m, "tether.end_masses")
+    elif T != 0:
+        source, flag = "operation.end_tension", _flag(m, "operation.end_tension")
+        value = f"{T:.4g} N" + (" (compression)" if T < 0 else "")
+    elif "operation.end_tension" in m.given:
+        source, value, flag = "operation.end_tension: no tension", "0 N", _flag(m, "operation.end_tension")
+    else:
+        source, value, flag = "not given: no tension (conservative)", "0 N", DEFAULT
+    if T == 0:
+        return _record("tension", "end tension", value, source, flag,
+                       "tension stabilises the straight tether; without it the tether is held by bending alone")
+    el, how = _difference(inp, "end_tension", T) if T > 0 else (None, "")
+    alt = _margin_or_none(inp, "end_tension", 0.0)
+    return _record("tension", "end tension", value, source, flag, "tension stabilises the straight tether",
+                   el, how, "no end force (T = 0)", alt)
+
+
+def _rate_source(text: str) -> str:
+    """The orbit rate's source in a few words: the part before its first comma or colon."""
+    return text.split(", at apogee")[0].split(": 3 Omega")[0].split(", mean motion")[0]
+
+
+def _field(inp: Inputs) -> AssumptionRecord:
+    m = inp.mission
+    value = f"{inp.field * 1e6:.4g} µT"
+    if m.orbit_envelope is not None:
+        env = m.orbit_envelope
+        source = f"the worst over the [orbit] ({env.model}, with libration)"
+        flag = _flag(m, "orbit")
+    else:
+        lo, hi = (float(x.to_value("uT")) for x in m.axial_field)
+        source = "operation.axial_field" + (f" (worst of {lo:.4g} … {hi:.4g} µT)" if lo != hi else "")
+        flag = _flag(m, "operation.axial_field")
+    el, how = _load_elasticity(inp)
+    return _record("field", "field along the tether", value, source, flag,
+                   "uniform along the undeformed tether (the model's assumption)", el, how)
+
+
+def _damping(inp: Inputs) -> AssumptionRecord:
+    m = inp.mission
+    p = scale(inp.base).params
+    if m.damping_time is None:
+        value, source, flag = (f"γ = {p.gamma:.4g} ({inp.base.damping_time:.3g} s)",
+                               "not given: the paper's estimate (Sec. VII B)", DEFAULT)
+    else:
+        value, source, flag = (f"damping time {inp.base.damping_time:.3g} s (γ = {p.gamma:.4g})",
+                               "tether.damping_time", _flag(m, "tether.damping_time"))
+    if p.gamma > 0:
+        alt = _margin_or_none(inp, "damping_time", 0.0)
+        return _record("damping", "material damping (Kelvin-Voigt)", value, source, flag,
+                       "with any damping the straight tether loses stability only where its static operator is "
+                       "singular (Kelvin-Tait-Chetaev): its critical values do not depend on the damping", 0.0,
+                       "exact (Kelvin-Tait-Chetaev)", "no damping (flutter possible)", alt)
+    gamma_time = DEFAULT_GAMMA / scale(inp.base).scales.frequency
+    alt = _margin_or_none(inp, "damping_time", gamma_time)
+    return _record("damping", "material damping (Kelvin-Voigt)", value, source, flag,
+                   "without damping the straight tether can also lose stability by flutter, and gyroscopic "
+                   "windows above the critical spin close with any damping", None, "",
+                   f"the paper's damping γ = {DEFAULT_GAMMA}", alt)
+
+
+def _margin_at(inp: Inputs, name: str, x: float) -> float:
+    why = not_sought(inp.base)  # an undamped spinning tether: its margins are not re-evaluated (seconds each)
+    if why and name != "damping_time":
+        raise NoAnswer(why)
+    if name == "damping_time":
+        return point_margins(scale(replace(inp.base, damping_time=x)).params, inp.options).smallest
+    return inp.margins(name, x).smallest
+
+
+def _margin_or_none(inp: Inputs, name: str, x: float) -> float | None:
+    try:
+        value = _margin_at(inp, name, x)
+    except NoAnswer:
+        return None
+    return value if math.isfinite(value) else None
+
+
+def _load_elasticity(inp: Inputs) -> tuple[float | None, str]:
+    """d ln margin / d ln (|I| B0): -1 exactly without spin (the load margin alone), else a central difference."""
+    if inp.base.spin_rate == 0:
+        return -1.0, "exact: the load margin is critical load / (|I| B0)"
+    return _difference(inp, "current", inp.current)
+
+
+def _difference(inp: Inputs, name: str, x: float) -> tuple[float | None, str]:
+    """Central difference of ln margin in ln x (relative step STEP); None where a margin is not located or
+    infinite."""
+    try:
+        up, down = (_margin_at(inp, name, x * math.exp(s * STEP)) for s in (1.0, -1.0))
+    except NoAnswer as exc:
+        return None, str(exc) if str(exc).startswith("not sought") else f"not located: {exc}"
+    if not (0 < up < math.inf and 0 < down < math.inf) or math.isnan(up - down):
+        return None, "not differentiable here (a margin of zero or without limit)"
+    return (math.log(up) - math.log(down)) / (2 * STEP), f"central difference, relative step {STEP:g}"
