@@ -35,9 +35,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
-from etcheck.numerics.eigen import sparse_qep_nearest
+from etcheck.numerics.eigen import sparse_pencil_nearest, sparse_qep_nearest
 from etcheck.numerics.optimize import brentq
-from etcheck.rod.straight.mode_band import band_modes, mode_count
+from etcheck.rod.straight.mode_band import band_modes
 from etcheck.rod.straight.profiles import Tether, TetherFamily, check_resolution, family
 from etcheck.rod.straight.spectral import CriticalKind
 
@@ -48,9 +48,10 @@ __all__ = [
     "THRESHOLD",
     "Crossing",
     "collides",
+    "Band",
+    "band",
     "critical",
     "growth",
-    "spectrum_at",
 ]
 
 MODEL = "rung 1v (graded collocation, profiles)"
@@ -95,30 +96,13 @@ class Crossing:
 
 
 def _nev(tether: Tether, hi_params) -> int:
-    """How many eigenvalues each point examines: the k least pairs, every mode the load and spin reshape
-    (:func:`~etcheck.rod.straight.mode_band.band_modes` at the end of the line) and, with damping, none of the
-    Kelvin-Voigt cluster (the modes below 0.8 / gamma: ARPACK converges slowly on the cluster)."""
-    nev = max(2 * K_MODES + 4, 2 * band_modes(hi_params) + 4)
-    if tether.params.gamma > 0:
-        below = mode_count(hi_params, np.array([(0.8 / tether.params.gamma) ** 2]), hi_params.T)[0]
-        nev = min(nev, max(8, 2 * int(below)))
-    return nev
-
-
-def _shift(tether: Tether) -> float:
-    """A real shift between the low modes and the Kelvin-Voigt cluster at -1/gamma (small without damping)."""
-    return 0.5 / tether.params.gamma if tether.params.gamma > 0 else 0.01234567
+    """How many eigenvalues each point examines: the k least pairs and every mode the load and spin reshape
+    (:func:`~etcheck.rod.straight.mode_band.band_modes` at the end of the line)."""
+    return max(2 * K_MODES + 4, 2 * band_modes(hi_params) + 4)
 
 
 def _threshold(lam: np.ndarray) -> np.ndarray:
     return np.maximum(THRESHOLD, RELATIVE * np.abs(lam))
-
-
-def spectrum_at(fam: TetherFamily, x: dict, nev: int, vectors: bool = False):
-    """The nev eigenvalues nearest the shift at the point x = {"B": .., "omega": .., "T": ..} (and the
-    eigenvectors with ``vectors``)."""
-    A = fam.operator(x["B"], x["omega"], x["T"])
-    return sparse_qep_nearest(*A, k=nev, sigma=_shift(fam.tether), vectors=vectors)
 
 
 def growth(lam: np.ndarray) -> float:
@@ -126,36 +110,116 @@ def growth(lam: np.ndarray) -> float:
     return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
 
 
+@dataclass(frozen=True)
+class Band:
+    """Where a line's eigenvalues are sought on one mesh: the k[i] nearest each shift sigmas[i], with lambda
+    scaled by ``scale`` (the size of the lowest frequency). Without damping one shift next to 0 (the lowest
+    modes, both members of each pair); with damping the Kelvin-Voigt cluster at -1/gamma, hundreds of
+    eigenvalues on which ARPACK converges slowly, must stay out of reach: one real shift halfway to it where
+    the modes lie well below 1/gamma, else shifts i Omega along the band of modes, a few modes each (their
+    members with Im > 0; a real eigenvalue reaches Re lambda > 0 only through 0, where the operator is
+    singular: :meth:`_Line.static_roots`)."""
+
+    sigmas: tuple[complex, ...]
+    ks: tuple[int, ...]
+    scale: float
+
+    @property
+    def upper(self) -> bool:
+        return isinstance(self.sigmas[0], complex)
+
+
+#: Eigenvalues per shift along the band of a damped line whose modes reach the Kelvin-Voigt cluster.
+CHUNK = 6
+
+
+def band(fam: TetherFamily, point: dict, nev: int) -> Band:
+    """The :class:`Band` of a line on ``fam`` (``point``: its values of B, omega, T at the start)."""
+    gamma = fam.tether.params.gamma
+    scale = max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
+    if gamma == 0:
+        return Band((SIGMA * scale,), (nev,), scale)
+    lam = sparse_qep_nearest(*fam.operator(0.0, point["omega"], point["T"], damped=False), k=nev, sigma=SIGMA * scale,
+                             scale=scale, ordering=ORDER)
+    freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
+    if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # (a modest shift: no closer than 0.5 / gamma)
+        return Band((0.5 / gamma,), (nev,), scale)
+    chunks = [freq[i:i + CHUNK] for i in range(0, freq.size, CHUNK)]
+    return Band(tuple(complex(0.0, float(c.mean())) for c in chunks), tuple(c.size + 2 for c in chunks), scale)
+
+
+#: SuperLU's ordering of the collocation matrices: their own (block-banded along the tether).
+ORDER = "NATURAL"
+#: Real shift of an undamped band, as a fraction of the lowest frequency's scale: next to 0, where a real eigenvalue
+#: crosses, but not at it (the operator is singular there at static points, and next to them its LU then spreads
+#: round-off of 1e-7 into every eigenvalue: R = 1 just below its double static point with a shift of 0.012).
+SIGMA = 0.3
+
+
 class _Line:
-    """Spectra along one axis on one mesh (memoised): all the eigenvalues a point examines, or a few near a
-    given one."""
+    """Spectra along one axis on one mesh (memoised): the eigenvalues of the band at each point, the few near
+    a given one, and the static points of the line."""
 
     def __init__(self, tether: Tether, axis: str, N: int, hi: float):
-        self.tether, self.axis, self.N = tether, axis, N
+        self.tether, self.axis, self.N, self.hi = tether, axis, N, hi
         p = tether.params
         ends = tether.with_(**{axis: hi})
         self.fam = family(ends, N)
-        self.nev = _nev(tether, _mean_params(ends))
         self.base = {"B": p.B, "omega": p.omega, "T": p.T}
+        self.band = band(self.fam, self.point(0.0), _nev(tether, _mean_params(ends)))
         self.memo: dict[float, np.ndarray] = {}
+        self._static: np.ndarray | None = None
 
     def point(self, x: float) -> dict:
         return self.base | {self.axis: x}
 
     def spectrum(self, x: float) -> np.ndarray:
+        """The band's eigenvalues at x."""
         if x not in self.memo:
-            self.memo[x] = spectrum_at(self.fam, self.point(x), self.nev)
+            A = self.fam.operator(**self.point(x))
+            lam = [sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+                   for sigma, k in zip(self.band.sigmas, self.band.ks)]
+            self.memo[x] = np.concatenate(lam)
         return self.memo[x]
 
     def growth(self, x: float) -> float:
         return growth(self.spectrum(x))
+
+    def unstable(self, x: float) -> bool:
+        """Whether the tether is unstable at x, given that it is stable just before the last static point below
+        x: a band of the upper half-plane does not see the real eigenvalue that a static point sends into
+        Re lambda > 0, which it does (a simple root of det A0 changes the sign of the product of the
+        eigenvalues), so just past a static point it counts as unstable."""
+        return self.growth(x) > 0 or (self.band.upper and self.just_past_static(x))
+
+    def just_past_static(self, x: float) -> bool:
+        r = self.static_roots()
+        return bool(np.any((r < x) & (x <= r * (1 + 2 * PAST))))
 
     def near(self, x: float, z: complex, k: int = 6) -> np.ndarray:
         """The k eigenvalues nearest z at x (z real: a real shift next to it)."""
         A = self.fam.operator(**self.point(x))
         off = 1e-3 * (1.0 + abs(z))
         sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
-        return sparse_qep_nearest(*A, k=k, sigma=sigma)
+        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+
+    def static_roots(self) -> np.ndarray:
+        """The values in (0, hi] where the operator is singular at lambda = 0 (static points: a real eigenvalue
+        passes through 0 there), sorted."""
+        if self._static is None:
+            A, Nx = self.fam.static(self.axis, **self.base)
+            x = sparse_pencil_nearest(A, Nx, k=STATIC_ROOTS, shift=0.0, ordering=ORDER)
+            x = x[np.abs(x.imag) <= 1e-8 * np.abs(x)].real
+            if self.axis == "omega":
+                x = np.sqrt(x[x > 0])
+            self._static = np.sort(x[(x > 0) & (x <= self.hi)])
+        return self._static
+
+
+#: Static roots sought per line (the nearest to zero: every one on a line up to a few times its first).
+STATIC_ROOTS = 16
+#: Relative offset of the scan points either side of a static point.
+PAST = 1e-6
 
 
 def _mean_params(tether: Tether):
@@ -166,13 +230,16 @@ def _mean_params(tether: Tether):
 
 
 def _scan(line: _Line, lo: float, hi: float, n: int) -> tuple[float, float] | None:
-    """(last stable, first unstable) point of n even steps from lo to hi; None when all are stable.
-    Unstable at lo: (lo, lo)."""
+    """(last stable, first unstable) point of n even steps from lo to hi and the points either side of each
+    static point; None when all are stable. Unstable at lo: (lo, lo)."""
     if line.growth(lo) > 0:
         return lo, lo
+    grid = set(np.linspace(lo, hi, n + 1)[1:].tolist())
+    for r in line.static_roots():
+        grid.update(x for x in (r * (1 - PAST), r * (1 + PAST)) if lo < x <= hi)
     prev = lo
-    for x in np.linspace(lo, hi, n + 1)[1:]:
-        if line.growth(float(x)) > 0:
+    for x in sorted(grid):
+        if line.unstable(float(x)):
             return prev, float(x)
         prev = float(x)
     return None
@@ -219,7 +286,7 @@ def collides(tether: Tether) -> bool:
 def _bisect(line: _Line, a: float, b: float, rtol: float) -> float:
     while b - a > rtol * abs(b):
         c = 0.5 * (a + b)
-        if line.growth(c) > 0:
+        if line.unstable(c):
             b = c
         else:
             a = c
@@ -232,20 +299,28 @@ def _single(line: _Line, a: float, b: float) -> tuple[float, float]:
     while True:
         lam = line.spectrum(b)
         lam = lam[lam.imag >= 0]
-        if np.sum(lam.real - _threshold(lam) > 0) <= 1 and b - a <= NARROW * abs(b):
+        if np.sum(lam.real - _threshold(lam) > 0) <= 1 and b - a <= NARROW * abs(b) or b <= AT_ZERO * line.hi:
             return a, b
         c = 0.5 * (a + b)
         if c in (a, b):
             return a, b
-        if line.growth(c) > 0:
+        if line.unstable(c):
             b = c
         else:
             a = c
 
 
 def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
-    """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it)."""
+    """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
+    a static point between points this close to it is the crossing (divergence)."""
+    for r in (r for r in line.static_roots() if a < r <= b):
+        if b - a <= 3 * PAST * r or not line.unstable(r * (1 - PAST)):
+            return float(r), 0j  # a real eigenvalue through 0
+        b = r * (1 - PAST)  # unstable before its first static point: a flutter point lies before it
+        break
     a, b = _single(line, a, b)
+    if b <= AT_ZERO * line.hi:  # unstable at any value above 0
+        return b, _unstable_eigenvalue(line.spectrum(b))
     h = _crossing_function(line, a, b)
     ha, hb = h(a), h(b)
     if ha < 0 < hb:
@@ -270,10 +345,10 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
         a, b = near
         width = max(b - a, 1e-6 * abs(b))
         a2, b2 = max(lo, a - width), min(hi, b + width)
-        if line.growth(a2) <= 0 and line.growth(b2) > 0:
+        if not line.unstable(a2) and line.unstable(b2):
             x, z = _locate(line, a2, b2, rtol)
             below = x * (1 - 1e-6) if x > 0 else lo
-            if x <= a2 or line.growth(below) <= 0 or below <= lo:
+            if x <= a2 or not line.unstable(below) or below <= lo:
                 return x, z
     found = _scan(line, lo, hi, SCAN)
     if found is None:
@@ -309,7 +384,7 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
             return Crossing(axis, math.nan, CriticalKind.NONE_FOUND, complex(math.nan), math.nan, True, lo, hi, N, M,
                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL}, N = {N} and {M})")
         if x1 is not None and x2 is not None:
-            if abs(x1 - x2) + rtol * abs(x2) <= tol * max(abs(x2), AT_ZERO * hi):
+            if abs(x1 - x2) + rtol * abs(x2) <= tol * abs(x2) or max(x1, x2) <= AT_ZERO * hi:
                 break
             near = (min(x1, x2), max(x1, x2))
     if x1 is None or x2 is None:
@@ -319,10 +394,25 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     return _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode)
 
 
+def _roundoff(line: _Line, x: float, z: complex) -> float:
+    """How far the round-off of the crossing eigenvalue's real part moves a crossing that it makes on its own
+    (not a collision, not a static point): that round-off (the spread of Re lambda computed from two shifts)
+    over the slope of Re lambda along the line. A weakly damped flutter crosses the axis slowly (Re lambda
+    changing by 1e-4 per unit load), and 1e-10 of round-off then moves it by 1e-6."""
+    if collides(line.tether) or z.imag == 0 or x <= 0:
+        return 0.0
+    d = 1e-4 * x
+    re = [_nearest(line.near(x + dx, z, 4), z, 1)[0].real for dx in (-d, d)]
+    slope = abs(re[1] - re[0]) / (2 * d)
+    other = _nearest(line.near(x, z * (1 + 1e-2), 4), z, 1)[0].real
+    noise = abs(other - 0.5 * (re[0] + re[1])) + 1e-14 * abs(z)
+    return noise / slope if slope > 0 else math.inf
+
+
 def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode) -> Crossing:
     N = line.N
-    err = abs(x1 - x2) + rtol * abs(x2)
     zero = max(x1, x2) <= AT_ZERO * hi
+    err = abs(x1 - x2) + rtol * abs(x2) + (0.0 if zero or x1 == x2 == lo else _roundoff(line, x1, z2))
     kind = _kind(z2)
     if x1 == x2 == lo:
         return Crossing(axis, lo, CriticalKind.UNSTABLE_AT_START, z2, 0.0, True, lo, hi, N, M,

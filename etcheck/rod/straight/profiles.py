@@ -397,11 +397,21 @@ class TetherFamily:
         self.mesh = grid
         self.blocks = _assemble(tether, grid)
 
-    def operator(self, B: float, omega: float, T: float):
-        """(A0, A1, A2) at the given load, spin and tension (sparse)."""
+    def operator(self, B: float, omega: float, T: float, damped: bool = True):
+        """(A0, A1, A2) at the given load, spin and tension (sparse; ``damped=False``: without the Kelvin-Voigt
+        term)."""
         k = self.blocks
         A0 = k["K0"] + B * k["KB"] + T * k["KT"] + omega**2 * k["Kw"]
-        return A0.tocsc(), (k["C0"] + omega * k["Cw"]).tocsc(), k["M"]
+        A1 = k["C0"] + omega * k["Cw"] if damped else omega * k["Cw"]
+        return A0.tocsc(), A1.tocsc(), k["M"]
+
+    def static(self, axis: str, B: float, omega: float, T: float):
+        """(A, N): the operator at lambda = 0 is A + x N along ``axis`` (x = B, or omega^2 for "omega"), the
+        others at the values given."""
+        k = self.blocks
+        if axis == "B":
+            return (k["K0"] + T * k["KT"] + omega**2 * k["Kw"]).tocsc(), k["KB"]
+        return (k["K0"] + B * k["KB"] + T * k["KT"]).tocsc(), k["Kw"]
 
     def field_values(self, y: np.ndarray, n: int = 201) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """(s, u, v) of the unknowns y on n evenly spaced points (polynomial interpolation per subdomain)."""
