@@ -25,12 +25,13 @@ from etcheck.checks.margins import (
 )
 from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.orbit_load import orbit_results
-from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, plan
+from etcheck.checks.plan import EXACT, LAYER_MIN, PROFILES, R_MIN_SPECTRAL, boundary_layer, plan
 from etcheck.checks.results import results_header
 from etcheck.checks.sections import (
     CheckResults,
     LinearSection,
     PostbucklingSection,
+    ProfilesSection,
     ScaledSection,
     SceneSection,
     StraightRodSection,
@@ -81,15 +82,22 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     mission = with_orbit_field(mission)
     sc = scene(mission)
     scaled = scale(sc)
-    chosen = plan(scaled.params, mission.fidelity)
+    chosen = plan(scaled.params, mission.fidelity, varies_along(sc))
     fid = fidelity_of(mission.fidelity, mission.tolerance)
     rung0 = static_buckling(scaled)
     static: StraightRodSection = {**rung0, "limits": static_limits(rung0, mission, sc)}
-    linear = accuracy_rows = None
+    linear = accuracy_rows = profiles = None
     options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=())
-    if chosen.rung == 1 and chosen.complete:
+    if chosen.route == PROFILES and chosen.complete:
+        # imported here on purpose: rung 1v (scipy.sparse) loads only for a mission with profiles
+        from etcheck.checks.profiles import profile_stability
+
+        linear, profiles = profile_stability(scaled, mission.damping_time is not None,
+                                             float(mission.worst_current.to_value("A")),
+                                             tol=max(options.tol, fid.tolerance), draft=fid.draft)
+    elif chosen.rung == 1 and chosen.complete:
         # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
         # nothing from the rest: where a core is free a helper computes it meanwhile
         def table() -> list | None:
@@ -102,10 +110,11 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         with later as accuracy_later:
             linear = linear_stability(scaled, options, chosen.route)
             accuracy_rows = accuracy_later()
-    margins = straight_margins(mission, sc, scaled, chosen, static, linear)
+    margins = straight_margins(mission, sc, scaled, chosen, static, linear,
+                               profiles["damping"]["why"] if profiles else "")
     alts = alternatives(mission, sc, scaled, options)  # the same margins under the other attachments of the ends
     margins = with_alternatives(margins, alts)
-    post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
+    post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
     study = None
@@ -128,6 +137,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "fidelity": fid.as_dict(),
         "straight_rod": static,
         "linear": linear,
+        "profiles": profiles,
         "postbuckling": post,
         "accuracy": accuracy_rows,
         "margins": [m.as_dict() for m in margins],
@@ -142,10 +152,24 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     return CheckResult(results=results)
 
 
+def varies_along(sc: Scene) -> str:
+    """What varies along the tether, in words ("" when nothing does: one current, one tension)."""
+    parts = (["a current"] if sc.current_profile is not None else []) + (
+        ["a gravity-gradient tension"] if sc.gravity_gradient is not None else [])
+    return " and ".join(parts)
+
+
 def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
-                  linear: LinearSection | None) -> PostbucklingSection | None:
+                  linear: LinearSection | None, profiles: ProfilesSection | None = None) -> PostbucklingSection | None:
     """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load."""
     p = scaled.params
+    if profiles is not None:
+        crit = linear["critical_load"] if linear else None
+        B_c = crit["value"] if crit else None
+        if B_c is None or not needs_postbuckling(p.B, B_c, mission.required_margin):
+            return None
+        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c if B_c else None,
+                "reason": profiles["post_buckling"]}
     if linear is not None:
         crit = linear["critical_load"]
         kind = CriticalKind(crit["kind"])
@@ -187,7 +211,7 @@ def _scene_dict(mission: Mission, sc: Scene) -> SceneSection:
         "load_N_per_m": sc.load,
         "spin_rate_rad_s": sc.spin_rate,
         "tension_N": sc.tension,
-        # tether.end_masses: the gravity-gradient profile (N); tension_N is its minimum (conservative)
+        # tether.end_masses: the gravity-gradient profile (N), which rung 1v uses; tension_N is its minimum (a bound)
         "tension_profile": None if mission.gravity_gradient is None else mission.gravity_gradient.as_dict(),
         "damping_time_s": sc.damping_time,
         "f": sc.f,

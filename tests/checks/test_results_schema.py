@@ -45,6 +45,8 @@ SECTIONS = {
     "mission.tether": E.TetherEcho,
     "mission.operation": E.OperationEcho,
     "mission.operation.gravity_gradient": E.TensionProfile,
+    "mission.operation.current_profile": E.CurrentProfileEcho,
+    "mission.operation.current_profile.collection": E.CollectionEcho,
     "mission.check": E.CheckEcho,
     "mission.orbit": E.OrbitEcho,
     "scene": S.SceneSection,
@@ -73,6 +75,14 @@ SECTIONS = {
     "linear.stability_map": S.StabilityMap,
     "linear.stability_map.stable_rows[]": S.StableRow,
     "linear.stability_map.static_points": S.StaticPoints,
+    "profiles": S.ProfilesSection,
+    "profiles.current": S.ProfileCurrent,
+    "profiles.tension": S.ProfileTension,
+    "profiles.damping": S.DampingSection,
+    "profiles.damping.map[]": S.DampingPoint,
+    "profiles.undamped": S.CriticalLoad,
+    "profiles.uniform_tension_bound": S.CriticalLoad,
+    "profiles.mode": S.ProfileMode,
     "accuracy[]": S.AccuracyRow,
     "postbuckling": S.PostbucklingSection,
     "postbuckling.diagram": S.BifurcationDiagram,
@@ -305,9 +315,10 @@ def test_enums_are_the_codes():
     margin = SCHEMA["properties"]["margins"]["items"]["properties"]
     verdicts = {margins_module.PASS, margins_module.FAIL, margins_module.INCOMPLETE}
     assert set(SCHEMA["properties"]["verdict"]["enum"]) == verdicts == set(margin["verdict"]["enum"])
-    assert set(margin["model"]["enum"]) == set(plan_module.RUNG_NAMES.values()) | {plan_module.EXACT_MODEL}
+    assert set(margin["model"]["enum"]) == set(plan_module.RUNG_NAMES.values()) | {plan_module.EXACT_MODEL,
+                                                                                  plan_module.PROFILES_MODEL}
     assert set(margin["rung"]["enum"]) == set(plan_module.RUNG_NAMES)
-    routes = {"", plan_module.SPECTRAL, plan_module.EXACT}
+    routes = {"", plan_module.SPECTRAL, plan_module.EXACT, plan_module.PROFILES}
     assert set(margin["route"]["enum"]) == routes == set(SCHEMA["properties"]["plan"]["properties"]["route"]["enum"])
     assert fidelity_module.fidelity_of("draft", 0.0).left_out == fidelity_module.LEFT_OUT
     assert set(SCHEMA["properties"]["fidelity"]["properties"]["name"]["enum"]) == {

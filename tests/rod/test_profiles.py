@@ -12,10 +12,11 @@ import pytest
 
 from etcheck.numerics.eigen import sparse_qep_nearest
 from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.profile import Profile
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.circulatory import critical
 from etcheck.rod.straight.exact import exact_critical
-from etcheck.rod.straight.profiles import Profile, Tether, family, layer_widths, mesh
+from etcheck.rod.straight.profiles import Tether, family, layer_widths, mesh
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.rod.straight.undamped import undamped_critical
 

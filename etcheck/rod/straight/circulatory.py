@@ -64,6 +64,9 @@ LADDER = (24, 32, 48, 64, 96)
 SCAN = 24
 #: Least pairs of eigenvalues examined at each point.
 K_MODES = 12
+#: Two meshes whose crossings differ by less than this many times the crossing's round-off
+#: (:func:`_roundoff`) agree as well as any finer pair would: the ladder stops there.
+NOISE = 10.0
 #: A bracket is narrowed to this fraction of its end before the crossing in it is located.
 NARROW = 0.02
 #: A critical load below this fraction of the scanned range is a crossing at zero (flutter at any load).
@@ -115,8 +118,8 @@ class Band:
     """Where a line's eigenvalues are sought on one mesh: the k[i] nearest each shift sigmas[i], with lambda
     scaled by ``scale`` (the size of the lowest frequency). Without damping one shift next to 0 (the lowest
     modes, both members of each pair); with damping the Kelvin-Voigt cluster at -1/gamma, hundreds of
-    eigenvalues on which ARPACK converges slowly, must stay out of reach: one real shift halfway to it where
-    the modes lie well below 1/gamma, else shifts i Omega along the band of modes, a few modes each (their
+    eigenvalues on which ARPACK converges slowly, must stay out of reach: the same shift where the modes lie
+    well below 1/gamma, else shifts i Omega along the band of modes, a few modes each (their
     members with Im > 0; a real eigenvalue reaches Re lambda > 0 only through 0, where the operator is
     singular: :meth:`_Line.static_roots`)."""
 
@@ -142,8 +145,8 @@ def band(fam: TetherFamily, point: dict, nev: int) -> Band:
     lam = sparse_qep_nearest(*fam.operator(0.0, point["omega"], point["T"], damped=False), k=nev, sigma=SIGMA * scale,
                              scale=scale, ordering=ORDER)
     freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
-    if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # (a modest shift: no closer than 0.5 / gamma)
-        return Band((0.5 / gamma,), (nev,), scale)
+    if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # the cluster lies beyond the band: as without damping
+        return Band((SIGMA * scale,), (nev,), scale)
     chunks = [freq[i:i + CHUNK] for i in range(0, freq.size, CHUNK)]
     return Band(tuple(complex(0.0, float(c.mean())) for c in chunks), tuple(c.size + 2 for c in chunks), scale)
 
@@ -374,6 +377,7 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     lo = 0.0
     rtol = min(tol, 1e-6) * 1e-2
     near = None
+    noise = None
     for N in ladder:
         M = check_resolution(N)
         line = _Line(tether, axis, N, hi)
@@ -384,14 +388,18 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
             return Crossing(axis, math.nan, CriticalKind.NONE_FOUND, complex(math.nan), math.nan, True, lo, hi, N, M,
                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL}, N = {N} and {M})")
         if x1 is not None and x2 is not None:
-            if abs(x1 - x2) + rtol * abs(x2) <= tol * abs(x2) or max(x1, x2) <= AT_ZERO * hi:
+            if abs(x1 - x2) + rtol * abs(x2) <= tol * abs(x2) or max(x1, x2) <= AT_ZERO * hi:  # the meshes agree
+                break
+            if noise is None:
+                noise = _roundoff(line, x1, z1) if x1 > lo else 0.0
+            if abs(x1 - x2) <= NOISE * noise:  # they differ by round-off: finer meshes would not agree better
                 break
             near = (min(x1, x2), max(x1, x2))
     if x1 is None or x2 is None:
         return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, lo, hi, N, M,
                         f"the meshes N = {N} and {M} disagree on whether the tether loses stability up to "
                         f"{axis} = {hi:g} ({MODEL})")
-    return _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode)
+    return _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise)
 
 
 def _roundoff(line: _Line, x: float, z: complex) -> float:
@@ -409,10 +417,12 @@ def _roundoff(line: _Line, x: float, z: complex) -> float:
     return noise / slope if slope > 0 else math.inf
 
 
-def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode) -> Crossing:
+def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) -> Crossing:
     N = line.N
     zero = max(x1, x2) <= AT_ZERO * hi
-    err = abs(x1 - x2) + rtol * abs(x2) + (0.0 if zero or x1 == x2 == lo else _roundoff(line, x1, z2))
+    if noise is None:
+        noise = 0.0 if zero or x1 == x2 == lo else _roundoff(line, x1, z2)
+    err = abs(x1 - x2) + rtol * abs(x2) + noise
     kind = _kind(z2)
     if x1 == x2 == lo:
         return Crossing(axis, lo, CriticalKind.UNSTABLE_AT_START, z2, 0.0, True, lo, hi, N, M,
