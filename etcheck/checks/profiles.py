@@ -66,9 +66,11 @@ def _damping_map(t: Tether, gamma_max: float, tol: float, wc: float, load: float
     worst = undamped
     points: list[DampingPoint] = []
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
-    for frac in DAMPING_FRACTIONS:
+    near = None
+    for frac in DAMPING_FRACTIONS:  # each from the last one's crossing (verified stable below, else scanned)
         g = frac * gamma_max
-        c = critical(t.with_(gamma=g), tol=tol)
+        c = critical(t.with_(gamma=g), tol=tol, near=near)
+        near = (0.8 * c.value, 1.25 * c.value) if CriticalKind(c.kind).located and c.value > 0 else None
         value = c.value if CriticalKind(c.kind).located else None
         points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
                        "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),

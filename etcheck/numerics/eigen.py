@@ -25,6 +25,7 @@ No rod knowledge lives here.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -43,6 +44,7 @@ __all__ = [
     "qep_dense",
     "qep_shift_invert",
     "pencil_eigenvalues",
+    "qep_newton",
     "Matched",
     "match_spectra",
     "relative_distance",
@@ -381,3 +383,33 @@ def sparse_pencil_nearest(A, N, k: int, shift: float = 0.0, ordering: str = "COL
         theta = err.eigenvalues
     theta = theta[theta != 0]
     return shift - 1.0 / theta
+
+
+def qep_newton(A0, A1, A2, lam: complex, y: np.ndarray, tol: float = 1e-13, maxit: int = 8,
+               ordering: str = "COLAMD") -> tuple[complex, np.ndarray, bool]:
+    """One eigenpair of the sparse QEP (A0 + lambda A1 + lambda^2 A2) y = 0 from a nearby guess (lam, y), by
+    nonlinear inverse iteration (Ruhe 1973): w = Q(lambda)^-1 Q'(lambda) y, lambda <- lambda - (c* y) / (c* w),
+    y <- w / (c* w) with c the first guess; quadratic convergence near a simple eigenvalue. Returns
+    (lambda, y, converged): converged when the step falls below ``tol`` |lambda| (else the last iterate)."""
+    from scipy.sparse import csc_matrix
+    from scipy.sparse.linalg import splu
+
+    c = np.conj(y) / np.vdot(y, y)
+    y = y / np.dot(c, y)
+    lam = complex(lam)
+    last = math.inf
+    for _ in range(maxit):
+        lu = splu(csc_matrix(A0 + lam * A1 + (lam * lam) * A2, dtype=complex), permc_spec=ordering)
+        w = lu.solve(np.asarray((A1 + (2 * lam) * A2) @ y, dtype=complex))
+        cw = np.dot(c, w)
+        if cw == 0 or not np.isfinite(cw):
+            return lam, y, False
+        step = 1.0 / cw  # c* y = 1
+        lam = lam - step
+        y = w / cw
+        if abs(step) <= tol * max(abs(lam), 1e-300):
+            return lam, y, True
+        if abs(step) > 0.25 * last and abs(step) <= 1e3 * tol * abs(lam):  # no longer quadratic: at round-off
+            return lam, y, True
+        last = abs(step)
+    return lam, y, False

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
-from etcheck.numerics.eigen import sparse_pencil_nearest, sparse_qep_nearest
+from etcheck.numerics.eigen import qep_newton, sparse_pencil_nearest, sparse_qep_nearest
 from etcheck.numerics.optimize import brentq
 from etcheck.rod.straight.mode_band import band_modes
 from etcheck.rod.straight.profiles import Tether, TetherFamily, check_resolution, family
@@ -64,11 +64,14 @@ LADDER = (24, 32, 48, 64, 96)
 SCAN = 24
 #: Least pairs of eigenvalues examined at each point.
 K_MODES = 12
+#: An eigenvalue tracked by inverse iteration may move at most this much (relative to its size plus one) per unit
+#: relative step along the line; a larger jump is another eigenvalue, and ARPACK decides.
+TRACK_STEP = 10.0
 #: Two meshes whose crossings differ by less than this many times the crossing's round-off
 #: (:func:`_roundoff`) agree as well as any finer pair would: the ladder stops there.
 NOISE = 10.0
 #: A bracket is narrowed to this fraction of its end before the crossing in it is located.
-NARROW = 0.02
+NARROW = 0.25
 #: A critical load below this fraction of the scanned range is a crossing at zero (flutter at any load).
 AT_ZERO = 1e-7
 
@@ -164,7 +167,7 @@ class _Line:
     a given one, and the static points of the line."""
 
     def __init__(self, tether: Tether, axis: str, N: int, hi: float):
-        self.tether, self.axis, self.N, self.hi = tether, axis, N, hi
+        self.tether, self.axis, self.N, self.hi, self.lo = tether, axis, N, hi, 0.0
         p = tether.params
         ends = tether.with_(**{axis: hi})
         self.fam = family(ends, N)
@@ -172,6 +175,7 @@ class _Line:
         self.band = band(self.fam, self.point(0.0), _nev(tether, _mean_params(ends)))
         self.memo: dict[float, np.ndarray] = {}
         self._static: np.ndarray | None = None
+        self.tracked: list[tuple[float, complex, np.ndarray]] = []
 
     def point(self, x: float) -> dict:
         return self.base | {self.axis: x}
@@ -205,6 +209,24 @@ class _Line:
         off = 1e-3 * (1.0 + abs(z))
         sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
         return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+
+    def track(self, x: float, z: complex) -> complex:
+        """The eigenvalue at x that continues the one near z: nonlinear inverse iteration from the tracked
+        eigenpair at the nearest x already seen (a few sparse LUs), ARPACK where that does not converge or
+        lands far from where it started."""
+        A = self.fam.operator(**self.point(x))
+        if self.tracked:
+            x0, lam0, y0 = min(self.tracked, key=lambda t: abs(t[0] - x))
+            lam, y, ok = qep_newton(*A, lam0, y0, ordering=ORDER)
+            if ok and abs(lam - lam0) <= TRACK_STEP * (abs(lam0) + 1.0) * max(abs(x - x0) / max(abs(x), 1e-300), 1e-3):
+                self.tracked.append((x, lam, y))
+                return lam
+        off = 1e-3 * (1.0 + abs(z))
+        lam, Y = sparse_qep_nearest(*A, k=4, sigma=complex(z.real + off, z.imag), scale=self.band.scale,
+                                    ordering=ORDER, vectors=True)
+        i = int(np.argmin(np.abs(lam - z)))
+        self.tracked.append((x, complex(lam[i]), Y[:, i]))
+        return complex(lam[i])
 
     def static_roots(self) -> np.ndarray:
         """The values in (0, hi] where the operator is singular at lambda = 0 (static points: a real eigenvalue
@@ -263,8 +285,10 @@ def _crossing_function(line: _Line, a: float, b: float):
     z = _unstable_eigenvalue(line.spectrum(b))
     if not collides(line.tether):  # from the left half-plane: its real part
 
+        line.tracked = []
+
         def real_part(x: float) -> float:
-            return float(_nearest(line.near(x, z), z, 1)[0].real)
+            return float(line.track(x, z).real)
         return real_part
     centre = complex(0.0, z.imag)
     flutter = _kind(z) == CriticalKind.FLUTTER
@@ -313,6 +337,19 @@ def _single(line: _Line, a: float, b: float) -> tuple[float, float]:
             a = c
 
 
+def _behind(h, a: float, ha: float, b: float, lo: float) -> tuple[float, float]:
+    """Where the crossing eigenvalue's real part is already positive at a, but below the threshold that counts it
+    as unstable (a slow crossing), the point a moved back until it is negative: the crossing is where Re lambda
+    = 0, not where the threshold is passed (1e-8 |lambda| of threshold on a slope of 1e-6 per unit load moves it
+    by 1 %)."""
+    step = b - a
+    while ha >= 0 and a > lo:
+        a = max(lo, a - step)
+        ha = h(a)
+        step *= 2.0
+    return a, ha
+
+
 def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
     """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
     a static point between points this close to it is the crossing (divergence)."""
@@ -326,6 +363,7 @@ def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, comple
         return b, _unstable_eigenvalue(line.spectrum(b))
     h = _crossing_function(line, a, b)
     ha, hb = h(a), h(b)
+    a, ha = _behind(h, a, ha, b, line.lo)
     if ha < 0 < hb:
         x = brentq(h, a, b, xtol=0.25 * rtol * abs(b), rtol=4 * np.finfo(float).eps, maxiter=100)
     else:  # no clean sign change of the smooth function: the stability predicate, bisected
@@ -364,19 +402,20 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
 
 @single_blas_thread
 def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: float = 1e-8,
-             ladder: tuple[int, ...] = LADDER, mode: bool = True) -> Crossing:
+             ladder: tuple[int, ...] = LADDER, mode: bool = True, near: tuple[float, float] | None = None) -> Crossing:
     """The first loss of stability of the straight tether with profiles along ``axis`` ("B" or "omega"),
     from 0 to ``hi`` (default: :func:`default_hi`), the others fixed at ``tether.params``; dimensionless.
 
     Scanned and located on the mesh of middle resolution N, located again on the finer check mesh
     (:func:`~etcheck.rod.straight.profiles.check_resolution`), climbing ``ladder`` until the two agree to
-    ``tol`` (relative); the error is their distance plus the root finder's tolerance."""
+    ``tol`` (relative); the error is their distance plus the root finder's tolerance. ``near``: where a crossing
+    is expected (a bracket, from a neighbouring tether): sought there first, and kept only where the tether is
+    stable just below it; else the line is scanned from 0."""
     if axis not in ("B", "omega"):
         raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
     hi = default_hi(tether, axis) if hi is None else float(hi)
     lo = 0.0
     rtol = min(tol, 1e-6) * 1e-2
-    near = None
     noise = None
     for N in ladder:
         M = check_resolution(N)
