@@ -135,8 +135,9 @@ class Band:
         return isinstance(self.sigmas[0], complex)
 
 
-#: Eigenvalues per shift along the band of a damped line whose modes reach the Kelvin-Voigt cluster.
-CHUNK = 6
+#: Largest ratio of the frequencies sought around one shift along the band of a damped line whose modes reach the
+#: Kelvin-Voigt cluster (radius 0.4 of the middle).
+CHUNK = 7.0 / 3.0
 
 
 def band(fam: TetherFamily, point: dict, nev: int) -> Band:
@@ -150,8 +151,21 @@ def band(fam: TetherFamily, point: dict, nev: int) -> Band:
     freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
     if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # the cluster lies beyond the band: as without damping
         return Band((SIGMA * scale,), (nev,), scale)
-    chunks = [freq[i:i + CHUNK] for i in range(0, freq.size, CHUNK)]
-    return Band(tuple(complex(0.0, float(c.mean())) for c in chunks), tuple(c.size + 2 for c in chunks), scale)
+    chunks = _chunks(freq)
+    return Band(tuple(complex(0.0, 0.5 * float(c[0] + c[-1])) for c in chunks), tuple(c.size for c in chunks), scale)
+
+
+def _chunks(freq: np.ndarray) -> list[np.ndarray]:
+    """The band's frequencies (sorted) in chunks each sought around its middle i Omega_c: a chunk spans at most a
+    factor :data:`CHUNK` (its radius at most 0.4 Omega_c), so the next frequencies and the Kelvin-Voigt cluster,
+    at least Omega_c away, lie at least 2.5 radii from the shift and ARPACK converges fast; a frequency within 1e-6
+    of the chunk's last (the double pairs of R = 1) joins it."""
+    out, start = [], 0
+    for i in range(1, freq.size + 1):
+        if i == freq.size or (freq[i] > CHUNK * freq[start] and freq[i] > freq[i - 1] * (1 + 1e-6)):
+            out.append(freq[start:i])
+            start = i
+    return out
 
 
 #: SuperLU's ordering of the collocation matrices: their own (block-banded along the tether).
@@ -203,8 +217,10 @@ class _Line:
         r = self.static_roots()
         return bool(np.any((r < x) & (x <= r * (1 + 2 * PAST))))
 
-    def near(self, x: float, z: complex, k: int = 6) -> np.ndarray:
-        """The k eigenvalues nearest z at x (z real: a real shift next to it)."""
+    def near(self, x: float, z: complex, k: int = 2) -> np.ndarray:
+        """The k eigenvalues nearest z at x (z real: a real shift next to it); two by default, the pair that meets
+        or the crossing one and its neighbour: more could reach the Kelvin-Voigt cluster, at a distance of the
+        frequency."""
         A = self.fam.operator(**self.point(x))
         off = 1e-3 * (1.0 + abs(z))
         sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
@@ -222,7 +238,7 @@ class _Line:
                 self.tracked.append((x, lam, y))
                 return lam
         off = 1e-3 * (1.0 + abs(z))
-        lam, Y = sparse_qep_nearest(*A, k=4, sigma=complex(z.real + off, z.imag), scale=self.band.scale,
+        lam, Y = sparse_qep_nearest(*A, k=2, sigma=complex(z.real + off, z.imag), scale=self.band.scale,
                                     ordering=ORDER, vectors=True)
         i = int(np.argmin(np.abs(lam - z)))
         self.tracked.append((x, complex(lam[i]), Y[:, i]))
@@ -449,9 +465,9 @@ def _roundoff(line: _Line, x: float, z: complex) -> float:
     if collides(line.tether) or z.imag == 0 or x <= 0:
         return 0.0
     d = 1e-4 * x
-    re = [_nearest(line.near(x + dx, z, 4), z, 1)[0].real for dx in (-d, d)]
+    re = [_nearest(line.near(x + dx, z), z, 1)[0].real for dx in (-d, d)]
     slope = abs(re[1] - re[0]) / (2 * d)
-    other = _nearest(line.near(x, z * (1 + 1e-2), 4), z, 1)[0].real
+    other = _nearest(line.near(x, z * (1 + 1e-2)), z, 1)[0].real
     noise = abs(other - 0.5 * (re[0] + re[1])) + 1e-14 * abs(z)
     return noise / slope if slope > 0 else math.inf
 
