@@ -1,7 +1,7 @@
 """An independent discretisation of the straight tether with profiles, for tests (not used by etcheck):
 Hermite cubic finite elements (Galerkin, weak form) on a geometrically graded mesh.
 
-The weak form of the bending equations (docs/model.md, section 9), with test functions du, dv that
+The weak form of the bending equations (docs/model.md, section 10), with test functions du, dv that
 vanish with the welded ends' conditions:
 
     int [ lambda^2 (u du + P R u' du') + lambda (gamma (R/f) u'' du'' - 2 omega v du)

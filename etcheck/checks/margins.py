@@ -6,7 +6,7 @@ from dataclasses import asdict, dataclass, replace
 from enum import StrEnum
 from typing import cast
 
-from etcheck.checks.plan import EXACT, EXACT_MODEL, PROFILES, RUNG_NAMES, Plan, route_model
+from etcheck.checks.plan import PROFILES, Plan, route_model
 from etcheck.checks.sections import (
     AlternativeMargin,
     LinearSection,
@@ -137,7 +137,7 @@ KIND_WORDS = {"divergence": "divergence (a static buckling: a real eigenvalue th
 
 def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSection, damping: str = "") -> list[Margin]:
     """Load margin at the operating spin; spin margin at the operating load (rung 1); ``damping``: which damping
-    the critical values of rung 1v hold for, and why (docs/model.md section 9)."""
+    the critical values of rung 1v hold for, and why (docs/model.md section 10)."""
     p = scaled.params
     load, spin = linear["critical_load"], linear["critical_spin"]
     window = ""

@@ -25,7 +25,7 @@ from etcheck.checks.margins import (
 )
 from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.orbit_load import orbit_results
-from etcheck.checks.plan import EXACT, LAYER_MIN, PROFILES, R_MIN_SPECTRAL, boundary_layer, plan
+from etcheck.checks.plan import EXACT, LAYER_MIN, PROFILES, R_MIN_SPECTRAL, boundary_layer, plan, varies_along
 from etcheck.checks.results import results_header
 from etcheck.checks.sections import (
     CheckResults,
@@ -98,21 +98,11 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
                                              float(mission.worst_current.to_value("A")),
                                              tol=max(options.tol, fid.tolerance), draft=fid.draft)
     elif chosen.rung == 1 and chosen.complete:
-        # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
-        # nothing from the rest: where a core is free a helper computes it meanwhile
-        def table() -> list | None:
-            return accuracy(scaled, options.accuracy_N)
-
-        if not options.accuracy_N or chosen.route == EXACT:
-            later = nullcontext(lambda: None)
-        else:
-            later = ahead(table) if options.accuracy_beside else nullcontext(table)
-        with later as accuracy_later:
-            linear = linear_stability(scaled, options, chosen.route)
-            accuracy_rows = accuracy_later()
+        linear, accuracy_rows = _rung1(scaled, options, chosen)
     margins = straight_margins(mission, sc, scaled, chosen, static, linear,
                                profiles["damping"]["why"] if profiles else "")
-    alts = alternatives(mission, sc, scaled, options)  # the same margins under the other attachments of the ends
+    # the same margins under the other attachments of the ends (with profiles: at the damping the verdict uses)
+    alts = alternatives(mission, sc, scaled, options, profiles["damping"]["gamma"] if profiles else None)
     margins = with_alternatives(margins, alts)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
     if post and post.get("computed"):
@@ -152,11 +142,19 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     return CheckResult(results=results)
 
 
-def varies_along(sc: Scene) -> str:
-    """What varies along the tether, in words ("" when nothing does: one current, one tension)."""
-    parts = (["a current"] if sc.current_profile is not None else []) + (
-        ["a gravity-gradient tension"] if sc.gravity_gradient is not None else [])
-    return " and ".join(parts)
+def _rung1(scaled: Scaled, options: WhirlOptions, chosen) -> tuple[LinearSection, list | None]:
+    """Rung 1's answers and its accuracy table. The spectral accuracy table says nothing about the exact determinant
+    (no resolution to trade); it needs nothing from the rest: where a core is free a helper computes it meanwhile."""
+    def table() -> list | None:
+        return accuracy(scaled, options.accuracy_N)
+
+    if not options.accuracy_N or chosen.route == EXACT:
+        later = nullcontext(lambda: None)
+    else:
+        later = ahead(table) if options.accuracy_beside else nullcontext(table)
+    with later as accuracy_later:
+        linear = linear_stability(scaled, options, chosen.route)
+        return linear, accuracy_later()
 
 
 def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,

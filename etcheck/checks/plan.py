@@ -71,21 +71,33 @@ def straight_route(params: RodParameters) -> str:
     return SPECTRAL
 
 
+def _plan_profiles(fidelity: str, profiles: str) -> Plan:
+    if fidelity == "analytic":
+        return Plan(0, f"the mission has {profiles} along the tether, which rung 0 (one current, no tension) does "
+                    "not model; fidelity = analytic was requested, so the check is incomplete", complete=False)
+    return Plan(1, f"the mission has {profiles} along the tether: the straight tether's linear stability with "
+                "variable coefficients (graded collocation resolving its end layers), stability read from the "
+                "eigenvalues (divergence or flutter)", route=PROFILES)
+
+
+def varies_along(sc) -> str:
+    """What varies along the tether of a scene (:class:`etcheck.scaling.Scene`), in words ("" when nothing does:
+    one current, one tension)."""
+    parts = (["a current"] if sc.current_profile is not None else []) + (
+        ["a gravity-gradient tension"] if sc.gravity_gradient is not None else [])
+    return " and ".join(parts)
+
+
 def plan(params: RodParameters, fidelity: str = "auto", profiles: str = "") -> Plan:
     """Pick the cheapest rung that answers the straight-tether question exactly.
 
     Rung 0 is exact for the static problem (omega = 0, T = 0; damping does not
     move static loads). Spin or end tension needs rung 1. A current or a tension
     that varies along the tether (``profiles``: what varies, in words) needs
-    rung 1v (docs/model.md section 9).
+    rung 1v (docs/model.md section 10).
     """
     if profiles:
-        if fidelity == "analytic":
-            return Plan(0, f"the mission has {profiles} along the tether, which rung 0 (one current, no tension) does "
-                        "not model; fidelity = analytic was requested, so the check is incomplete", complete=False)
-        return Plan(1, f"the mission has {profiles} along the tether: the straight tether's linear stability with "
-                    "variable coefficients (graded collocation resolving its end layers), stability read from the "
-                    "eigenvalues (divergence or flutter)", route=PROFILES)
+        return _plan_profiles(fidelity, profiles)
     static = params.omega == 0 and params.T == 0
     if static and fidelity in ("auto", "draft", "analytic"):
         if is_welded(params.ends):

@@ -1,5 +1,5 @@
 """Rung 1v for a mission: the straight tether with its current and its tension along it (docs/model.md,
-section 9), in the numbers the report shows.
+section 10), in the numbers the report shows.
 
 Everything is solved dimensionless in :mod:`etcheck.rod.straight.circulatory`; this module chooses what to
 ask and converts the answers to SI:
@@ -85,7 +85,7 @@ def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
     t = scaled.tether
     if scaled.params.T == t.params.T and t.tension.uniform_value is not None:
         return None
-    uniform = Tether(scaled.params.with_(gamma=gamma), t.current, ends=t.ends)
+    uniform = Tether(scaled.params.with_(gamma=gamma), t.current)
     c = critical(uniform, tol=BOUND_TOLERANCE, mode=False)
     return _load_point(c, BOUND_TOLERANCE, scaled.scales.load)
 
@@ -139,22 +139,7 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
     p = t.params
     undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load)
     gamma = verdict_gamma(p.gamma, points, verdict, undamped)
-    spin = critical(t.with_(gamma=gamma), "omega", tol=tol, mode=False) if p.omega > 0 else None
-    load_point = _load_point(verdict, tol, load)
-    stable = bool(verdict.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) or
-                  (load_point["value"] is not None and p.B < load_point["value"]))
-    spin_point = dict(_record(spin, tol)) if spin else {
-        "value": None, "kind": str(CriticalKind.NOT_LOCATED), "bracket": [0.0, 0.0], "error": None,
-        "message": "no spin: the critical spin is not asked", "N": 0, "within_tolerance": True}
-    spin_point["rad_s"] = None if spin_point["value"] is None else spin_point["value"] * wc
-    spin_point["rpm"] = None if spin_point["value"] is None else spin_point["value"] * wc * RPM
-    linear: LinearSection = {
-        "model": MODEL, "route": "profiles", "threshold": THRESHOLD, "operating_stable": stable,
-        "operating_spectrum": None, "critical_load": load_point, "critical_spin": spin_point, "spin_windows": [],
-        "spin_windows_scanned_to_rpm": None,
-        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * load, "spin_rpm": p.omega * wc * RPM},
-        "campbell": None, "stability_map": None,
-    }
+    linear = _linear(scaled, t.with_(gamma=gamma), verdict, tol)
     current, tension = _samples(scaled, current_A)
     section: ProfilesSection = {
         "model": MODEL,
@@ -169,6 +154,35 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
         "post_buckling": _after(verdict),
     }
     return linear, section
+
+
+def _linear(scaled: Scaled, t: Tether, verdict: Crossing, tol: float) -> LinearSection:
+    """The linear section the margins read: the crossing along the load (``verdict``) and, with spin, the critical
+    spin of ``t`` at its load (located here)."""
+    p, wc, load = t.params, scaled.scales.frequency, scaled.scales.load
+    spin = critical(t, "omega", tol=tol, mode=False) if p.omega > 0 else None
+    load_point = _load_point(verdict, tol, load)
+    stable = bool(verdict.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) or
+                  (load_point["value"] is not None and p.B < load_point["value"]))
+    spin_point = dict(_record(spin, tol)) if spin else {
+        "value": None, "kind": str(CriticalKind.NOT_LOCATED), "bracket": [0.0, 0.0], "error": None,
+        "message": "no spin: the critical spin is not asked", "N": 0, "within_tolerance": True}
+    spin_point["rad_s"] = None if spin_point["value"] is None else spin_point["value"] * wc
+    spin_point["rpm"] = None if spin_point["value"] is None else spin_point["value"] * wc * RPM
+    return {
+        "model": MODEL, "route": "profiles", "threshold": THRESHOLD, "operating_stable": stable,
+        "operating_spectrum": None, "critical_load": load_point, "critical_spin": spin_point, "spin_windows": [],
+        "spin_windows_scanned_to_rpm": None,
+        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * load, "spin_rpm": p.omega * wc * RPM},
+        "campbell": None, "stability_map": None,
+    }
+
+
+def alternative_linear(scaled: Scaled, gamma: float, tol: float) -> LinearSection:
+    """Rung 1v's linear section for ``scaled`` (its tether, ends included) at one damping ``gamma``: the margins of
+    another attachment of the ends, at the damping the mission's verdict uses."""
+    t = scaled.tether.with_(gamma=gamma)
+    return _linear(scaled, t, critical(t, tol=tol, mode=False), tol)
 
 
 def verdict_gamma(gamma: float, points: list[DampingPoint], verdict: Crossing, undamped: Crossing | None) -> float:

@@ -88,7 +88,7 @@ class FidelitySection(TypedDict):
 
 class StaticCriticalLoad(TypedDict):
     """One critical load of the static rod (omega = T = 0, eq. (91)): the k-th zero beta of chi (of its closed-form
-    analogue 2 g^2 for other ends than welded, docs/model.md section 9; ``chi_*`` keep their names)."""
+    analogue 2 g^2 for other ends than welded, docs/model.md section 10; ``chi_*`` keep their names)."""
 
     k: int
     beta: float
@@ -323,7 +323,7 @@ class ProfileMode(TypedDict):
 
 
 class ProfilesSection(TypedDict):
-    """``profiles``: rung 1v, the straight tether with its current and tension along it (docs/model.md §9)."""
+    """``profiles``: rung 1v, the straight tether with its current and tension along it (docs/model.md §10)."""
 
     model: str
     circulatory: bool

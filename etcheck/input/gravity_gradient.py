@@ -21,7 +21,7 @@ m_lower h_c``. With a massless tether it is ``3 Omega^2 m_u m_l L / (m_u +
 m_l)`` everywhere.
 
 The check uses the whole profile (:meth:`GravityGradient.shape`, rung 1v of
-docs/model.md section 9). Tension stabilises the straight tether against
+docs/model.md section 10). Tension stabilises the straight tether against
 magnetic buckling and whirl, so the SMALLEST tension along the tether held
 constant (:attr:`GravityGradient.minimum`) gives a conservative bound, which
 the check reports beside it.

@@ -95,7 +95,7 @@ def test_pinned_ends_give_the_analytic_frequencies():
     """A pinned-pinned beam under tension with rotary inertia: lambda = i sqrt((c4 k^4 + T k^2) / (1 + pc k^2)),
     k = n pi, for both axes."""
     p = RodParameters(P=1e-3, R=0.4, Gamma=0.7, T=2.0)
-    fam = family(Tether(p, ends=("pinned", "pinned")), 32)
+    fam = family(Tether(p.with_(ends=("pinned", "swivel"))), 32)
     lam = sparse_qep_nearest(*fam.operator(0.0, 0.0, p.T), k=16, sigma=0.01)
     got = np.sort(lam.imag[lam.imag > 0])
     k = np.pi * np.arange(1, 9)
@@ -157,3 +157,13 @@ def test_reversed_profiles_give_the_same_critical_load():
     a = critical(Tether(p, KINKED, tau), mode=False)
     b = critical(Tether(p, KINKED.reversed(), tau.reversed()), mode=False)
     assert a.value == pytest.approx(b.value, rel=1e-8)
+
+
+@pytest.mark.parametrize("ends", [("pinned", "pinned"), ("welded", "swivel")])
+def test_uniform_rod_with_other_ends_reproduces_the_exact_determinant(ends):
+    """Pinned or swivel ends (rows u = u'' = 0 per end) against the exact determinant with the same ends, under
+    tension (a tape's layers)."""
+    p = TAPE.with_(ends=ends)
+    c = critical(Tether(p), mode=False)
+    ref = exact_critical(p).critical_load
+    assert c.value == pytest.approx(ref.value, rel=1e-9)

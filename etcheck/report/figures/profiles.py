@@ -1,4 +1,4 @@
-"""Report figures of rung 1v (a current and a tension along the tether; docs/model.md section 9): the profiles,
+"""Report figures of rung 1v (a current and a tension along the tether; docs/model.md section 10): the profiles,
 the mode that crosses first, and the critical load against damping. matplotlib, imported lazily; each figure
 from the JSON-able results alone."""
 

@@ -1,5 +1,5 @@
 """A profile along the tether: a dimensionless function of s, the fraction of the length from the lower end,
-continuous and piecewise smooth (the current I(s)/I_max, the tension T(s)/T_max of docs/model.md section 9).
+continuous and piecewise smooth (the current I(s)/I_max, the tension T(s)/T_max of docs/model.md section 10).
 numpy only."""
 
 from __future__ import annotations

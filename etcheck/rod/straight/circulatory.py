@@ -1,7 +1,7 @@
 """Rung 1v: where the straight tether with profiles first loses stability along load or spin, and how
 (divergence or flutter), from the spectra of :mod:`etcheck.rod.straight.profiles` (dimensionless).
 
-With a current that varies along the tether the load is circulatory (docs/model.md, section 9):
+With a current that varies along the tether the load is circulatory (docs/model.md, section 10):
 neither the Kelvin-Tait-Chetaev theorem (damped: stability lost only through lambda = 0) nor the
 Hamiltonian symmetry of the undamped spectrum holds, so stability is read from the eigenvalues
 themselves, as they cross into Re lambda > 0:

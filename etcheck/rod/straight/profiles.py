@@ -2,7 +2,7 @@
 graded multi-domain Chebyshev collocation (dimensionless).
 
 About the straight tether x = s e3 (paper Sec. 6.1, eq. (86) with F = +T(s) e3; docs/model.md,
-section 9) in the rotating frame of the f-scaling (eq. (36)), u along the weak axis e1, v along e2,
+section 10) in the rotating frame of the f-scaling (eq. (36)), u along the weak axis e1, v along e2,
 normal modes exp(lambda t):
 
     lambda^2 (u - P R u'') + lambda (gamma (R/f) u'''' - 2 omega v)
@@ -11,9 +11,9 @@ normal modes exp(lambda t):
         + (1/f) v'''' - (T(s) v')' - P omega^2 v'' - omega^2 v + B b(s) u' = 0
 
 with T(s) = T tau(s) and the magnetic load B b(s) (b = I(s)/I_max), each end welded
-(u = u' = v = v' = 0) or pinned (u = u'' = v = v'' = 0). For b and tau constant this is the
+(u = u' = v = v' = 0) or pinned or on a swivel (u = u'' = v = v'' = 0; :mod:`etcheck.rod.core.ends`). For b and tau constant this is the
 constant-coefficient system of :mod:`etcheck.rod.straight.determinant`. With b not constant the
-load has no potential (circulatory, docs/model.md section 9): the operator is not self-adjoint even
+load has no potential (circulatory, docs/model.md section 10): the operator is not self-adjoint even
 without spin or damping, and stability is lost by flutter as well as by divergence.
 
 **Why graded multi-domain collocation.** Under tension the bending stiffness acts only in end
@@ -49,11 +49,11 @@ import numpy as np
 import scipy.sparse as sp
 
 from etcheck.numerics.chebyshev import diff_matrix, first_kind_nodes, lobatto_nodes, lobatto_weights, resample_matrix
+from etcheck.rod.core.ends import bending_order
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
 
 __all__ = [
-    "ENDS",
     "GRADING",
     "Mesh",
     "Tether",
@@ -64,8 +64,6 @@ __all__ = [
     "mesh",
 ]
 
-#: The boundary rows of an end: the derivatives of u and of v that vanish there.
-ENDS = {"welded": (0, 1), "pinned": (0, 2)}
 #: Ratio of the widths of successive end subdomains.
 GRADING = 4.0
 #: The first end subdomain is this many (thinnest) layer widths wide.
@@ -81,20 +79,13 @@ UNIFORM = Profile.uniform()
 
 @dataclass(frozen=True)
 class Tether:
-    """The straight tether with profiles (dimensionless): ``params`` as for the uniform rod, with the
-    magnetic load B b(s) and the tension T tau(s) (``current`` = b, ``tension`` = tau), and each
-    end's boundary rows (:data:`ENDS`: (s = 0, s = 1)). b = tau = 1 is the rod of
-    :mod:`etcheck.rod.straight.exact`."""
+    """The straight tether with profiles (dimensionless): ``params`` as for the uniform rod (its ends included:
+    :mod:`etcheck.rod.core.ends`), with the magnetic load B b(s) and the tension T tau(s) (``current`` = b,
+    ``tension`` = tau). b = tau = 1 is the rod of :mod:`etcheck.rod.straight.exact`."""
 
     params: RodParameters
     current: Profile = UNIFORM
     tension: Profile = UNIFORM
-    ends: tuple[str, str] = ("welded", "welded")
-
-    def __post_init__(self) -> None:
-        for end in self.ends:
-            if end not in ENDS:
-                raise ValueError(f"an end is one of {tuple(ENDS)}, got {end!r}")
 
     @property
     def uniform(self) -> bool:
@@ -102,11 +93,11 @@ class Tether:
 
     @property
     def circulatory(self) -> bool:
-        """Whether the load has no potential (b not constant): docs/model.md, section 9."""
+        """Whether the load has no potential (b not constant): docs/model.md, section 10."""
         return self.current.uniform_value is None
 
-    def with_(self, **changes: float) -> Tether:
-        return Tether(self.params.with_(**changes), self.current, self.tension, self.ends)
+    def with_(self, **changes) -> Tether:
+        return Tether(self.params.with_(**changes), self.current, self.tension)
 
 
 # --- the mesh ------------------------------------------------------------------------------------
@@ -260,8 +251,8 @@ def _columns(start: int, m: int) -> tuple[np.ndarray, ...]:
 
 def _assemble(tether: Tether, grid: Mesh) -> dict[str, sp.csc_matrix]:
     """The blocks of the operator on the mesh: A0 = K0 + B KB + T KT + omega^2 Kw, A1 = C0 + omega Cw,
-    A2 = M. Rows: the equations of each subdomain, the boundary rows of each end (:data:`ENDS`: u, u' or u, m
-    and the same of v) and the interface rows (u, u', m, m' and v, v', n, n' continuous), each scaled to
+    A2 = M. Rows: the equations of each subdomain, the boundary rows of each end (u and u' welded, u and m pinned
+    or on a swivel: torsion, which holds the difference, decouples; the same of v) and the interface rows (u, u', m, m' and v, v', n, n' continuous), each scaled to
     derivatives in units of the thinner neighbour."""
     n = _FIELDS * grid.size
     bld = _Builder(n)
@@ -270,14 +261,14 @@ def _assemble(tether: Tether, grid: Mesh) -> dict[str, sp.csc_matrix]:
     for j, (a, b, m) in enumerate(zip(grid.edges[:-1], grid.edges[1:], grid.degrees)):
         y, _, PDk = _reference(m)
         row = _equation_rows(bld, row, _columns(starts[j], m), a + (b - a) * y, b - a, PDk, tether)
-    for end, side in zip(tether.ends, (0, 1)):
+    for end, side in zip(tether.params.ends, (0, 1)):
         at = 0 if side == 0 else len(grid.degrees) - 1
         m = grid.degrees[at]
         _, Dk, _ = _reference(m)
         point = 0 if side == 0 else m
         cu, cv, cm, cn = _columns(starts[at], m)
         for disp, moment in ((cu, cm), (cv, cn)):
-            for k in ENDS[end]:  # u, h u' (k = 0, 1) or the moment, which vanishes with u'' (k = 2)
+            for k in (0, bending_order(end)):  # u, then h u' (welded) or the moment, zero with u'' (pinned, swivel)
                 bld.add("K0", row, disp if k < 2 else moment, Dk[k if k < 2 else 0][point])
                 row += 1
     for j in range(len(grid.degrees) - 1):
