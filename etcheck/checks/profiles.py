@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
-from etcheck.rod.straight.circulatory import THRESHOLD, Crossing, critical
+from etcheck.rod.straight.circulatory import THRESHOLD, Crossing, critical, crossing_mode
 from etcheck.rod.straight.profiles import Tether
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import RPM, Scaled
@@ -62,21 +62,28 @@ def _mode(c: Crossing, wc: float) -> ProfileMode | None:
 
 def _damping_map(t: Tether, gamma_max: float, tol: float, wc: float, load: float,
                  undamped: Crossing) -> tuple[list[DampingPoint], Crossing]:
-    """The critical load at each damping of the map, and the least favourable crossing (undamped included)."""
-    worst = undamped
+    """The critical load at each damping of the map (one mesh: a survey), and the least favourable crossing
+    (undamped included), located again on two meshes for the verdict."""
     points: list[DampingPoint] = []
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
-    near = None
+    near, least = None, None
     for frac in DAMPING_FRACTIONS:  # each from the last one's crossing (verified stable below, else scanned)
         g = frac * gamma_max
-        c = critical(t.with_(gamma=g), tol=tol, near=near)
+        c = critical(t.with_(gamma=g), tol=tol, near=near, mode=False, check=False)
         near = (0.8 * c.value, 1.25 * c.value) if CriticalKind(c.kind).located and c.value > 0 else None
         value = c.value if CriticalKind(c.kind).located else None
         points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
                        "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
                        "destabilised": bool(value is not None and value < ref * (1 - 1e-6))})
-        if value is not None and (not CriticalKind(worst.kind).located or value < worst.value):
-            worst = c
+        if value is not None and (least is None or value < least[0]):
+            least = (value, g)
+    if least is None or (CriticalKind(undamped.kind).located and undamped.value <= least[0]):
+        return points, undamped
+    value, g = least
+    worst = critical(t.with_(gamma=g), tol=tol, near=(0.98 * value, 1.02 * value), mode=False)
+    for q in points:  # the map shows the verdict's value where it was located again
+        if q["gamma"] == g and CriticalKind(worst.kind).located:
+            q["B"], q["IB0_N_per_m"] = worst.value, worst.value * load
     return points, worst
 
 
@@ -107,12 +114,12 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float):
     """(undamped crossing or None, damping map, the crossing the verdict uses, why)."""
     p = t.params
     if not t.circulatory:  # conservative: the mission's damping, as for a uniform tether
-        c = critical(t, tol=tol)
+        c = critical(t, tol=tol, mode=False)
         return None, [], c, ("the load is conservative (one current along the tether): the critical load at the "
                              f"mission's damping (gamma = {p.gamma:.4g})")
-    undamped = critical(t.with_(gamma=0.0), tol=tol)
+    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
     if fixed or p.gamma == 0:
-        c = critical(t, tol=tol) if p.gamma > 0 else undamped
+        c = critical(t, tol=tol, mode=False) if p.gamma > 0 else undamped
         return undamped, [], c, (f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the "
                                  "undamped threshold is reported beside it")
     points, worst = _damping_map(t, p.gamma, tol, wc, load, undamped)
@@ -139,6 +146,7 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
     p = t.params
     undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load)
     gamma = verdict_gamma(p.gamma, points, verdict, undamped)
+    verdict = crossing_mode(t.with_(gamma=gamma), verdict)  # the mode of the crossing the verdict uses, only
     linear = _linear(scaled, t.with_(gamma=gamma), verdict, tol)
     current, tension = _samples(scaled, current_A)
     section: ProfilesSection = {

@@ -250,6 +250,15 @@ def test_tensioned_missions_validate():
         assert_valid(results)
 
 
+def test_profiles_mission_validates():
+    """A bare tether with a current and a gravity-gradient tension along it (rung 1v), both fidelities."""
+    path = MISSIONS / "tape-tether.toml"
+    mission = dataclasses.replace(load_mission(path), fidelity="draft")
+    results = check(mission).results
+    assert results["profiles"] is not None and results["profiles"]["damping"]["map"]
+    assert_valid(results)
+
+
 def test_orbit_mission_validates():
     results = draft(MISSIONS / "proseds-orbit.toml")
     assert results["orbit"] is not None

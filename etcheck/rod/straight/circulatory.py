@@ -30,7 +30,7 @@ Dimensionless and pure; numpy/scipy only.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -336,6 +336,13 @@ def _bisect(line: _Line, a: float, b: float, rtol: float) -> float:
     return b
 
 
+def _middle(a: float, b: float) -> float:
+    """The next point of a bisection of [a, b]: the geometric middle while b spans decades above a (a crossing of a
+    damped tether may lie 1e-5 of the way along the line), the arithmetic one after."""
+    floor = max(a, 1e-3 * b)
+    return math.sqrt(floor * b) if b > 8.0 * floor else 0.5 * (a + b)
+
+
 def _single(line: _Line, a: float, b: float) -> tuple[float, float]:
     """[a, b] shrunk by bisection on stability until one eigenvalue (a real one, or one of a pair with Im > 0) is
     unstable at b and the bracket is narrower than :data:`NARROW` of b: then one crossing lies in it."""
@@ -344,7 +351,7 @@ def _single(line: _Line, a: float, b: float) -> tuple[float, float]:
         lam = lam[lam.imag >= 0]
         if np.sum(lam.real - _threshold(lam) > 0) <= 1 and b - a <= NARROW * abs(b) or b <= AT_ZERO * line.hi:
             return a, b
-        c = 0.5 * (a + b)
+        c = _middle(a, b)
         if c in (a, b):
             return a, b
         if line.unstable(c):
@@ -418,7 +425,8 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
 
 @single_blas_thread
 def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: float = 1e-8,
-             ladder: tuple[int, ...] = LADDER, mode: bool = True, near: tuple[float, float] | None = None) -> Crossing:
+             ladder: tuple[int, ...] = LADDER, mode: bool = True, near: tuple[float, float] | None = None,
+             check: bool = True) -> Crossing:
     """The first loss of stability of the straight tether with profiles along ``axis`` ("B" or "omega"),
     from 0 to ``hi`` (default: :func:`default_hi`), the others fixed at ``tether.params``; dimensionless.
 
@@ -426,7 +434,8 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     (:func:`~etcheck.rod.straight.profiles.check_resolution`), climbing ``ladder`` until the two agree to
     ``tol`` (relative); the error is their distance plus the root finder's tolerance. ``near``: where a crossing
     is expected (a bracket, from a neighbouring tether): sought there first, and kept only where the tether is
-    stable just below it; else the line is scanned from 0."""
+    stable just below it; else the line is scanned from 0. ``check=False``: the first mesh alone (no error
+    estimate from a second one: a survey, such as the points of a damping map, not a verdict)."""
     if axis not in ("B", "omega"):
         raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
     hi = default_hi(tether, axis) if hi is None else float(hi)
@@ -437,6 +446,9 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
         M = check_resolution(N)
         line = _Line(tether, axis, N, hi)
         x1, z1 = _first(line, lo, hi, rtol, near)
+        if not check:
+            M, x2, z2 = N, x1, z1
+            break
         bracket = None if x1 is None else (x1 * (1 - 1e-3), x1 * (1 + 1e-3) + 1e-12 * hi)
         x2, z2 = _first(_Line(tether, axis, M, hi), lo, hi, rtol, bracket)
         if x1 is None and x2 is None:
@@ -494,11 +506,22 @@ def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) ->
     return Crossing(axis, 0.0 if zero else x2, kind, z2, 0.0 if zero else err, converged, lo, hi, N, M, msg, shape)
 
 
+def crossing_mode(tether: Tether, c: Crossing) -> Crossing:
+    """The crossing with its mode (:attr:`Crossing.mode`), on the finer of its two meshes, where it was located
+    without one."""
+    if c.mode is not None or not CriticalKind(c.kind).located:
+        return c
+    line = _Line(tether, c.axis, c.N_check, c.hi)
+    x = c.value * (1 + 1e-8) if c.value > 0 else AT_ZERO * c.hi
+    return replace(c, mode=_mode(line, x, c.eigenvalue))
+
+
 def _mode(line: _Line, x: float, z: complex):
     """(s, u, v) of the eigenvector nearest z at x on a uniform grid of 201 points, complex, scaled so that the
     larger of |u|, |v| peaks at 1 with zero phase there."""
     A = line.fam.operator(**line.point(x))
-    lam, Y = sparse_qep_nearest(*A, k=4, sigma=z + 1e-7 * (1 + abs(z)), vectors=True)
+    lam, Y = sparse_qep_nearest(*A, k=2, sigma=z + 1e-7 * (1 + abs(z)), vectors=True, scale=line.band.scale,
+                                ordering=ORDER)
     s, u, v = line.fam.field_values(Y[:, int(np.argmin(np.abs(lam - z)))], 201)
     k = int(np.argmax(np.maximum(np.abs(u), np.abs(v))))
     peak = u[k] if abs(u[k]) >= abs(v[k]) else v[k]
