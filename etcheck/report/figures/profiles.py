@@ -42,7 +42,7 @@ def critical_mode_plot(results: dict) -> str:
     h = [s * L for s in mode["s"]]
     u = [complex(a, b) for a, b in zip(mode["u_re"], mode["u_im"])]
     v = [complex(a, b) for a, b in zip(mode["v_re"], mode["v_im"])]
-    fig, ax = plt.subplots(figsize=(6.6, 2.7))
+    fig, ax = plt.subplots(figsize=(6.6, 3.1))
     ax.plot(h, [abs(z) for z in u], color="#1f4e79", lw=1.6, label="|u| (along d₁: bending about the weak axis)")
     ax.plot(h, [abs(z) for z in v], color="#e67e22", lw=1.6, ls="--", label="|v| (along d₂: about the stiff axis)")
     ax.plot(h, [z.real for z in u], color="#1f4e79", lw=0.7, alpha=0.6, label="Re u, Re v (one phase)")
@@ -54,7 +54,7 @@ def critical_mode_plot(results: dict) -> str:
     ax.set_xlabel("height above the lower end [m]")
     ax.set_ylabel("deflection / largest (–)")
     ax.set_xlim(0, L)
-    ax.legend(fontsize=7, loc="lower center", ncol=2)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.28), ncol=3, frameon=False)
     fig.tight_layout()
     return image(fig)
 
