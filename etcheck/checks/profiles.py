@@ -93,7 +93,7 @@ def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
     if scaled.params.T == t.params.T and t.tension.uniform_value is not None:
         return None
     uniform = Tether(scaled.params.with_(gamma=gamma), t.current)
-    c = critical(uniform, tol=BOUND_TOLERANCE, mode=False)
+    c = critical(uniform, tol=BOUND_TOLERANCE, mode=False, check=False)  # a bound: one mesh, no error estimate
     return _load_point(c, BOUND_TOLERANCE, scaled.scales.load)
 
 
@@ -188,9 +188,10 @@ def _linear(scaled: Scaled, t: Tether, verdict: Crossing, tol: float) -> LinearS
 
 def alternative_linear(scaled: Scaled, gamma: float, tol: float) -> LinearSection:
     """Rung 1v's linear section for ``scaled`` (its tether, ends included) at one damping ``gamma``: the margins of
-    another attachment of the ends, at the damping the mission's verdict uses."""
+    another attachment of the ends, at the damping the mission's verdict uses (one mesh: shown beside the margin,
+    not judged)."""
     t = scaled.tether.with_(gamma=gamma)
-    return _linear(scaled, t, critical(t, tol=tol, mode=False), tol)
+    return _linear(scaled, t, critical(t, tol=tol, mode=False, check=False), tol)  # beside the margin: one mesh
 
 
 def verdict_gamma(gamma: float, points: list[DampingPoint], verdict: Crossing, undamped: Crossing | None) -> float:

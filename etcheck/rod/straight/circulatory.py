@@ -499,8 +499,8 @@ def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) ->
         msg = (f"unstable at any {axis} > 0: {kind}{at} from {axis} = 0 on, the circulatory load splitting a double "
                f"frequency of the unloaded tether off the imaginary axis ({MODEL})")
     else:
-        msg = (f"first instability at {axis} = {x2:.12g} ({kind}{at}; {MODEL}); error estimate {err:.2e} "
-               f"(meshes N = {N} and {M})")
+        how = f"meshes N = {N} and {M}" if M != N else f"one mesh, N = {N}: round-off only, no second mesh"
+        msg = f"first instability at {axis} = {x2:.12g} ({kind}{at}; {MODEL}); error estimate {err:.2e} ({how})"
     converged = zero or bool(err <= tol * abs(x2))
     shape = _mode(line, x2 * (1 + 8 * rtol) if not zero else AT_ZERO * hi, z2) if mode else None
     return Crossing(axis, 0.0 if zero else x2, kind, z2, 0.0 if zero else err, converged, lo, hi, N, M, msg, shape)
