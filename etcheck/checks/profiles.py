@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
-from etcheck.rod.straight.circulatory import THRESHOLD, Crossing, critical, crossing_mode
+from etcheck.rod.straight.circulatory import THRESHOLD, Crossing, critical, critical_spin, crossing_mode
 from etcheck.rod.straight.profiles import Tether
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import RPM, Scaled
@@ -39,7 +39,8 @@ def _record(c: Crossing, tol: float) -> CriticalPoint:
     """A crossing as a critical point record (dimensionless value; absolute error)."""
     located = CriticalKind(c.kind).located
     value = c.value if located or c.kind == CriticalKind.UNSTABLE_AT_START else None
-    bracket = [c.lo, c.hi] if c.kind == CriticalKind.NONE_FOUND else [c.value] * 2 if value is not None else [0.0, 0.0]
+    bracket = ([c.lo, c.hi] if c.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) else
+               [c.value] * 2 if value is not None else [0.0, 0.0])
     within = not located or c.value == 0 or bool(c.error <= tol * abs(c.value))
     return {"value": value, "kind": str(c.kind), "bracket": [float(x) for x in bracket],
             "error": float(c.error) if located and math.isfinite(c.error) else None, "message": c.message,
@@ -168,7 +169,7 @@ def _linear(scaled: Scaled, t: Tether, verdict: Crossing, tol: float) -> LinearS
     """The linear section the margins read: the crossing along the load (``verdict``) and, with spin, the critical
     spin of ``t`` at its load (located here)."""
     p, wc, load = t.params, scaled.scales.frequency, scaled.scales.load
-    spin = critical(t, "omega", tol=tol, mode=False) if p.omega > 0 else None
+    spin = critical_spin(t, tol=tol) if p.omega > 0 else None
     load_point = _load_point(verdict, tol, load)
     stable = bool(verdict.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) or
                   (load_point["value"] is not None and p.B < load_point["value"]))

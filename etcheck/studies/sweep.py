@@ -241,7 +241,7 @@ def profiles_point(tether: Tether, tol: float, spin: bool = True, damping_fixed:
     """Rung 1v at one sweep point: the critical load at the point's spin (the least favourable of
     :data:`SWEEP_DAMPING` for a circulatory load without a fixed damping, else at the point's damping) and the
     critical spin at its load at that damping (dimensionless, JSON-able, as :func:`solve_point`)."""
-    from etcheck.rod.straight.circulatory import critical
+    from etcheck.rod.straight.circulatory import critical, critical_spin
 
     p = tether.params
     fractions = SWEEP_DAMPING if tether.circulatory and not damping_fixed and p.gamma > 0 else (1.0,)
@@ -260,9 +260,9 @@ def profiles_point(tether: Tether, tol: float, spin: bool = True, damping_fixed:
     if c.kind == CriticalKind.NOT_LOCATED:
         out |= {"status": STATUS_FAILED, "reason": f"rung 1v: {c.message}"}
     if spin and p.omega > 0:
-        w = critical(tether.with_(gamma=gamma), "omega", tol=tol, mode=False)
-        out["omega_c"] = w.value if CriticalKind(w.kind).located else 0.0 if w.kind == CriticalKind.UNSTABLE_AT_START \
-            else math.inf
+        w = critical_spin(tether.with_(gamma=gamma), tol=tol)
+        out["omega_c"] = (w.value if CriticalKind(w.kind).located else 0.0 if w.kind == CriticalKind.UNSTABLE_AT_START
+                          else math.inf)
         out["omega_c_error"] = w.error / w.value if CriticalKind(w.kind).located and w.value > 0 else 0.0
     out["stable"] = bool(p.B < value and (out["omega_c"] is None or p.omega < out["omega_c"]))
     if math.isinf(value):  # stable up to the end of the line: the margin shown is a lower bound

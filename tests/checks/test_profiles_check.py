@@ -121,3 +121,15 @@ def test_a_sweep_point_with_profiles_is_solved_by_rung_1v():
                                       for g in (0.0, 1e-3 * sc.params.gamma, sc.params.gamma)), rel_tol=1e-8)
     uniform = scale(scene(_mission(operation={"current_profile": None})))
     assert point_key(sc.params, 1e-8, tether=sc.tether) != point_key(uniform.params, 1e-8, tether=uniform.tether)
+
+
+def test_an_undamped_round_wire_with_a_tension_profile_is_stable_at_every_spin_below_its_load_at_rest():
+    """One current (conservative), R = 1, undamped, spun: below the static load at rest no spin destabilises it,
+    whatever the tension along it (a hyperbolic gyroscopic pencil); the spin margin is unlimited."""
+    wire = _mission(tether={"bending_stiffness": "38 N m2", "damping_time": "0 s"},
+                    operation={"current_profile": None, "spin_rate": "0.05 rpm"})
+    results = check(wire).results
+    spin = results["linear"]["critical_spin"]
+    assert spin["kind"] == "never" and "every spin" in spin["message"]
+    margin = next(g for g in results["margins"] if g["name"].startswith("spin"))
+    assert margin["verdict"] == "pass" and margin["value"] is None

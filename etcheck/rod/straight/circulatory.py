@@ -469,6 +469,24 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     return _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise)
 
 
+def critical_spin(tether: Tether, tol: float = 1e-8) -> Crossing:
+    """The first loss of stability as the spin grows at the tether's load, as :func:`critical` along "omega";
+    except for an undamped isotropic tether (R = 1) with a conservative load (one current) below its static load at
+    rest, which is stable at every spin (docs/model.md §6: its gyroscopic pencil is hyperbolic, whatever the
+    self-adjoint stiffness, a tension along the tether included); its double static points along the spin line
+    would otherwise read as crossings."""
+    p = tether.params
+    if p.R == 1.0 and p.gamma == 0 and not tether.circulatory and p.B > 0:
+        rest = critical(tether.with_(omega=0.0), tol=tol, mode=False)
+        if rest.kind == CriticalKind.DIVERGENCE and p.B < rest.value * (1 - rest.error / max(rest.value, 1e-300)):
+            hi = default_hi(tether, "omega")
+            return Crossing("omega", math.nan, CriticalKind.NEVER, complex(math.nan), math.nan, True, 0.0, hi,
+                            rest.N, rest.N_check,
+                            f"stable at every spin: below its static load at rest (B = {rest.value:.9g}) no spin can "
+                            f"destabilise an undamped isotropic tether (its gyroscopic pencil is hyperbolic; {MODEL})")
+    return critical(tether, "omega", tol=tol, mode=False)
+
+
 def _roundoff(line: _Line, x: float, z: complex) -> float:
     """How far the round-off of the crossing eigenvalue's real part moves a crossing that it makes on its own
     (not a collision, not a static point): that round-off (the spread of Re lambda computed from two shifts)
