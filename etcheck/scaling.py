@@ -14,12 +14,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import astropy.units as u
 
+from etcheck.input.gravity_gradient import GravityGradient
 from etcheck.input.mission import DEFAULT_GAMMA, Mission
 from etcheck.rod.core.ends import ALL_WELDED
 from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.profile import Profile
+
+if TYPE_CHECKING:  # rung 1v (scipy.sparse) is imported only for a mission with profiles
+    from etcheck.rod.straight.profiles import Tether
 
 #: rad/s -> revolutions per minute
 RPM = 60.0 / (2.0 * math.pi)
@@ -46,6 +52,16 @@ class Scene:
     damping_time: float
     f: float
     ends: tuple[str, str] = ALL_WELDED  # (lower, upper): how the tether is attached (etcheck.rod.core.ends)
+    # along the tether (dimensionless shapes of s, the fraction of the length from the lower end): I(s)/I_max of
+    # operation.current_profile (None: one current) and the gravity-gradient tension of tether.end_masses (None:
+    # one end tension); ``tension`` is then its smallest value along the tether, a bound
+    current_profile: Profile | None = None
+    gravity_gradient: GravityGradient | None = None
+
+    @property
+    def profiles(self) -> bool:
+        """Whether current or tension varies along the tether (rung 1v)."""
+        return self.current_profile is not None or self.gravity_gradient is not None
 
 
 @dataclass(frozen=True)
@@ -75,10 +91,13 @@ class Scales:
 
 @dataclass(frozen=True)
 class Scaled:
-    """The dimensionless problem and its scales."""
+    """The dimensionless problem and its scales; ``tether``: the problem with its profiles along the tether
+    (rung 1v: current b(s), tension T tau(s) with T the largest tension), None where both are uniform. ``params``
+    has the uniform smallest tension (the bound)."""
 
     params: RodParameters
     scales: Scales
+    tether: Tether | None = None
 
 
 def scene(mission: Mission) -> Scene:
@@ -90,6 +109,7 @@ def scene(mission: Mission) -> Scene:
     """
     # plain Python floats (not numpy scalars): everything downstream stays JSON-able
     EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in mission.bending_stiffness)
+    profile = mission.current_profile
     L = float(mission.length.to_value(u.m))
     rho_a = float(mission.mass_per_length.to_value(u.kg / u.m))
     f = mission.scaling_constant
@@ -110,6 +130,8 @@ def scene(mission: Mission) -> Scene:
         damping_time=damping,
         f=f,
         ends=mission.end_conditions,
+        current_profile=None if profile is None or profile.uniform else profile.profile,
+        gravity_gradient=mission.gravity_gradient,
     )
 
 
@@ -128,11 +150,25 @@ def scale(s: Scene) -> Scaled:
         gamma=s.damping_time * wc,
         ends=s.ends,
     )
-    return Scaled(params=params, scales=scales)
+    return Scaled(params=params, scales=scales, tether=_tether(s, params, scales))
+
+
+def _tether(s: Scene, params: RodParameters, scales: Scales) -> Tether | None:
+    """The problem with its profiles (T the largest tension, tau = T(s) / T_max), None without any."""
+    if not s.profiles:
+        return None
+    from etcheck.rod.straight.profiles import Tether
+
+    current = s.current_profile or Profile.uniform()
+    gg = s.gravity_gradient
+    if gg is None:
+        return Tether(params, current)
+    return Tether(params.with_(T=gg.maximum / scales.force), current, gg.shape())
 
 
 def unscale(scaled: Scaled) -> Scene:
-    """Dimensionless parameters and scales -> the SI scene (inverse of scale)."""
+    """Dimensionless parameters and scales -> the SI scene (inverse of scale; the profiles along the tether are
+    not carried back: the scene of the uniform bound)."""
     p, sc = scaled.params, scaled.scales
     wc = sc.frequency
     EI2 = p.R * sc.EI1
@@ -155,10 +191,17 @@ def unscale(scaled: Scaled) -> Scene:
 def with_length(s: Scene, length: float) -> Scene:
     """The same tether at another length [m] (what-if): P scales as L^-2.
 
-    Stiffnesses, mass per length, load per length, spin, tension and damping
+    Stiffnesses, mass per length, load per length, spin, end tension and damping
     time are physical properties and stay; the dimensionless B ∝ L^3,
-    P ∝ L^-2, T̄ ∝ L^2, ω̄ ∝ L^2, gamma ∝ L^-2 follow from :func:`scale`.
+    P ∝ L^-2, T̄ ∝ L^2, ω̄ ∝ L^2, gamma ∝ L^-2 follow from :func:`scale`. A
+    gravity-gradient tension (end masses) is recomputed at the new length: it
+    grows with it (the end bodies sit farther from the centre of mass, and the
+    tether's own mass grows).
     """
     from dataclasses import replace
 
-    return replace(s, length=length, P=s.P * (s.length / length) ** 2)
+    gg = s.gravity_gradient
+    if gg is None:
+        return replace(s, length=length, P=s.P * (s.length / length) ** 2)
+    gg = replace(gg, length=length)  # the end bodies and the tether's own mass pull harder on a longer tether
+    return replace(s, length=length, P=s.P * (s.length / length) ** 2, tension=gg.minimum, gravity_gradient=gg)

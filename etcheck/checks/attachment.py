@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from etcheck.checks.margins import Margin, overall_verdict, straight_margins
-from etcheck.checks.plan import Plan, plan
+from etcheck.checks.plan import PROFILES, Plan, plan, varies_along
 from etcheck.checks.sections import AlternativeMargin, AttachmentSection
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import WhirlOptions, linear_stability
@@ -61,17 +61,26 @@ def alternative_ends(ends: Ends) -> tuple[Ends, ...]:
     return tuple(alt for alt in (ALL_WELDED, ALL_PINNED) if _bending(alt) != _bending(ends))
 
 
-def alternatives(mission: Mission, sc: Scene, scaled: Scaled, options: WhirlOptions) -> tuple[Alternative, ...]:
+def alternatives(mission: Mission, sc: Scene, scaled: Scaled, options: WhirlOptions,
+                 damping: float | None = None) -> tuple[Alternative, ...]:
     """The straight tether's margins under each of :func:`alternative_ends` (rung 0, or rung 1's critical values
-    only, at the mission's fidelity and tolerance)."""
+    only, at the mission's fidelity and tolerance). With profiles along the tether (``scaled.tether``), rung 1v's
+    critical values at ``damping``, the one the mission's verdict uses."""
     out = []
     quick = replace(options, draft=True, accuracy_N=())
     for ends in alternative_ends(scaled.params.ends):
-        alt = Scaled(params=scaled.params.with_(ends=ends), scales=scaled.scales)
-        chosen = plan(alt.params, mission.fidelity)
+        tether = None if scaled.tether is None else scaled.tether.with_(ends=ends)
+        alt = Scaled(params=scaled.params.with_(ends=ends), scales=scaled.scales, tether=tether)
+        chosen = plan(alt.params, mission.fidelity, varies_along(sc))
         rung0 = static_buckling(alt)
         static = {**rung0, "limits": static_limits(rung0, mission, sc)}
-        linear = linear_stability(alt, quick, chosen.route) if chosen.rung == 1 and chosen.complete else None
+        if chosen.route == PROFILES and chosen.complete:
+            from etcheck.checks.profiles import alternative_linear  # rung 1v (scipy.sparse) for profiles only
+
+            linear = alternative_linear(alt, alt.tether.params.gamma if damping is None else damping,
+                                        max(options.tol, options.eig_tol))
+        else:
+            linear = linear_stability(alt, quick, chosen.route) if chosen.rung == 1 and chosen.complete else None
         out.append(Alternative(ends, chosen, tuple(straight_margins(mission, sc, alt, chosen, static, linear))))
     return tuple(out)
 

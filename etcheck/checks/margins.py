@@ -6,7 +6,7 @@ from dataclasses import asdict, dataclass, replace
 from enum import StrEnum
 from typing import cast
 
-from etcheck.checks.plan import EXACT, EXACT_MODEL, RUNG_NAMES, Plan
+from etcheck.checks.plan import PROFILES, Plan, route_model
 from etcheck.checks.sections import (
     AlternativeMargin,
     LinearSection,
@@ -64,7 +64,7 @@ class Margin:
 
     @property
     def model(self) -> str:
-        return EXACT_MODEL if self.route == EXACT and self.rung == 1 else RUNG_NAMES[self.rung]
+        return route_model(self.rung, self.route)
 
     def as_dict(self) -> MarginRecord:
         return cast(MarginRecord, asdict(self) | {"model": self.model, "alternatives": list(self.alternatives)})
@@ -107,11 +107,11 @@ def overall_verdict(margins: list[Margin], within_validity: bool = True) -> str:
 
 
 def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: StraightRodSection,
-                     linear: LinearSection | None) -> list[Margin]:
+                     linear: LinearSection | None, damping: str = "") -> list[Margin]:
     required = mission.required_margin
     first = static["critical_loads"][0]
     if linear is not None:
-        return linear_margins(sc, scaled, required, linear)
+        return linear_margins(sc, scaled, required, linear, damping)
     if chosen.rung == 0 and chosen.complete:
         return [
             ratio_margin(
@@ -135,8 +135,14 @@ def _static_why(ends) -> str:
             "its closed-form characteristic function (docs/model.md)")
 
 
-def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSection) -> list[Margin]:
-    """Load margin at the operating spin; spin margin at the operating load (rung 1)."""
+#: How each kind of loss of stability reads in a margin's reason.
+KIND_WORDS = {"divergence": "divergence (a static buckling: a real eigenvalue through zero)",
+              "flutter": "flutter (two vibration modes merge and one grows)"}
+
+
+def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSection, damping: str = "") -> list[Margin]:
+    """Load margin at the operating spin; spin margin at the operating load (rung 1); ``damping``: which damping
+    the critical values of rung 1v hold for, and why (docs/model.md section 10)."""
     p = scaled.params
     load, spin = linear["critical_load"], linear["critical_spin"]
     window = ""
@@ -145,6 +151,10 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
             "; the operating point itself is stable, inside a stability window that does not reach back to zero "
             "(gyroscopic stabilisation, which damping removes): a window is not counted as margin"
         )
+    along = ""
+    if linear.get("route") == PROFILES:
+        along = (" with its current and tension along it, by " + KIND_WORDS.get(load["kind"], load["kind"])
+                 + (f"; damping: {damping}" if damping else ""))
     margins = [
         margin_from_critical(
             LOAD_AT_SPIN,
@@ -154,7 +164,8 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
             sc.load,
             scaled.scales.load,
             required,
-            "the straight tether first loses stability as I B0 grows at the operating spin, tension and damping",
+            "the straight tether first loses stability as I B0 grows at the operating spin, tension and damping"
+            + along,
             "the straight tether is already unstable with no magnetic load at the operating spin and tension" + window,
         )
     ]

@@ -30,7 +30,7 @@ from etcheck.checks.margins import (
 )
 from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.orbit_load import orbit_results
-from etcheck.checks.plan import EXACT, LAYER_MIN, R_MIN_SPECTRAL, boundary_layer, plan
+from etcheck.checks.plan import EXACT, LAYER_MIN, PROFILES, R_MIN_SPECTRAL, Plan, boundary_layer, plan, varies_along
 from etcheck.checks.results import results_header
 from etcheck.checks.sections import (
     AssumptionsSection,
@@ -38,6 +38,7 @@ from etcheck.checks.sections import (
     DesignLimitsSection,
     LinearSection,
     PostbucklingSection,
+    ProfilesSection,
     ScaledSection,
     SceneSection,
     SkippedPart,
@@ -91,34 +92,22 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     mission = with_orbit_field(mission)
     sc = scene(mission)
     scaled = scale(sc)
-    chosen = plan(scaled.params, mission.fidelity)
+    chosen = plan(scaled.params, mission.fidelity, varies_along(sc))
     fid = fidelity_of(mission.fidelity, mission.tolerance)
     rung0 = static_buckling(scaled)
     static: StraightRodSection = {**rung0, "limits": static_limits(rung0, mission, sc)}
-    linear = accuracy_rows = None
-    skipped: list[SkippedPart] = []
     options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=(), time_budget=None)
     # the report's extras not computed by then are skipped (the margins never are)
     deadline = None if options.time_budget is None else started + options.time_budget
-    if chosen.rung == 1 and chosen.complete:
-        # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
-        # nothing from the rest: where a core is free a helper computes it meanwhile
-        def table() -> list | None:
-            return accuracy(scaled, options.accuracy_N)
-
-        if not options.accuracy_N or chosen.route == EXACT:
-            later = nullcontext(lambda: None)
-        else:
-            later = ahead(table) if options.accuracy_beside else nullcontext(table)
-        with later as accuracy_later:
-            linear, skipped = linear_answers(scaled, options, chosen.route, deadline)
-            accuracy_rows = Extras(skipped, deadline, options.time_budget)("accuracy table", accuracy_later)
-    margins = straight_margins(mission, sc, scaled, chosen, static, linear)
-    alts = alternatives(mission, sc, scaled, options)  # the same margins under the other attachments of the ends
+    linear, profiles, accuracy_rows, skipped = _straight_answers(mission, scaled, chosen, options, deadline)
+    margins = straight_margins(mission, sc, scaled, chosen, static, linear,
+                               profiles["damping"]["why"] if profiles else "")
+    # the same margins under the other attachments of the ends (with profiles: at the damping the verdict uses)
+    alts = alternatives(mission, sc, scaled, options, profiles["damping"]["gamma"] if profiles else None)
     margins = with_alternatives(margins, alts)
-    post = None if fid.draft else _postbuckling(mission, scaled, static, linear)
+    post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
     study = None
@@ -146,6 +135,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "fidelity": fid.as_dict(),
         "straight_rod": static,
         "linear": linear,
+        "profiles": profiles,
         "postbuckling": post,
         "accuracy": accuracy_rows,
         "margins": margin_records,
@@ -166,6 +156,38 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     return CheckResult(results=results)
 
 
+def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: WhirlOptions, deadline: float | None
+                      ) -> tuple[LinearSection | None, ProfilesSection | None, list | None, list[SkippedPart]]:
+    """The straight tether's answers past rung 0: rung 1v with profiles along the tether, else rung 1 and its
+    accuracy table (None each where the plan stops before them), and the extras skipped for the time budget."""
+    skipped: list[SkippedPart] = []
+    if not chosen.complete:
+        return None, None, None, skipped
+    if chosen.route == PROFILES:
+        # imported here on purpose: rung 1v (scipy.sparse) loads only for a mission with profiles
+        from etcheck.checks.profiles import profile_stability
+
+        linear, profiles = profile_stability(scaled, mission.damping_time is not None,
+                                             float(mission.worst_current.to_value("A")),
+                                             tol=max(options.tol, options.eig_tol), draft=options.draft)
+        return linear, profiles, None, skipped
+    if chosen.rung != 1:
+        return None, None, None, skipped
+
+    # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
+    # nothing from the rest: where a core is free a helper computes it meanwhile
+    def table() -> list | None:
+        return accuracy(scaled, options.accuracy_N)
+
+    if not options.accuracy_N or chosen.route == EXACT:
+        later = nullcontext(lambda: None)
+    else:
+        later = ahead(table) if options.accuracy_beside else nullcontext(table)
+    with later as accuracy_later:
+        linear, skipped = linear_answers(scaled, options, chosen.route, deadline)
+        return linear, None, Extras(skipped, deadline, options.time_budget)("accuracy table", accuracy_later), skipped
+
+
 def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bool, options: WhirlOptions,
                   extras: Extras) -> tuple[AssumptionsSection | None, DesignLimitsSection | None]:
     """How far the smallest margin of the straight tether moves with each assumption, and how far each input may
@@ -182,9 +204,16 @@ def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bo
 
 
 def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
-                  linear: LinearSection | None) -> PostbucklingSection | None:
+                  linear: LinearSection | None, profiles: ProfilesSection | None = None) -> PostbucklingSection | None:
     """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load."""
     p = scaled.params
+    if profiles is not None:
+        crit = linear["critical_load"] if linear else None
+        B_c = crit["value"] if crit else None
+        if B_c is None or not needs_postbuckling(p.B, B_c, mission.required_margin):
+            return None
+        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c if B_c else None,
+                "reason": profiles["post_buckling"]}
     if linear is not None:
         crit = linear["critical_load"]
         kind = CriticalKind(crit["kind"])
@@ -229,7 +258,7 @@ def _scene_dict(mission: Mission, sc: Scene) -> SceneSection:
         "load_N_per_m": sc.load,
         "spin_rate_rad_s": sc.spin_rate,
         "tension_N": sc.tension,
-        # tether.end_masses: the gravity-gradient profile (N); tension_N is its minimum (conservative)
+        # tether.end_masses: the gravity-gradient profile (N), which rung 1v uses; tension_N is its minimum (a bound)
         "tension_profile": None if mission.gravity_gradient is None else mission.gravity_gradient.as_dict(),
         "damping_time_s": sc.damping_time,
         "f": sc.f,

@@ -14,8 +14,9 @@ LAYER_MIN = 0.02
 #: below this stiffness ratio the weak axis is nearly a string: the exact determinant (collocation is ill-conditioned)
 R_MIN_SPECTRAL = 1e-3
 
-SPECTRAL, EXACT = "spectral", "exact determinant"
+SPECTRAL, EXACT, PROFILES = "spectral", "exact determinant", "profiles"
 EXACT_MODEL = "rung 1 (linear, exact characteristic determinant)"
+PROFILES_MODEL = "rung 1v (linear, current and tension along the tether; graded collocation)"
 
 RUNG_NAMES = {0: "rung 0 (analytic)", 1: "rung 1 (linear spectral)",
               3: "rungs 2-3 (post-buckling equilibria and their stability)"}
@@ -36,7 +37,16 @@ class Plan:
 
     @property
     def model(self) -> str:
-        return EXACT_MODEL if self.route == EXACT and self.rung == 1 else RUNG_NAMES[self.rung]
+        return route_model(self.rung, self.route)
+
+
+def route_model(rung: int, route: str) -> str:
+    """The model that answers on a rung and route."""
+    if rung == 1 and route == EXACT:
+        return EXACT_MODEL
+    if rung == 1 and route == PROFILES:
+        return PROFILES_MODEL
+    return RUNG_NAMES[rung]
 
 
 def boundary_layer(params: RodParameters) -> float:
@@ -61,12 +71,33 @@ def straight_route(params: RodParameters) -> str:
     return SPECTRAL
 
 
-def plan(params: RodParameters, fidelity: str = "auto") -> Plan:
+def _plan_profiles(fidelity: str, profiles: str) -> Plan:
+    if fidelity == "analytic":
+        return Plan(0, f"the mission has {profiles} along the tether, which rung 0 (one current, no tension) does "
+                    "not model; fidelity = analytic was requested, so the check is incomplete", complete=False)
+    return Plan(1, f"the mission has {profiles} along the tether: the straight tether's linear stability with "
+                "variable coefficients (graded collocation resolving its end layers), stability read from the "
+                "eigenvalues (divergence or flutter)", route=PROFILES)
+
+
+def varies_along(sc) -> str:
+    """What varies along the tether of a scene (:class:`etcheck.scaling.Scene`), in words ("" when nothing does:
+    one current, one tension)."""
+    parts = (["a current"] if sc.current_profile is not None else []) + (
+        ["a gravity-gradient tension"] if sc.gravity_gradient is not None else [])
+    return " and ".join(parts)
+
+
+def plan(params: RodParameters, fidelity: str = "auto", profiles: str = "") -> Plan:
     """Pick the cheapest rung that answers the straight-tether question exactly.
 
     Rung 0 is exact for the static problem (omega = 0, T = 0; damping does not
-    move static loads). Spin or end tension needs rung 1.
+    move static loads). Spin or end tension needs rung 1. A current or a tension
+    that varies along the tether (``profiles``: what varies, in words) needs
+    rung 1v (docs/model.md section 10).
     """
+    if profiles:
+        return _plan_profiles(fidelity, profiles)
     static = params.omega == 0 and params.T == 0
     if static and fidelity in ("auto", "draft", "analytic"):
         if is_welded(params.ends):

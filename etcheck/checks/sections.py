@@ -91,7 +91,7 @@ class FidelitySection(TypedDict):
 
 class StaticCriticalLoad(TypedDict):
     """One critical load of the static rod (omega = T = 0, eq. (91)): the k-th zero beta of chi (of its closed-form
-    analogue 2 g^2 for other ends than welded, docs/model.md section 9; ``chi_*`` keep their names)."""
+    analogue 2 g^2 for other ends than welded, docs/model.md section 10; ``chi_*`` keep their names)."""
 
     k: int
     beta: float
@@ -275,6 +275,73 @@ class LinearSection(TypedDict):
     operating: OperatingPoint
     campbell: Campbell | None
     stability_map: StabilityMap | None
+
+
+# --------------------------------------------------------------------------- rung 1v: profiles along the tether
+
+
+class ProfileCurrent(TypedDict):
+    """``profiles.current``: I(s) / I_max and I(s) at fractions s of the length from the lower end."""
+
+    s: list[float]
+    height_m: list[float]
+    fraction: list[float]
+    current_A: list[float]
+
+
+class ProfileTension(TypedDict):
+    """``profiles.tension``: the tension T(s) [N] at fractions s of the length from the lower end."""
+
+    s: list[float]
+    height_m: list[float]
+    tension_N: list[float]
+
+
+class DampingPoint(TypedDict):
+    """One point of the damping map: the critical load at the operating spin at one damping."""
+
+    gamma: float
+    damping_time_s: float
+    B: float | None
+    IB0_N_per_m: float | None
+    kind: str
+    destabilised: bool  # below the undamped threshold: damping lowered it (Ziegler)
+
+
+class DampingSection(TypedDict):
+    """``profiles.damping``: which damping the verdict uses and why; the map (empty when fixed or conservative)."""
+
+    fixed: bool
+    gamma: float
+    damping_time_s: float
+    why: str
+    map: list[DampingPoint]
+
+
+class ProfileMode(TypedDict):
+    """``profiles.mode``: the mode that crosses first, complex (u weak axis, v stiff axis), peak 1."""
+
+    s: list[float]
+    u_re: list[float]
+    u_im: list[float]
+    v_re: list[float]
+    v_im: list[float]
+    kind: str
+    frequency_Hz: float
+
+
+class ProfilesSection(TypedDict):
+    """``profiles``: rung 1v, the straight tether with its current and tension along it (docs/model.md §10)."""
+
+    model: str
+    circulatory: bool
+    current: ProfileCurrent | None
+    tension: ProfileTension | None
+    damping: DampingSection
+    undamped: CriticalLoad | None
+    uniform_tension_bound: CriticalLoad | None
+    mode: ProfileMode | None
+    post_buckling: str
 
 
 class AccuracyRow(TypedDict):
@@ -754,6 +821,7 @@ class CheckResults(ResultsHeader):
     fidelity: FidelitySection
     straight_rod: StraightRodSection
     linear: LinearSection | None
+    profiles: ProfilesSection | None
     postbuckling: PostbucklingSection | None
     accuracy: list[AccuracyRow] | None
     margins: list[MarginRecord]

@@ -31,7 +31,7 @@ from __future__ import annotations
 import math
 
 from etcheck.checks.attachment import alternative_ends
-from etcheck.checks.plan import EXACT, Plan
+from etcheck.checks.plan import EXACT, PROFILES, Plan
 from etcheck.checks.sections import PostbucklingSection
 from etcheck.checks.sections_verdict import LateralLoad, ModelValidity, ValidityCheck
 from etcheck.input.mission import Mission
@@ -264,19 +264,22 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: PostbucklingS
             + " to ~1e-15 relative (a-posteriori Newton step); "
             "the static loads do not depend on P, damping or mass per length."
         )
-    if chosen.rung == 1 and chosen.route == EXACT:
+    if chosen.route == PROFILES:
+        items += _profiles_items(p, scaled)
+    elif chosen.rung == 1 and chosen.route == EXACT:
         items += _exact_items(p)
     elif chosen.rung == 1:
         items += _spectral_items(p)
     gg = mission.gravity_gradient
     if gg is not None:
         items.append(
-            f"End tension from the gravity gradient (tether.end_masses, {gg.rate_source}): the tension varies along "
-            f"the tether from {gg.minimum:.4g} N at the {gg.minimum_at} to {gg.maximum:.4g} N at the centre of mass; "
-            f"the rod model has one constant tension and uses the SMALLEST, {gg.minimum:.4g} N. Tension stabilises "
-            "the straight tether, so this is conservative. Tether on the local vertical at rest in the orbiting "
-            "frame, no libration (at the extremes of a libration swing the tension is lower, by about cos² of the "
-            "angle)."
+            f"Tension from the gravity gradient (tether.end_masses, {gg.rate_source}): the tension varies along "
+            f"the tether from {gg.minimum:.4g} N at the {gg.minimum_at} to {gg.maximum:.4g} N at the centre of mass, "
+            "and the check uses that profile (rung 1v); the smallest tension held constant along the tether is "
+            "reported beside it as a bound (tension stabilises). The axial pull of the gradient is taken along the "
+            "undeformed tether; the lateral forces of the orbital frame on a displaced element (Hill's equations) "
+            "are left out. Tether on the local vertical of a circular orbit, no libration (at the extremes of a "
+            "libration swing the tension is lower, by about cos² of the angle)."
         )
     return items
 
@@ -317,4 +320,23 @@ def _spectral_items(p) -> list[str]:
             "accumulation of heavily damped high modes) are not listed: they decay faster than the material "
             "relaxation rate."
         )
+    return items
+
+
+def _profiles_items(p, scaled: Scaled) -> list[str]:
+    """What rung 1v assumes and how it is checked."""
+    t = scaled.tether
+    items = [
+        "Rung 1v linearises about the straight tether with its current and tension along it (docs/model.md "
+        "section 10): Chebyshev collocation on subdomains graded towards the ends (down to the boundary layers "
+        "of the weak axis), stability read from the eigenvalues (Re lambda > 1e-8 |lambda| counts as growing). Every "
+        "critical value is located on two meshes; their distance (with the round-off of a slow crossing) is its "
+        "error. An independent finite-element discretisation agrees with it in the tests.",
+    ]
+    if t is not None and t.circulatory:
+        items.append(
+            "With a current that varies along the tether the magnetic load has no potential (it is circulatory): the "
+            "tether can lose stability by flutter, two vibration modes merging into one that grows, and damping can "
+            "lower the threshold (Ziegler's paradox), so the threshold is computed undamped and over the damping the "
+            "mission allows. A round wire (R = 1) flutters at any load without damping.")
     return items

@@ -45,10 +45,37 @@ class TensionProfile(TypedDict):
     orbit_rate_source: str
 
 
+class CollectionEcho(TypedDict):
+    """``mission.operation.current_profile.collection``: orbital-motion-limited collection (SI, units in the keys)."""
+
+    plasma_density_per_m3: float
+    motional_field_V_per_m: float
+    conductivity_S_per_m: float
+    perimeter_m: float
+    conductive_area_m2: float
+    anode_end: str
+    characteristic_length_m: float
+    length_ratio: float
+    short_circuit_current_A: float
+    largest_current_A: float
+
+
+class CurrentProfileEcho(TypedDict):
+    """``mission.operation.current_profile``: I(s) / I_max at fractions ``at`` of the length from the lower end
+    (the points given, or samples of the OML profile), how it was made and what it assumed."""
+
+    model: str
+    at: list[float]
+    fraction: list[float]
+    collection: CollectionEcho | None
+    notes: list[str]
+
+
 class OperationEcho(TypedDict):
     """``mission.operation``: current and field as [value] or [low, high]; the field in µT."""
 
     current: list[str]
+    current_profile: CurrentProfileEcho | None  # None: one current along the whole tether
     axial_field: list[str] | None  # None: from the [orbit], not yet evaluated
     cross_field: list[str] | None  # None: not given (from the [orbit], or etcheck's default)
     spin_rate: str

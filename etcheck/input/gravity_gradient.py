@@ -20,10 +20,11 @@ the ends ``T(L) = 3 Omega^2 m_upper (L - h_c)`` and ``T(0) = 3 Omega^2
 m_lower h_c``. With a massless tether it is ``3 Omega^2 m_u m_l L / (m_u +
 m_l)`` everywhere.
 
-The rod model of the check has one constant tension. Tension stabilises the
-straight tether against magnetic buckling and whirl, so the conservative
-choice is the SMALLEST tension along the tether (:attr:`GravityGradient.minimum`);
-the whole profile is kept for the results.
+The check uses the whole profile (:meth:`GravityGradient.shape`, rung 1v of
+docs/model.md section 10). Tension stabilises the straight tether against
+magnetic buckling and whirl, so the SMALLEST tension along the tether held
+constant (:attr:`GravityGradient.minimum`) gives a conservative bound, which
+the check reports beside it.
 
 Orbit rate: given (``operation.orbit_rate``), from a circular altitude
 (``operation.orbit_altitude``, the mean motion sqrt(mu_E / r^3)), or from the
@@ -45,9 +46,12 @@ import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from etcheck.errors import MissionError
 from etcheck.input.echo import TensionProfile
 from etcheck.input.units import QuantityProblem, to_quantity
+from etcheck.rod.core.profile import Profile
 
 if TYPE_CHECKING:
     from etcheck.orbit.spec import OrbitSpec
@@ -123,11 +127,19 @@ class GravityGradient:
     def minimum_at(self) -> str:
         return "upper end" if self.upper_end <= self.lower_end else "lower end"
 
+    def shape(self) -> Profile:
+        """T(s) / maximum along the tether, s the fraction of the length from the lower end (dimensionless: one
+        parabola, exact at degree 2)."""
+        L, top = self.length, self.maximum
+        return Profile.from_function(lambda s: np.array([self.at(float(x) * L) for x in np.atleast_1d(s)]) / top,
+                                     degree=2)
+
     def as_dict(self) -> TensionProfile:
         """JSON-able profile (SI, keys carry their unit)."""
         return {
-            "model": "gravity gradient, tether on the local vertical at rest in the orbiting frame (no libration)",
-            "used": "minimum",
+            "model": "gravity gradient, tether on the local vertical at rest in the orbiting frame of a circular orbit "
+                     "(no libration)",
+            "used": "profile",
             "used_N": self.minimum,
             "minimum_N": self.minimum,
             "minimum_at": self.minimum_at,
@@ -150,9 +162,9 @@ class GravityGradient:
                 f"{self.orbit_rate:.5g} rad/s ({self.rate_source}); the tension along the tether runs from "
                 f"{self.minimum:.4g} N at the {self.minimum_at} to {self.maximum:.4g} N at the centre of mass "
                 f"({self.centre_of_mass:.4g} m above the lower end; upper end {self.upper_end:.4g} N, lower end "
-                f"{self.lower_end:.4g} N). The check uses the SMALLEST, {self.minimum:.4g} N, as the constant end "
-                "tension of the rod model: tension stabilises, so this is conservative (tether on the local "
-                "vertical, no libration)")
+                f"{self.lower_end:.4g} N). The check uses this profile along the tether (tether on the local "
+                f"vertical, no libration); the smallest, {self.minimum:.4g} N, held constant along it, is reported "
+                "beside it as a bound (tension stabilises, so the uniform smallest tension is conservative)")
 
 
 def circular_rate(altitude: float) -> float:

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 import astropy.units as u
 
 from etcheck.errors import MissionError
+from etcheck.input.current_profile import CurrentProfile, parse_current_profile
 from etcheck.input.echo import MissionEcho
 from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
 from etcheck.input.orbit_field import check_one_field_source, orbit_echo
@@ -91,6 +92,8 @@ SCHEMA: dict[str, dict[str, Field]] = {
     },
     "operation": {
         "current": Field("current_range", required=True),
+        "current_profile": Field("current_profile"),  # I(s)/I_max: points or "OML" (etcheck.input.current_profile)
+        "collection": Field("collection"),  # the [operation.collection] table of current_profile = "OML"
         "axial_field": Field("field_range"),  # required unless [orbit] is given (exactly one of the two)
         "cross_field": Field("field_range"),  # the field across the tether (its bow); not with [orbit]
         "spin_rate": Field("angular_rate", default=0.0 * u.rad / u.s),
@@ -159,6 +162,8 @@ class Mission:
     assumed: tuple[str, ...] = ()  # [mission] assumed: the fields ("table.field") whose values are assumptions
     flight: dict[str, str] | None = None  # [mission] flight: {"outcome", "reported"}, where the tether flew
     given: frozenset[str] = frozenset()  # the fields the file gives ("table.field"); the rest took their defaults
+    # operation.current_profile: I(s)/I_max along the tether (None: one current along the whole tether)
+    current_profile: CurrentProfile | None = None
 
     @property
     def slug(self) -> str:
@@ -222,6 +227,7 @@ class Mission:
             },
             "operation": {
                 "current": pair(self.current),
+                "current_profile": None if self.current_profile is None else self.current_profile.as_dict(),
                 "axial_field": None if self.axial_field is None else microtesla(self.axial_field),
                 "cross_field": None if self.cross_field is None else microtesla(self.cross_field),
                 "spin_rate": q(self.spin_rate),
@@ -299,6 +305,9 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     cross = _cross_field(o, orbit, source)
     spin, spin_notes = _spin_rate(o, source)
     tension, gg, tension_notes = _tension(t, o, orbit, length, mass, source)
+    profile = parse_current_profile(o, t, float(length.to_value(u.m)),
+                                    None if A is None else float(A.to_value(u.m**2)),
+                                    float(max(abs(current[0]), abs(current[1])).to_value(u.A)), source)
     settings = {key: read_field(c, "check", key, source) for key in SCHEMA["check"]}
     nominal = {"EI1": EI1, "EI2": EI2, "torsional_stiffness": GJ, "mass_per_length": mass, "length": length,
                "current": max(abs(current[0]), abs(current[1])),
@@ -307,6 +316,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     uncertainty, uncertainty_notes = _uncertainty(data, source, nominal, gj_derived=nu is not None)
     assumed, assumed_notes = _assumed(m, data, source)
     notes = (*_end_notes(ends), *torsion_notes, *inertia_notes, *spin_notes, *tension_notes,
+             *(profile.notes if profile else ()),
              *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping), *assumed_notes)
     return Mission(
         name=name,
@@ -338,6 +348,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         assumed=assumed,
         flight=_flight(m, source),
         given=frozenset(f"{table}.{key}" for table, fields in data.items() if table != "orbit" for key in fields),
+        current_profile=profile,
     )
 
 

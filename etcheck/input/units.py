@@ -30,6 +30,9 @@ KINDS = {
     "force": (u.N, "a force", '"5 N"'),
     "angle": (u.rad, "an angle", '"51.6 deg"'),
     "mass": (u.kg, "a mass", '"20 kg"'),
+    "number_density": (u.m**-3, "a number density", '"1e11 m-3"'),
+    "electric_field": (u.V / u.m, "an electric field", '"0.15 V/m"'),
+    "conductivity": (u.S / u.m, "an electrical conductivity", '"3.5e7 S/m"'),
 }
 
 
@@ -125,4 +128,7 @@ _PINT_SI = {
     "N": "N",
     "rad": "radian",
     "kg": "kg",
+    "1 / m3": "1/m**3",
+    "V / m": "V/m",
+    "S / m": "S/m",
 }

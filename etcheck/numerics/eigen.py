@@ -25,6 +25,7 @@ No rod knowledge lives here.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -44,9 +45,12 @@ __all__ = [
     "qep_dense",
     "qep_shift_invert",
     "pencil_eigenvalues",
+    "qep_newton",
     "Matched",
     "match_spectra",
     "relative_distance",
+    "sparse_pencil_nearest",
+    "sparse_qep_nearest",
 ]
 
 
@@ -320,3 +324,99 @@ def match_spectra(fine: np.ndarray, coarse: np.ndarray, accept: float = 1e-3,
     order = np.argsort(rows[ok])
     rows, cols, err = rows[ok][order], cols[ok][order], err[ok][order]
     return Matched(values=fine[rows], errors=err, index=rows, partner=cols)
+
+
+def sparse_qep_nearest(A0, A1, A2, k: int, sigma: complex = 0.0, vectors: bool = False, tol: float = 1e-13,
+                       ncv: int | None = None, maxiter: int = 500, scale: float = 1.0, ordering: str = "COLAMD"):
+    """The k eigenvalues of a sparse QEP nearest the shift sigma (real or complex), by ARPACK on the
+    shift-inverted companion pencil with one sparse LU of Q(sigma) = A0 + sigma A1 + sigma^2 A2 (as
+    :func:`qep_shift_invert`, whose dense LU this replaces). ``scale``: the size of the wanted eigenvalues,
+    by which lambda is scaled before the companion is formed (its two halves, y and lambda y, then balance:
+    without it the eigenvalues of a tether under a tension of 1e9 carry errors of 1e-5 of their size).
+    ``ordering``: SuperLU's column ordering (``"NATURAL"`` for matrices already banded by blocks).
+    Infinite eigenvalues are never returned. Returns ``lam`` sorted by distance to sigma, or ``(lam, Y)`` with
+    the QEP eigenvectors in the columns of Y."""
+    from scipy.sparse import csc_matrix
+    from scipy.sparse.linalg import ArpackNoConvergence, LinearOperator, eigs, splu
+
+    if scale != 1.0:
+        out = sparse_qep_nearest(A0, scale * A1, (scale * scale) * A2, k, sigma / scale, vectors, tol, ncv, maxiter,
+                                 ordering=ordering)
+        return (scale * out[0], out[1]) if vectors else scale * out
+    n = A0.shape[0]
+    cplx = np.iscomplexobj(sigma) and complex(sigma).imag != 0.0
+    sigma = complex(sigma) if cplx else float(np.real(sigma))
+    lu = splu(csc_matrix(A0 + sigma * A1 + (sigma * sigma) * A2), permc_spec=ordering)
+    S = (A1 + sigma * A2).tocsr()
+    M2 = A2.tocsr()
+    dtype = complex if cplx else float
+
+    def matvec(z):
+        z = np.asarray(z).reshape(-1)
+        w1 = -lu.solve(np.asarray(M2 @ z[n:] + S @ z[:n], dtype=dtype))
+        return np.concatenate([w1, z[:n] + sigma * w1])
+
+    op = LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=dtype)
+    k = min(k, 2 * n - 2)
+    ncv = ncv or min(2 * n, max(3 * k, 20))
+    v0 = _start_vector(2 * n).astype(dtype)
+    try:
+        out = eigs(op, k=k, which="LM", ncv=ncv, tol=tol, maxiter=maxiter, v0=v0, return_eigenvectors=vectors)
+    except ArpackNoConvergence as err:  # keep what converged
+        out = (err.eigenvalues, err.eigenvectors) if vectors else err.eigenvalues
+    theta, V = out if vectors else (out, None)
+    lam = sigma + 1.0 / theta
+    order = np.argsort(np.abs(lam - sigma), kind="stable")
+    return (lam[order], V[:n, order]) if vectors else lam[order]
+
+
+def sparse_pencil_nearest(A, N, k: int, shift: float = 0.0, ordering: str = "COLAMD") -> np.ndarray:
+    """The k values x nearest ``shift`` where the sparse A + x N is singular (ARPACK on (A + shift N)^-1 N,
+    whose eigenvalues are 1 / (shift - x); N may be singular: its infinite x are never returned).
+    ``ordering``: SuperLU's column ordering."""
+    from scipy.sparse import csc_matrix
+    from scipy.sparse.linalg import ArpackNoConvergence, LinearOperator, eigs, splu
+
+    n = A.shape[0]
+    lu = splu(csc_matrix(A + shift * N), permc_spec=ordering)
+    Nr = N.tocsr()
+    op = LinearOperator((n, n), matvec=lambda z: lu.solve(np.asarray(Nr @ np.asarray(z).reshape(-1), dtype=float)),
+                        dtype=float)
+    k = min(k, n - 2)
+    try:
+        theta = eigs(op, k=k, which="LM", ncv=min(n, max(3 * k, 20)), tol=1e-13, maxiter=500,
+                     v0=_start_vector(n), return_eigenvectors=False)
+    except ArpackNoConvergence as err:
+        theta = err.eigenvalues
+    theta = theta[theta != 0]
+    return shift - 1.0 / theta
+
+
+def qep_newton(A0, A1, A2, lam: complex, y: np.ndarray, tol: float = 1e-13, maxit: int = 8,
+               ordering: str = "COLAMD") -> tuple[complex, np.ndarray, bool]:
+    """One eigenpair of the sparse QEP (A0 + lambda A1 + lambda^2 A2) y = 0 from a nearby guess (lam, y), by
+    nonlinear inverse iteration (Ruhe 1973): w = Q(lambda)^-1 Q'(lambda) y, lambda <- lambda - (c* y) / (c* w),
+    y <- w / (c* w) with c the first guess; quadratic convergence near a simple eigenvalue. Returns
+    (lambda, y, converged): converged when the step falls below ``tol`` |lambda| (else the last iterate)."""
+    from scipy.sparse import csc_matrix
+    from scipy.sparse.linalg import splu
+
+    c = np.conj(y) / np.vdot(y, y)
+    y = y / np.dot(c, y)
+    lam = complex(lam)
+    last = math.inf
+    for _ in range(maxit):
+        lu = splu(csc_matrix(A0 + lam * A1 + (lam * lam) * A2, dtype=complex), permc_spec=ordering)
+        w = lu.solve(np.asarray((A1 + (2 * lam) * A2) @ y, dtype=complex))
+        cw = np.dot(c, w)
+        if cw == 0 or not np.isfinite(cw):
+            return lam, y, False
+        step = 1.0 / cw  # c* y = 1
+        lam = lam - step
+        y = w / cw
+        if abs(step) <= tol * max(abs(lam), 1e-300):
+            return lam, y, True
+        if abs(step) > 0.25 * last and abs(step) <= 1e3 * tol * abs(lam):  # no longer quadratic: at round-off
+            return lam, y, True
+        last = abs(step)
+    return lam, y, False

@@ -38,17 +38,18 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, replace
 from functools import partial
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from etcheck import __version__
 from etcheck.checks.buckled import buckled_point
 from etcheck.checks.orbit_field import with_orbit_field
-from etcheck.checks.plan import EXACT, straight_route
+from etcheck.checks.plan import EXACT, PROFILES_MODEL, straight_route
 from etcheck.checks.results import results_header
 from etcheck.checks.validity import BOW_LIMIT, P_LIMIT, cross_field, mid_span_bow
 from etcheck.errors import EtcheckError, MissionError
+from etcheck.input.gravity_gradient import circular_rate
 from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
@@ -68,7 +69,10 @@ from etcheck.rod.straight.undamped import has_real_pair, undamped_critical
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 
-SWEEP_SCHEMA = 2  # 2: the bow of each point and the verdict "outside", the verdict counts
+if TYPE_CHECKING:  # rung 1v (scipy.sparse) is imported only for a sweep of a mission with profiles
+    from etcheck.rod.straight.profiles import Tether
+
+SWEEP_SCHEMA = 3  # 2: the bow of each point and the verdict "outside", the verdict counts; 3: profiles (rung 1v)
 #: Rod theory assumes a slender rod: P = I1 / (A L^2) << 1 (the check's limit).
 P_MAX = P_LIMIT
 STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE = "ok", "failed", "outside validated range"
@@ -124,7 +128,11 @@ def point_scene(base: Scene, current: float, field: float, values: dict[str, flo
     """
     s = base
     if "length" in values:
-        s = with_length(s, values["length"])
+        s = with_length(s, values["length"])  # a gravity-gradient tension is recomputed for the new length
+    if "altitude" in values and s.gravity_gradient is not None and s.gravity_gradient.rate_source.startswith("[orbit]"):
+        gg = replace(s.gravity_gradient, orbit_rate=circular_rate(values["altitude"]),
+                     rate_source=f"circular at {values['altitude'] / 1e3:.6g} km (the sweep's altitude), mean motion")
+        s = replace(s, gravity_gradient=gg, tension=gg.minimum)
     I_ = values.get("current", current)
     B0 = values.get("axial_field", field)
     changes: dict[str, float] = {"load": abs(I_) * abs(B0)}
@@ -135,7 +143,8 @@ def point_scene(base: Scene, current: float, field: float, values: dict[str, flo
     return replace(s, **changes)
 
 
-def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: bool = False) -> dict[str, Any]:
+def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: bool = False,
+                tether: Tether | None = None, damping_fixed: bool = True) -> dict[str, Any]:
     """The straight-tether critical values at one point (dimensionless, JSON-able).
 
     Returns ``status`` (ok, failed, outside validated range), ``reason``,
@@ -145,7 +154,9 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
     only), their relative errors, ``stable`` and the resolution ``N`` (None
     or 0: no grid). ``spin=False`` skips the critical spin (damped only). ``buckled=True``
     adds ``buckled_stable`` (and ``buckled_deflection``, units of L) at
-    straight-unstable points: is the coiled state on b1 stable there (rungs 2-3).
+    straight-unstable points: is the coiled state on b1 stable there (rungs 2-3). ``tether``: the point's
+    problem with its current and tension along it (rung 1v; ``params`` then ignored), ``damping_fixed`` whether
+    the mission gives its damping (:func:`profiles_point`).
     """
     out: dict[str, Any] = {"status": STATUS_OK, "reason": "", "model": "", "B_c": None, "B_c_error": None,
                            "omega_c": None, "omega_c_error": None, "omega_rest": None, "stable": None, "N": None}
@@ -153,7 +164,10 @@ def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: b
         return out | {"status": STATUS_OUTSIDE,
                       "reason": f"P = {params.P:.3g} > {P_MAX}: the tether is too short for rod theory (P << 1)"}
     try:
-        out |= _damped(params, tol, spin) if params.gamma > 0 else _undamped(params, tol, spin)
+        if tether is not None:
+            out |= profiles_point(tether, tol, spin, damping_fixed)
+        else:
+            out |= _damped(params, tol, spin) if params.gamma > 0 else _undamped(params, tol, spin)
     except (np.linalg.LinAlgError, ValueError, ArithmeticError) as exc:
         out |= {"status": STATUS_FAILED, "reason": f"solver error: {type(exc).__name__}: {exc}"}
     except OverBudget as exc:  # no route fits the memory budget: this point is not answered, the others are
@@ -226,11 +240,53 @@ def _undamped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
     return out
 
 
-def point_key(params: RodParameters, tol: float, kind: str = "point") -> str:
-    """Cache key: dimensionless parameters (exact floats), settings and version."""
+#: The damping of a sweep point with a circulatory load and no damping fixed by the mission: none, a thousandth of
+#: the paper's estimate (the limit of small damping, Ziegler) and the estimate itself; the point takes the least
+#: favourable (the check's map has five).
+SWEEP_DAMPING = (0.0, 1e-3, 1.0)
+
+
+def profiles_point(tether: Tether, tol: float, spin: bool = True, damping_fixed: bool = True) -> dict[str, Any]:
+    """Rung 1v at one sweep point: the critical load at the point's spin (the least favourable of
+    :data:`SWEEP_DAMPING` for a circulatory load without a fixed damping, else at the point's damping) and the
+    critical spin at its load at that damping (dimensionless, JSON-able, as :func:`solve_point`)."""
+    from etcheck.rod.straight.circulatory import critical, critical_spin
+
+    p = tether.params
+    fractions = SWEEP_DAMPING if tether.circulatory and not damping_fixed and p.gamma > 0 else (1.0,)
+    worst, near = None, None
+    for frac in fractions:
+        c = critical(tether.with_(gamma=frac * p.gamma), tol=tol, mode=False, near=near)
+        located = CriticalKind(c.kind).located
+        near = (0.8 * c.value, 1.25 * c.value) if located and c.value > 0 else None
+        value = c.value if located else 0.0 if c.kind == CriticalKind.UNSTABLE_AT_START else math.inf
+        if worst is None or value < worst[0]:
+            worst = (value, c, frac * p.gamma)
+    value, c, gamma = worst
+    out: dict[str, Any] = {"model": PROFILES_MODEL, "N": c.N, "B_c": value,
+                           "B_c_error": c.error / value if 0 < value < math.inf else 0.0, "omega_c": None,
+                           "omega_c_error": None, "omega_rest": None, "kind": str(c.kind), "gamma_used": gamma}
+    if c.kind == CriticalKind.NOT_LOCATED:
+        out |= {"status": STATUS_FAILED, "reason": f"rung 1v: {c.message}"}
+    if spin and p.omega > 0:
+        w = critical_spin(tether.with_(gamma=gamma), tol=tol)
+        out["omega_c"] = (w.value if CriticalKind(w.kind).located else 0.0 if w.kind == CriticalKind.UNSTABLE_AT_START
+                          else math.inf)
+        out["omega_c_error"] = w.error / w.value if CriticalKind(w.kind).located and w.value > 0 else 0.0
+    out["stable"] = bool(p.B < value and (out["omega_c"] is None or p.omega < out["omega_c"]))
+    if math.isinf(value):  # stable up to the end of the line: the margin shown is a lower bound
+        out |= {"B_c": c.hi, "reason": f"stable up to B = {c.hi:.6g}, the end of the scanned line (a lower bound)"}
+    return out
+
+
+def point_key(params: RodParameters, tol: float, kind: str = "point", tether: Tether | None = None,
+              damping_fixed: bool = True) -> str:
+    """Cache key: dimensionless parameters (exact floats), the profiles along the tether, settings and version."""
     # welded ends (the paper's) leave the key as it was before the ends were a parameter
     fields = {k: repr(v) for k, v in asdict(params).items() if not (k == "ends" and is_welded(v))}
-    text = json.dumps({"kind": kind, "params": fields, "tol": repr(tol), "version": __version__}, sort_keys=True)
+    extra = {} if tether is None else {"tether": repr(tether), "damping_fixed": damping_fixed}
+    text = json.dumps({"kind": kind, "params": fields, "tol": repr(tol), "version": __version__} | extra,
+                      sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -331,13 +387,14 @@ def _worker_init(parent: int) -> None:
     keep_freed_memory()
 
 
-def _solve_chunk(items: list[tuple[str, dict, float, bool]]) -> list[tuple[str, dict]]:
-    """Worker entry: solve a list of (key, params dict, tol, buckled); adds wall time."""
+def _solve_chunk(items: list[tuple]) -> list[tuple[str, dict]]:
+    """Worker entry: solve a list of (key, params dict, tol, buckled, tether or None, damping fixed); adds wall
+    time."""
     out = []
     with one_blas_thread():
-        for key, pdict, tol, buckled in items:
+        for key, pdict, tol, buckled, tether, fixed in items:
             t0 = time.perf_counter()
-            r = solve_point(RodParameters(**pdict), tol, buckled=buckled)
+            r = solve_point(RodParameters(**pdict), tol, buckled=buckled, tether=tether, damping_fixed=fixed)
             out.append((key, r | {"time_s": time.perf_counter() - t0}))
     return out
 
@@ -453,6 +510,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
     shape = tuple(len(g) for g in grids)
     cache = Cache(options.cache)
     orbit = orbit_fields(mission, axes, options, cache, _run)  # altitude/inclination axes: worst field per orbit
+    fixed = mission.damping_time is not None
 
     points = []
     for idx in np.ndindex(*shape):
@@ -462,7 +520,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
         sc = point_scene(base, current, field, values)
         scaled = scale(sc)
         kind = "point+buckled" if options.buckled else "point"
-        points.append((idx, values, sc, scaled, point_key(scaled.params, options.tol, kind)))
+        points.append((idx, values, sc, scaled, point_key(scaled.params, options.tol, kind, scaled.tether, fixed)))
 
     results: dict[str, dict] = {}
     todo, queued = [], set()
@@ -472,7 +530,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
             results[key] = hit
         elif key not in queued:
             queued.add(key)
-            todo.append((key, asdict(scaled.params), options.tol, options.buckled))
+            todo.append((key, asdict(scaled.params), options.tol, options.buckled, scaled.tether, fixed))
     total, cached = len({p[4] for p in points}), len(results)
 
     def arrived(key: str, r: dict) -> None:
@@ -541,7 +599,8 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
              "gamma": p.gamma, "P": p.P, "N": r.get("N") or np.nan, "bow_over_length": bow}
         ok = r["status"] == STATUS_OK
         if ok:
-            Bc, wcrit, wrest = r["B_c"], r["omega_c"], r["omega_rest"]
+            Bc, wrest = r["B_c"], r["omega_rest"]
+            wcrit = np.nan if r["omega_c"] is None else r["omega_c"]  # None: not asked (rung 1v without spin)
             d |= {"critical_load_N_per_m": Bc * load_scale, "critical_spin_rpm": wcrit * wc * RPM,
                   "load_error": r["B_c_error"], "spin_error": r["omega_c_error"],
                   "critical_spin_at_rest_rpm": np.nan if wrest is None else wrest * wc * RPM,
@@ -595,8 +654,9 @@ def _bows(points, mission: Mission) -> list[float]:
 
 
 def _critical_lengths(points, results, axes, shape, base, current, field, options, cache) -> list[dict] | None:
-    """Exact critical length for each value of the other axis (length swept only)."""
-    if axes[0].name != "length":
+    """Exact critical length for each value of the other axis (length swept only; not with profiles along the
+    tether, whose grid points answer where it lies)."""
+    if axes[0].name != "length" or base.profiles:
         return None
     other = axes[1] if len(axes) > 1 else None
     by_idx = {idx: (values, results[key]) for idx, values, _, _, key in points}

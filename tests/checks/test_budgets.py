@@ -39,7 +39,9 @@ def test_past_the_time_budget_the_extras_are_skipped_and_the_margins_answered(fu
     assert [(m["name"], m["value"], m["verdict"]) for m in got["margins"]] == \
         [(m["name"], m["value"], m["verdict"]) for m in full["margins"]]
     parts = {s["part"]: s["why"] for s in got["resources"]["skipped"]}
-    assert set(parts) == {"operating spectrum", "Campbell diagram", "stability map", "accuracy table"}
+    assert set(parts) == {"operating spectrum", "Campbell diagram", "stability map", "accuracy table",
+                          "how far the margin moves with each assumption", "design limits"}
+    assert got["assumptions"] is None and got["design_limits"] is None
     assert "time budget (1e-06 s of computation" in parts["operating spectrum"]
     assert got["linear"]["operating_spectrum"] is None and got["linear"]["campbell"] is None
     assert got["linear"]["stability_map"] is None and got["accuracy"] is None

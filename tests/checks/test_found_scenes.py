@@ -5,6 +5,8 @@ now be answered: strict JSON, every margin with its model and error or a reason,
 
 from __future__ import annotations
 
+import copy
+
 import pytest
 from test_scene_space import _assert_well_formed
 
@@ -95,13 +97,17 @@ def test_found_scene_is_answered(data):
 
 
 def _round_wire_undamped(current: str) -> dict:
-    """PMG's 500 m copper wire (R = 1, taut: the exact route), undamped and spun at 0.5 rpm."""
+    """PMG's 500 m copper wire (R = 1, taut: the exact route), undamped and spun at 0.5 rpm, under the smallest
+    of its gravity-gradient tensions as one end tension (the profile itself goes to rung 1v)."""
     import tomllib
     from pathlib import Path
 
     data = tomllib.loads((Path(__file__).parents[2] / "missions" / "pmg.toml").read_text())
+    minimum = mission_from_dict(copy.deepcopy(data)).gravity_gradient.minimum
+    data["tether"].pop("end_masses")
+    data["operation"].pop("orbit_rate")
     data["tether"]["damping_time"] = "0 s"
-    data["operation"] |= {"spin_rate": "0.5 rpm", "current": current}
+    data["operation"] |= {"spin_rate": "0.5 rpm", "current": current, "end_tension": f"{minimum!r} N"}
     return data
 
 

@@ -46,6 +46,8 @@ SECTIONS = {
     "mission.tether": E.TetherEcho,
     "mission.operation": E.OperationEcho,
     "mission.operation.gravity_gradient": E.TensionProfile,
+    "mission.operation.current_profile": E.CurrentProfileEcho,
+    "mission.operation.current_profile.collection": E.CollectionEcho,
     "mission.check": E.CheckEcho,
     "mission.orbit": E.OrbitEcho,
     "mission.flight": E.FlightEcho,
@@ -75,6 +77,14 @@ SECTIONS = {
     "linear.stability_map": S.StabilityMap,
     "linear.stability_map.stable_rows[]": S.StableRow,
     "linear.stability_map.static_points": S.StaticPoints,
+    "profiles": S.ProfilesSection,
+    "profiles.current": S.ProfileCurrent,
+    "profiles.tension": S.ProfileTension,
+    "profiles.damping": S.DampingSection,
+    "profiles.damping.map[]": S.DampingPoint,
+    "profiles.undamped": S.CriticalLoad,
+    "profiles.uniform_tension_bound": S.CriticalLoad,
+    "profiles.mode": S.ProfileMode,
     "accuracy[]": S.AccuracyRow,
     "postbuckling": S.PostbucklingSection,
     "postbuckling.diagram": S.BifurcationDiagram,
@@ -252,6 +262,15 @@ def test_tensioned_missions_validate():
         assert_valid(results)
 
 
+def test_profiles_mission_validates():
+    """A bare tether with a current and a gravity-gradient tension along it (rung 1v), both fidelities."""
+    path = MISSIONS / "tape-tether.toml"
+    mission = dataclasses.replace(load_mission(path), fidelity="draft")
+    results = check(mission).results
+    assert results["profiles"] is not None and results["profiles"]["damping"]["map"]
+    assert_valid(results)
+
+
 def test_orbit_mission_validates():
     results = draft(MISSIONS / "proseds-orbit.toml")
     assert results["orbit"] is not None
@@ -322,9 +341,10 @@ def test_enums_are_the_codes():
     assert set(margin["verdict"]["enum"]) == verdicts
     assert set(SCHEMA["properties"]["verdict"]["enum"]) == verdicts | {margins_module.OUTSIDE} == set(
         margins_module.Verdict)
-    assert set(margin["model"]["enum"]) == set(plan_module.RUNG_NAMES.values()) | {plan_module.EXACT_MODEL}
+    assert set(margin["model"]["enum"]) == set(plan_module.RUNG_NAMES.values()) | {plan_module.EXACT_MODEL,
+                                                                                   plan_module.PROFILES_MODEL}
     assert set(margin["rung"]["enum"]) == set(plan_module.RUNG_NAMES)
-    routes = {"", plan_module.SPECTRAL, plan_module.EXACT}
+    routes = {"", plan_module.SPECTRAL, plan_module.EXACT, plan_module.PROFILES}
     assert set(margin["route"]["enum"]) == routes == set(SCHEMA["properties"]["plan"]["properties"]["route"]["enum"])
     assert fidelity_module.fidelity_of("draft", 0.0).left_out == fidelity_module.LEFT_OUT
     assert set(SCHEMA["properties"]["fidelity"]["properties"]["name"]["enum"]) == {

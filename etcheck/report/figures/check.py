@@ -376,6 +376,10 @@ def figures(results: dict) -> dict[str, str]:
         jobs["campbell"] = lambda: {"campbell": campbell_plot(results)}
     if lin.get("stability_map"):
         jobs["map"] = lambda: {"map": stability_map_plot(results)}
+    if results.get("profiles"):
+        from etcheck.report.figures.profiles import profile_figures
+
+        jobs["profiles"] = lambda: profile_figures(results)
     if (results.get("postbuckling") or {}).get("computed"):
         jobs["postbuckling"] = lambda: postbuckling_plots(results)
     if results.get("uncertainty"):

@@ -1,0 +1,212 @@
+"""Rung 1v for a mission: the straight tether with its current and its tension along it (docs/model.md,
+section 10), in the numbers the report shows.
+
+Everything is solved dimensionless in :mod:`etcheck.rod.straight.circulatory`; this module chooses what to
+ask and converts the answers to SI:
+
+* the critical load at the operating spin and the critical spin at the operating load, each with its kind
+  (divergence or flutter), its eigenvalue and the shape of the mode that crosses;
+* **damping, honestly**: with a current that varies along the tether the load is circulatory and damping
+  can lower the threshold (Ziegler). The threshold is computed undamped and over the damping the mission
+  allows: the given ``damping_time`` when the mission fixes it, else from none up to the paper's estimate
+  (gamma = 0.04375 at the tether's length) on a small map; the verdict uses the given damping, or the least
+  favourable value of the map and says so. Points of the map below the undamped threshold are marked as
+  destabilised by damping;
+* with end masses, the same critical load under the uniform smallest tension, a bound reported beside it;
+* the profiles themselves, for the report's figures.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
+from etcheck.rod.straight.circulatory import THRESHOLD, Crossing, critical, critical_spin, crossing_mode
+from etcheck.rod.straight.profiles import Tether
+from etcheck.rod.straight.spectral import CriticalKind
+from etcheck.scaling import RPM, Scaled
+
+#: Dimensionless damping of the map, as fractions of the largest the mission allows (0 is computed apart).
+DAMPING_FRACTIONS = (1e-3, 1e-2, 1e-1, 0.3, 1.0)
+#: Tolerance of the uniform-tension bound (it is a bound, not the verdict).
+BOUND_TOLERANCE = 1e-6
+MODEL = "rung 1v (linear, current and tension along the tether; graded collocation)"
+
+
+def _record(c: Crossing, tol: float) -> CriticalPoint:
+    """A crossing as a critical point record (dimensionless value; absolute error)."""
+    located = CriticalKind(c.kind).located
+    value = c.value if located or c.kind == CriticalKind.UNSTABLE_AT_START else None
+    bracket = ([c.lo, c.hi] if c.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) else
+               [c.value] * 2 if value is not None else [0.0, 0.0])
+    within = not located or c.value == 0 or bool(c.error <= tol * abs(c.value))
+    return {"value": value, "kind": str(c.kind), "bracket": [float(x) for x in bracket],
+            "error": float(c.error) if located and math.isfinite(c.error) else None, "message": c.message,
+            "N": c.N, "within_tolerance": within}
+
+
+def _load_point(c: Crossing, tol: float, load: float) -> dict:
+    out = dict(_record(c, tol))
+    out["IB0_N_per_m"] = None if out["value"] is None else out["value"] * load
+    return out
+
+
+def _mode(c: Crossing, wc: float) -> ProfileMode | None:
+    if c.mode is None:
+        return None
+    s, u, v = c.mode
+    return {"s": s.tolist(), "u_re": u.real.tolist(), "u_im": u.imag.tolist(), "v_re": v.real.tolist(),
+            "v_im": v.imag.tolist(), "kind": str(c.kind), "frequency_Hz": abs(c.eigenvalue.imag) * wc / (2 * math.pi)}
+
+
+def _damping_map(t: Tether, gamma_max: float, tol: float, wc: float, load: float,
+                 undamped: Crossing) -> tuple[list[DampingPoint], Crossing]:
+    """The critical load at each damping of the map (one mesh: a survey), and the least favourable crossing
+    (undamped included), located again on two meshes for the verdict."""
+    points: list[DampingPoint] = []
+    ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
+    near, least = None, None
+    for frac in DAMPING_FRACTIONS:  # each from the last one's crossing (verified stable below, else scanned)
+        g = frac * gamma_max
+        c = critical(t.with_(gamma=g), tol=tol, near=near, mode=False, check=False)
+        near = (0.8 * c.value, 1.25 * c.value) if CriticalKind(c.kind).located and c.value > 0 else None
+        value = c.value if CriticalKind(c.kind).located else None
+        points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
+                       "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
+                       "destabilised": bool(value is not None and value < ref * (1 - 1e-6))})
+        if value is not None and (least is None or value < least[0]):
+            least = (value, g)
+    if least is None or (CriticalKind(undamped.kind).located and undamped.value <= least[0]):
+        return points, undamped
+    value, g = least
+    worst = critical(t.with_(gamma=g), tol=tol, near=(0.98 * value, 1.02 * value), mode=False)
+    for q in points:  # the map shows the verdict's value where it was located again
+        if q["gamma"] == g and CriticalKind(worst.kind).located:
+            q["B"], q["IB0_N_per_m"] = worst.value, worst.value * load
+    return points, worst
+
+
+def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
+    """The critical load under the uniform smallest tension (end masses only): a bound."""
+    t = scaled.tether
+    if scaled.params.T == t.params.T and t.tension.uniform_value is not None:
+        return None
+    uniform = Tether(scaled.params.with_(gamma=gamma), t.current)
+    c = critical(uniform, tol=BOUND_TOLERANCE, mode=False, check=False)  # a bound: one mesh, no error estimate
+    return _load_point(c, BOUND_TOLERANCE, scaled.scales.load)
+
+
+def _samples(scaled: Scaled, current_A: float) -> tuple[dict | None, dict | None]:
+    t = scaled.tether
+    s = np.linspace(0.0, 1.0, 101)
+    L = scaled.scales.length
+    current = None if t.current.uniform_value is not None else {
+        "s": s.tolist(), "height_m": (s * L).tolist(), "fraction": t.current(s).tolist(),
+        "current_A": (current_A * t.current(s)).tolist()}
+    tension = None if t.tension.uniform_value is not None else {
+        "s": s.tolist(), "height_m": (s * L).tolist(),
+        "tension_N": (t.params.T * scaled.scales.force * t.tension(s)).tolist()}
+    return current, tension
+
+
+def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float):
+    """(undamped crossing or None, damping map, the crossing the verdict uses, why)."""
+    p = t.params
+    if not t.circulatory:  # conservative: the mission's damping, as for a uniform tether
+        c = critical(t, tol=tol, mode=False)
+        return None, [], c, ("the load is conservative (one current along the tether): the critical load at the "
+                             f"mission's damping (gamma = {p.gamma:.4g})")
+    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
+    if fixed or p.gamma == 0:
+        c = critical(t, tol=tol, mode=False) if p.gamma > 0 else undamped
+        return undamped, [], c, (f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the "
+                                 "undamped threshold is reported beside it")
+    points, worst = _damping_map(t, p.gamma, tol, wc, load, undamped)
+    where = "undamped" if worst is undamped else f"at gamma = {worst_gamma(points, worst):.4g}"
+    return undamped, points, worst, (
+        "the mission does not fix the damping (no tether.damping_time): the circulatory load's threshold is "
+        f"computed undamped and with damping up to the paper's estimate gamma = {p.gamma:.4g}; the verdict uses the "
+        f"least favourable, {where}")
+
+
+def worst_gamma(points: list[DampingPoint], worst: Crossing) -> float:
+    """The damping of the map point whose critical load is the least favourable crossing's."""
+    return min(points, key=lambda q: abs((q["B"] if q["B"] is not None else math.inf) - worst.value))["gamma"]
+
+
+def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol: float = 1e-8,
+                      draft: bool = False) -> tuple[LinearSection, ProfilesSection]:
+    """Rung 1v's answers for the scene (``scaled.tether`` set): the linear section the margins read (critical
+    load at the operating spin, critical spin at the operating load) and the profiles section the report
+    shows. ``damping_fixed``: whether the mission gives its damping time; ``current_A`` the largest current."""
+    t = scaled.tether
+    sc = scaled.scales
+    wc, load = sc.frequency, sc.load
+    p = t.params
+    undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load)
+    gamma = verdict_gamma(p.gamma, points, verdict, undamped)
+    verdict = crossing_mode(t.with_(gamma=gamma), verdict)  # the mode of the crossing the verdict uses, only
+    linear = _linear(scaled, t.with_(gamma=gamma), verdict, tol)
+    current, tension = _samples(scaled, current_A)
+    section: ProfilesSection = {
+        "model": MODEL,
+        "circulatory": t.circulatory,
+        "current": current,
+        "tension": tension,
+        "damping": {"fixed": damping_fixed or p.gamma == 0, "gamma": gamma, "damping_time_s": gamma / wc,
+                    "why": why, "map": points},
+        "undamped": None if undamped is None else _load_point(undamped, tol, load),
+        "uniform_tension_bound": None if draft else _bound(scaled, gamma),
+        "mode": _mode(verdict, wc),
+        "post_buckling": _after(verdict),
+    }
+    return linear, section
+
+
+def _linear(scaled: Scaled, t: Tether, verdict: Crossing, tol: float) -> LinearSection:
+    """The linear section the margins read: the crossing along the load (``verdict``) and, with spin, the critical
+    spin of ``t`` at its load (located here)."""
+    p, wc, load = t.params, scaled.scales.frequency, scaled.scales.load
+    spin = critical_spin(t, tol=tol) if p.omega > 0 else None
+    load_point = _load_point(verdict, tol, load)
+    stable = bool(verdict.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) or
+                  (load_point["value"] is not None and p.B < load_point["value"]))
+    spin_point = dict(_record(spin, tol)) if spin else {
+        "value": None, "kind": str(CriticalKind.NOT_LOCATED), "bracket": [0.0, 0.0], "error": None,
+        "message": "no spin: the critical spin is not asked", "N": 0, "within_tolerance": True}
+    spin_point["rad_s"] = None if spin_point["value"] is None else spin_point["value"] * wc
+    spin_point["rpm"] = None if spin_point["value"] is None else spin_point["value"] * wc * RPM
+    return {
+        "model": MODEL, "route": "profiles", "threshold": THRESHOLD, "operating_stable": stable,
+        "operating_spectrum": None, "critical_load": load_point, "critical_spin": spin_point, "spin_windows": [],
+        "spin_windows_scanned_to_rpm": None,
+        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * load, "spin_rpm": p.omega * wc * RPM},
+        "campbell": None, "stability_map": None,
+    }
+
+
+def alternative_linear(scaled: Scaled, gamma: float, tol: float) -> LinearSection:
+    """Rung 1v's linear section for ``scaled`` (its tether, ends included) at one damping ``gamma``: the margins of
+    another attachment of the ends, at the damping the mission's verdict uses (one mesh: shown beside the margin,
+    not judged)."""
+    t = scaled.tether.with_(gamma=gamma)
+    return _linear(scaled, t, critical(t, tol=tol, mode=False, check=False), tol)  # beside the margin: one mesh
+
+
+def verdict_gamma(gamma: float, points: list[DampingPoint], verdict: Crossing, undamped: Crossing | None) -> float:
+    """The damping of the crossing the verdict uses."""
+    if not points:
+        return gamma
+    return 0.0 if verdict is undamped else worst_gamma(points, verdict)
+
+
+def _after(c: Crossing) -> str:
+    if c.kind == CriticalKind.FLUTTER:
+        return ("the straight tether first loses stability by flutter: two vibration modes merge and one grows "
+                "(an oscillation of growing amplitude, not a static coil). The post-buckling rungs (whirling coils, "
+                "rungs 2-3) describe static buckling under one current and one tension: they do not describe what "
+                "follows, and no coil is drawn")
+    return ("the post-buckling rungs (whirling coils, rungs 2-3) model one current and one tension along the tether: "
+            "they are not run for a tether with profiles")

@@ -1,0 +1,560 @@
+"""Rung 1v: where the straight tether with profiles first loses stability along load or spin, and how
+(divergence or flutter), from the spectra of :mod:`etcheck.rod.straight.profiles` (dimensionless).
+
+With a current that varies along the tether the load is circulatory (docs/model.md, section 10):
+neither the Kelvin-Tait-Chetaev theorem (damped: stability lost only through lambda = 0) nor the
+Hamiltonian symmetry of the undamped spectrum holds, so stability is read from the eigenvalues
+themselves, as they cross into Re lambda > 0:
+
+* **scan**: the eigenvalues nearest the shift (every mode the load and spin reshape, up to the
+  Kelvin-Voigt cluster at -1/gamma) on evenly spaced points of the line, up to the first unstable
+  one (Re lambda above :data:`RELATIVE` |lambda|, at least :data:`THRESHOLD`: the round-off of the
+  spectrum stays below it);
+* **locate**: between the last stable and the first unstable point, Brent's method on a function
+  that changes sign at the crossing and is smooth through it: the real part of the crossing
+  eigenvalue where it comes from the left half-plane (damped, or a spun circulatory tether), the
+  discriminant Re (lambda_a - lambda_b)^2 of the two eigenvalues that meet where they collide on the
+  imaginary axis (undamped flutter, a Krein-like collision: Re lambda grows like a square root
+  there, which no root finder on Re lambda locates quickly). The crossing is divergence when its
+  eigenvalue is real (a static point), flutter when it has a frequency;
+* **error**: the same crossing located on a second, finer mesh (:func:`~etcheck.rod.straight.profiles.check_resolution`);
+  the resolution rises along :data:`LADDER` until the two agree to the tolerance.
+
+A tether whose unloaded spectrum has double frequencies (R = 1) under a current that varies
+flutters at any load: the circulatory part splits the double pair off the axis in proportion to B.
+Such a crossing is located at B -> 0 and reported as a critical load of 0.
+
+Dimensionless and pure; numpy/scipy only.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from etcheck.numerics.blas import single_blas_thread
+from etcheck.numerics.eigen import qep_newton, sparse_pencil_nearest, sparse_qep_nearest
+from etcheck.numerics.optimize import brentq
+from etcheck.rod.straight.mode_band import band_modes
+from etcheck.rod.straight.profiles import Tether, TetherFamily, check_resolution, family
+from etcheck.rod.straight.spectral import CriticalKind
+
+__all__ = [
+    "LADDER",
+    "MODEL",
+    "RELATIVE",
+    "THRESHOLD",
+    "Crossing",
+    "collides",
+    "Band",
+    "band",
+    "critical",
+    "growth",
+]
+
+MODEL = "rung 1v (graded collocation, profiles)"
+#: Re lambda above this (and above RELATIVE |lambda|) counts as unstable.
+THRESHOLD = 1e-9
+RELATIVE = 1e-8
+#: Middle resolutions tried in turn until two meshes agree.
+LADDER = (24, 32, 48, 64, 96)
+#: Evenly spaced points of the scan along a line.
+SCAN = 24
+#: Least pairs of eigenvalues examined at each point.
+K_MODES = 12
+#: An eigenvalue tracked by inverse iteration may move at most this much (relative to its size plus one) per unit
+#: relative step along the line; a larger jump is another eigenvalue, and ARPACK decides.
+TRACK_STEP = 10.0
+#: Two meshes whose crossings differ by less than this many times the crossing's round-off
+#: (:func:`_roundoff`) agree as well as any finer pair would: the ladder stops there.
+NOISE = 10.0
+#: A bracket is narrowed to this fraction of its end before the crossing in it is located.
+NARROW = 0.25
+#: A critical load below this fraction of the scanned range is a crossing at zero (flutter at any load).
+AT_ZERO = 1e-7
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """The first loss of stability along a line (dimensionless).
+
+    ``value``: B or omega at the crossing (nan when none was found up to ``hi``, 0 when unstable at
+    any value); ``kind``: a :class:`~etcheck.rod.straight.spectral.CriticalKind`; ``eigenvalue``: the
+    eigenvalue that crosses (its imaginary part the flutter frequency); ``error``: absolute, from two
+    meshes; ``N``, ``N_check``: the middle resolutions; ``mode``: (s, u, v) of the crossing mode on a
+    uniform grid, complex, scaled so that max(|u|, |v|) = 1 (None when none crossed).
+    """
+
+    axis: str
+    value: float
+    kind: str
+    eigenvalue: complex
+    error: float
+    converged: bool
+    lo: float
+    hi: float
+    N: int
+    N_check: int
+    message: str
+    mode: tuple | None = None
+
+
+def _nev(tether: Tether, hi_params) -> int:
+    """How many eigenvalues each point examines: the k least pairs and every mode the load and spin reshape
+    (:func:`~etcheck.rod.straight.mode_band.band_modes` at the end of the line)."""
+    return max(2 * K_MODES + 4, 2 * band_modes(hi_params) + 4)
+
+
+def _threshold(lam: np.ndarray) -> np.ndarray:
+    return np.maximum(THRESHOLD, RELATIVE * np.abs(lam))
+
+
+def growth(lam: np.ndarray) -> float:
+    """max (Re lambda - threshold): positive when some eigenvalue counts as unstable."""
+    return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
+
+
+@dataclass(frozen=True)
+class Band:
+    """Where a line's eigenvalues are sought on one mesh: the k[i] nearest each shift sigmas[i], with lambda
+    scaled by ``scale`` (the size of the lowest frequency). Without damping one shift next to 0 (the lowest
+    modes, both members of each pair); with damping the Kelvin-Voigt cluster at -1/gamma, hundreds of
+    eigenvalues on which ARPACK converges slowly, must stay out of reach: the same shift where the modes lie
+    well below 1/gamma, else shifts i Omega along the band of modes, a few modes each (their
+    members with Im > 0; a real eigenvalue reaches Re lambda > 0 only through 0, where the operator is
+    singular: :meth:`_Line.static_roots`)."""
+
+    sigmas: tuple[complex, ...]
+    ks: tuple[int, ...]
+    scale: float
+
+    @property
+    def upper(self) -> bool:
+        return isinstance(self.sigmas[0], complex)
+
+
+#: Largest ratio of the frequencies sought around one shift along the band of a damped line whose modes reach the
+#: Kelvin-Voigt cluster (radius 0.4 of the middle).
+CHUNK = 7.0 / 3.0
+
+
+def band(fam: TetherFamily, point: dict, nev: int) -> Band:
+    """The :class:`Band` of a line on ``fam`` (``point``: its values of B, omega, T at the start)."""
+    gamma = fam.tether.params.gamma
+    scale = max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
+    if gamma == 0:
+        return Band((SIGMA * scale,), (nev,), scale)
+    lam = sparse_qep_nearest(*fam.operator(0.0, point["omega"], point["T"], damped=False), k=nev, sigma=SIGMA * scale,
+                             scale=scale, ordering=ORDER)
+    freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
+    if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # the cluster lies beyond the band: as without damping
+        return Band((SIGMA * scale,), (nev,), scale)
+    chunks = _chunks(freq)
+    return Band(tuple(complex(0.0, 0.5 * float(c[0] + c[-1])) for c in chunks), tuple(c.size for c in chunks), scale)
+
+
+def _chunks(freq: np.ndarray) -> list[np.ndarray]:
+    """The band's frequencies (sorted) in chunks each sought around its middle i Omega_c: a chunk spans at most a
+    factor :data:`CHUNK` (its radius at most 0.4 Omega_c), so the next frequencies and the Kelvin-Voigt cluster,
+    at least Omega_c away, lie at least 2.5 radii from the shift and ARPACK converges fast; a frequency within 1e-6
+    of the chunk's last (the double pairs of R = 1) joins it."""
+    out, start = [], 0
+    for i in range(1, freq.size + 1):
+        if i == freq.size or (freq[i] > CHUNK * freq[start] and freq[i] > freq[i - 1] * (1 + 1e-6)):
+            out.append(freq[start:i])
+            start = i
+    return out
+
+
+#: SuperLU's ordering of the collocation matrices: their own (block-banded along the tether).
+ORDER = "NATURAL"
+#: Real shift of an undamped band, as a fraction of the lowest frequency's scale: next to 0, where a real eigenvalue
+#: crosses, but not at it (the operator is singular there at static points, and next to them its LU then spreads
+#: round-off of 1e-7 into every eigenvalue: R = 1 just below its double static point with a shift of 0.012).
+SIGMA = 0.3
+
+
+class _Line:
+    """Spectra along one axis on one mesh (memoised): the eigenvalues of the band at each point, the few near
+    a given one, and the static points of the line."""
+
+    def __init__(self, tether: Tether, axis: str, N: int, hi: float):
+        self.tether, self.axis, self.N, self.hi, self.lo = tether, axis, N, hi, 0.0
+        p = tether.params
+        ends = tether.with_(**{axis: hi})
+        self.fam = family(ends, N)
+        self.base = {"B": p.B, "omega": p.omega, "T": p.T}
+        self.band = band(self.fam, self.point(0.0), _nev(tether, _mean_params(ends)))
+        self.memo: dict[float, np.ndarray] = {}
+        self._static: np.ndarray | None = None
+        self.tracked: list[tuple[float, complex, np.ndarray]] = []
+
+    def point(self, x: float) -> dict:
+        return self.base | {self.axis: x}
+
+    def spectrum(self, x: float) -> np.ndarray:
+        """The band's eigenvalues at x."""
+        if x not in self.memo:
+            A = self.fam.operator(**self.point(x))
+            lam = [sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+                   for sigma, k in zip(self.band.sigmas, self.band.ks)]
+            self.memo[x] = np.concatenate(lam)
+        return self.memo[x]
+
+    def growth(self, x: float) -> float:
+        return growth(self.spectrum(x))
+
+    def unstable(self, x: float) -> bool:
+        """Whether the tether is unstable at x, given that it is stable just before the last static point below
+        x: a band of the upper half-plane does not see the real eigenvalue that a static point sends into
+        Re lambda > 0, which it does (a simple root of det A0 changes the sign of the product of the
+        eigenvalues), so just past a static point it counts as unstable."""
+        return self.growth(x) > 0 or (self.band.upper and self.just_past_static(x))
+
+    def just_past_static(self, x: float) -> bool:
+        r = self.static_roots()
+        return bool(np.any((r < x) & (x <= r * (1 + 2 * PAST))))
+
+    def near(self, x: float, z: complex, k: int = 2) -> np.ndarray:
+        """The k eigenvalues nearest z at x (z real: a real shift next to it); two by default, the pair that meets
+        or the crossing one and its neighbour: more could reach the Kelvin-Voigt cluster, at a distance of the
+        frequency."""
+        A = self.fam.operator(**self.point(x))
+        off = 1e-3 * (1.0 + abs(z))
+        sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
+        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+
+    def track(self, x: float, z: complex) -> complex:
+        """The eigenvalue at x that continues the one near z: nonlinear inverse iteration from the tracked
+        eigenpair at the nearest x already seen (a few sparse LUs), ARPACK where that does not converge or
+        lands far from where it started."""
+        A = self.fam.operator(**self.point(x))
+        if self.tracked:
+            x0, lam0, y0 = min(self.tracked, key=lambda t: abs(t[0] - x))
+            lam, y, ok = qep_newton(*A, lam0, y0, ordering=ORDER)
+            if ok and abs(lam - lam0) <= TRACK_STEP * (abs(lam0) + 1.0) * max(abs(x - x0) / max(abs(x), 1e-300), 1e-3):
+                self.tracked.append((x, lam, y))
+                return lam
+        off = 1e-3 * (1.0 + abs(z))
+        lam, Y = sparse_qep_nearest(*A, k=2, sigma=complex(z.real + off, z.imag), scale=self.band.scale,
+                                    ordering=ORDER, vectors=True)
+        i = int(np.argmin(np.abs(lam - z)))
+        self.tracked.append((x, complex(lam[i]), Y[:, i]))
+        return complex(lam[i])
+
+    def static_roots(self) -> np.ndarray:
+        """The values in (0, hi] where the operator is singular at lambda = 0 (static points: a real eigenvalue
+        passes through 0 there), sorted."""
+        if self._static is None:
+            A, Nx = self.fam.static(self.axis, **self.base)
+            x = sparse_pencil_nearest(A, Nx, k=STATIC_ROOTS, shift=0.0, ordering=ORDER)
+            x = x[np.abs(x.imag) <= 1e-8 * np.abs(x)].real
+            if self.axis == "omega":
+                x = np.sqrt(x[x > 0])
+            self._static = np.sort(x[(x > 0) & (x <= self.hi)])
+        return self._static
+
+
+#: Static roots sought per line (the nearest to zero: every one on a line up to a few times its first).
+STATIC_ROOTS = 16
+#: Relative offset of the scan points either side of a static point.
+PAST = 1e-6
+
+
+def _mean_params(tether: Tether):
+    """The tether's parameters with its mean tension and mean |load| (for mode counts)."""
+    s = np.linspace(0.0, 1.0, 201)
+    p = tether.params
+    return p.with_(T=p.T * float(np.mean(tether.tension(s))), B=p.B * float(np.mean(np.abs(tether.current(s)))))
+
+
+def _scan(line: _Line, lo: float, hi: float, n: int) -> tuple[float, float] | None:
+    """(last stable, first unstable) point of n even steps from lo to hi and the points either side of each
+    static point; None when all are stable. Unstable at lo: (lo, lo)."""
+    if line.growth(lo) > 0:
+        return lo, lo
+    grid = set(np.linspace(lo, hi, n + 1)[1:].tolist())
+    for r in line.static_roots():
+        grid.update(x for x in (r * (1 - PAST), r * (1 + PAST)) if lo < x <= hi)
+    prev = lo
+    for x in sorted(grid):
+        if line.unstable(float(x)):
+            return prev, float(x)
+        prev = float(x)
+    return None
+
+
+def _unstable_eigenvalue(lam: np.ndarray) -> complex:
+    z = complex(lam[np.argmax(lam.real - _threshold(lam))])
+    return complex(z.real, abs(z.imag))  # the member of a pair with Im >= 0
+
+
+def _nearest(lam: np.ndarray, z: complex, k: int = 1) -> np.ndarray:
+    return lam[np.argsort(np.abs(lam - z), kind="stable")[:k]]
+
+
+def _crossing_function(line: _Line, a: float, b: float):
+    """A function of the axis value, negative at a (stable), positive at b (unstable) and smooth through the
+    crossing (see the module docstring), from the few eigenvalues near the one that crosses."""
+    z = _unstable_eigenvalue(line.spectrum(b))
+    if not collides(line.tether):  # from the left half-plane: its real part
+
+        line.tracked = []
+
+        def real_part(x: float) -> float:
+            return float(line.track(x, z).real)
+        return real_part
+    centre = complex(0.0, z.imag)
+    flutter = _kind(z) == CriticalKind.FLUTTER
+
+    def discriminant(x: float) -> float:  # Re (lambda_a - lambda_b)^2 of the two that meet at i Im z
+        lam = line.near(x, centre)
+        if flutter:
+            lam = lam[lam.imag > 0]
+        pair = _nearest(lam, centre, 2)
+        return float(((pair[0] - pair[1]) ** 2).real) if pair.size == 2 else math.nan
+    return discriminant
+
+
+def collides(tether: Tether) -> bool:
+    """Whether eigenvalues leave the imaginary axis only in colliding pairs: undamped, and either without spin
+    (the spectrum is symmetric under lambda -> -lambda, the equations having lambda^2 only) or with a uniform
+    load (gyroscopic and conservative: Hamiltonian). Otherwise an eigenvalue crosses the axis on its own."""
+    p = tether.params
+    return p.gamma == 0 and (p.omega == 0 or not tether.circulatory)
+
+
+def _bisect(line: _Line, a: float, b: float, rtol: float) -> float:
+    while b - a > rtol * abs(b):
+        c = 0.5 * (a + b)
+        if line.unstable(c):
+            b = c
+        else:
+            a = c
+    return b
+
+
+def _middle(a: float, b: float) -> float:
+    """The next point of a bisection of [a, b]: the geometric middle while b spans decades above a (a crossing of a
+    damped tether may lie 1e-5 of the way along the line), the arithmetic one after."""
+    floor = max(a, 1e-3 * b)
+    return math.sqrt(floor * b) if b > 8.0 * floor else 0.5 * (a + b)
+
+
+def _single(line: _Line, a: float, b: float) -> tuple[float, float]:
+    """[a, b] shrunk by bisection on stability until one eigenvalue (a real one, or one of a pair with Im > 0) is
+    unstable at b and the bracket is narrower than :data:`NARROW` of b: then one crossing lies in it."""
+    while True:
+        lam = line.spectrum(b)
+        lam = lam[lam.imag >= 0]
+        if np.sum(lam.real - _threshold(lam) > 0) <= 1 and b - a <= NARROW * abs(b) or b <= AT_ZERO * line.hi:
+            return a, b
+        c = _middle(a, b)
+        if c in (a, b):
+            return a, b
+        if line.unstable(c):
+            b = c
+        else:
+            a = c
+
+
+def _behind(h, a: float, ha: float, b: float, lo: float) -> tuple[float, float]:
+    """Where the crossing eigenvalue's real part is already positive at a, but below the threshold that counts it
+    as unstable (a slow crossing), the point a moved back until it is negative: the crossing is where Re lambda
+    = 0, not where the threshold is passed (1e-8 |lambda| of threshold on a slope of 1e-6 per unit load moves it
+    by 1 %)."""
+    step = b - a
+    while ha >= 0 and a > lo:
+        a = max(lo, a - step)
+        ha = h(a)
+        step *= 2.0
+    return a, ha
+
+
+def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
+    """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
+    a static point between points this close to it is the crossing (divergence)."""
+    for r in (r for r in line.static_roots() if a < r <= b):
+        if b - a <= 3 * PAST * r or not line.unstable(r * (1 - PAST)):
+            return float(r), 0j  # a real eigenvalue through 0
+        b = r * (1 - PAST)  # unstable before its first static point: a flutter point lies before it
+        break
+    a, b = _single(line, a, b)
+    if b <= AT_ZERO * line.hi:  # unstable at any value above 0
+        return b, _unstable_eigenvalue(line.spectrum(b))
+    h = _crossing_function(line, a, b)
+    ha, hb = h(a), h(b)
+    a, ha = _behind(h, a, ha, b, line.lo)
+    if ha < 0 < hb:
+        x = brentq(h, a, b, xtol=0.25 * rtol * abs(b), rtol=4 * np.finfo(float).eps, maxiter=100)
+    else:  # no clean sign change of the smooth function: the stability predicate, bisected
+        x = _bisect(line, a, b, rtol)
+    past = min(x * (1 + 4 * rtol), b) if x > 0 else b
+    lam = line.spectrum(past)
+    z = _unstable_eigenvalue(lam) if line.growth(past) > 0 else complex(_nearest(lam, 0j, 1)[0])
+    return x, z
+
+
+def _kind(z: complex) -> str:
+    return CriticalKind.FLUTTER if abs(z.imag) > 1e-6 * max(1.0, abs(z)) else CriticalKind.DIVERGENCE
+
+
+def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
+    """The first crossing on one mesh: (value, eigenvalue), (lo, eigenvalue) when unstable at lo, or
+    (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
+    found from it is kept only when the tether is stable just below it on this mesh."""
+    if near is not None:
+        a, b = near
+        width = max(b - a, 1e-6 * abs(b))
+        a2, b2 = max(lo, a - width), min(hi, b + width)
+        if not line.unstable(a2) and line.unstable(b2):
+            x, z = _locate(line, a2, b2, rtol)
+            below = x * (1 - 1e-6) if x > 0 else lo
+            if x <= a2 or not line.unstable(below) or below <= lo:
+                return x, z
+    found = _scan(line, lo, hi, SCAN)
+    if found is None:
+        return None, None
+    a, b = found
+    if a == b:
+        return a, _unstable_eigenvalue(line.spectrum(a))
+    return _locate(line, a, b, rtol)
+
+
+@single_blas_thread
+def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: float = 1e-8,
+             ladder: tuple[int, ...] = LADDER, mode: bool = True, near: tuple[float, float] | None = None,
+             check: bool = True) -> Crossing:
+    """The first loss of stability of the straight tether with profiles along ``axis`` ("B" or "omega"),
+    from 0 to ``hi`` (default: :func:`default_hi`), the others fixed at ``tether.params``; dimensionless.
+
+    Scanned and located on the mesh of middle resolution N, located again on the finer check mesh
+    (:func:`~etcheck.rod.straight.profiles.check_resolution`), climbing ``ladder`` until the two agree to
+    ``tol`` (relative); the error is their distance plus the root finder's tolerance. ``near``: where a crossing
+    is expected (a bracket, from a neighbouring tether): sought there first, and kept only where the tether is
+    stable just below it; else the line is scanned from 0. ``check=False``: the first mesh alone (no error
+    estimate from a second one: a survey, such as the points of a damping map, not a verdict)."""
+    if axis not in ("B", "omega"):
+        raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
+    hi = default_hi(tether, axis) if hi is None else float(hi)
+    lo = 0.0
+    rtol = min(tol, 1e-6) * 1e-2
+    noise = None
+    for N in ladder:
+        M = check_resolution(N)
+        line = _Line(tether, axis, N, hi)
+        x1, z1 = _first(line, lo, hi, rtol, near)
+        if not check:
+            M, x2, z2 = N, x1, z1
+            break
+        bracket = None if x1 is None else (x1 * (1 - 1e-3), x1 * (1 + 1e-3) + 1e-12 * hi)
+        x2, z2 = _first(_Line(tether, axis, M, hi), lo, hi, rtol, bracket)
+        if x1 is None and x2 is None:
+            return Crossing(axis, math.nan, CriticalKind.NONE_FOUND, complex(math.nan), math.nan, True, lo, hi, N, M,
+                            f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL}, N = {N} and {M})")
+        if x1 is not None and x2 is not None:
+            if abs(x1 - x2) + rtol * abs(x2) <= tol * abs(x2) or max(x1, x2) <= AT_ZERO * hi:  # the meshes agree
+                break
+            if noise is None:
+                noise = _roundoff(line, x1, z1) if x1 > lo else 0.0
+            if abs(x1 - x2) <= NOISE * noise:  # they differ by round-off: finer meshes would not agree better
+                break
+            near = (min(x1, x2), max(x1, x2))
+    if x1 is None or x2 is None:
+        return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, lo, hi, N, M,
+                        f"the meshes N = {N} and {M} disagree on whether the tether loses stability up to "
+                        f"{axis} = {hi:g} ({MODEL})")
+    return _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise)
+
+
+def critical_spin(tether: Tether, tol: float = 1e-8) -> Crossing:
+    """The first loss of stability as the spin grows at the tether's load, as :func:`critical` along "omega";
+    except for an undamped isotropic tether (R = 1) with a conservative load (one current) below its static load at
+    rest, which is stable at every spin (docs/model.md §6: its gyroscopic pencil is hyperbolic, whatever the
+    self-adjoint stiffness, a tension along the tether included); its double static points along the spin line
+    would otherwise read as crossings."""
+    p = tether.params
+    if p.R == 1.0 and p.gamma == 0 and not tether.circulatory and p.B > 0:
+        rest = critical(tether.with_(omega=0.0), tol=tol, mode=False)
+        if rest.kind == CriticalKind.DIVERGENCE and p.B < rest.value * (1 - rest.error / max(rest.value, 1e-300)):
+            hi = default_hi(tether, "omega")
+            return Crossing("omega", math.nan, CriticalKind.NEVER, complex(math.nan), math.nan, True, 0.0, hi,
+                            rest.N, rest.N_check,
+                            f"stable at every spin: below its static load at rest (B = {rest.value:.9g}) no spin can "
+                            f"destabilise an undamped isotropic tether (its gyroscopic pencil is hyperbolic; {MODEL})")
+    return critical(tether, "omega", tol=tol, mode=False)
+
+
+def _roundoff(line: _Line, x: float, z: complex) -> float:
+    """How far the round-off of the crossing eigenvalue's real part moves a crossing that it makes on its own
+    (not a collision, not a static point): that round-off (the spread of Re lambda computed from two shifts)
+    over the slope of Re lambda along the line. A weakly damped flutter crosses the axis slowly (Re lambda
+    changing by 1e-4 per unit load), and 1e-10 of round-off then moves it by 1e-6."""
+    if collides(line.tether) or z.imag == 0 or x <= 0:
+        return 0.0
+    d = 1e-4 * x
+    re = [_nearest(line.near(x + dx, z), z, 1)[0].real for dx in (-d, d)]
+    slope = abs(re[1] - re[0]) / (2 * d)
+    other = _nearest(line.near(x, z * (1 + 1e-2)), z, 1)[0].real
+    noise = abs(other - 0.5 * (re[0] + re[1])) + 1e-14 * abs(z)
+    return noise / slope if slope > 0 else math.inf
+
+
+def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) -> Crossing:
+    N = line.N
+    zero = max(x1, x2) <= AT_ZERO * hi
+    if noise is None:
+        noise = 0.0 if zero or x1 == x2 == lo else _roundoff(line, x1, z2)
+    err = abs(x1 - x2) + rtol * abs(x2) + noise
+    kind = _kind(z2)
+    if x1 == x2 == lo:
+        return Crossing(axis, lo, CriticalKind.UNSTABLE_AT_START, z2, 0.0, True, lo, hi, N, M,
+                        f"already unstable at {axis} = {lo:g} ({MODEL})")
+    at = f" at frequency Im lambda = {abs(z2.imag):.9g}" if kind == CriticalKind.FLUTTER else ""
+    if zero:
+        msg = (f"unstable at any {axis} > 0: {kind}{at} from {axis} = 0 on, the circulatory load splitting a double "
+               f"frequency of the unloaded tether off the imaginary axis ({MODEL})")
+    else:
+        how = f"meshes N = {N} and {M}" if M != N else f"one mesh, N = {N}: round-off only, no second mesh"
+        msg = f"first instability at {axis} = {x2:.12g} ({kind}{at}; {MODEL}); error estimate {err:.2e} ({how})"
+    converged = zero or bool(err <= tol * abs(x2))
+    shape = _mode(line, x2 * (1 + 8 * rtol) if not zero else AT_ZERO * hi, z2) if mode else None
+    return Crossing(axis, 0.0 if zero else x2, kind, z2, 0.0 if zero else err, converged, lo, hi, N, M, msg, shape)
+
+
+def crossing_mode(tether: Tether, c: Crossing) -> Crossing:
+    """The crossing with its mode (:attr:`Crossing.mode`), on the finer of its two meshes, where it was located
+    without one."""
+    if c.mode is not None or not CriticalKind(c.kind).located:
+        return c
+    line = _Line(tether, c.axis, c.N_check, c.hi)
+    x = c.value * (1 + 1e-8) if c.value > 0 else AT_ZERO * c.hi
+    return replace(c, mode=_mode(line, x, c.eigenvalue))
+
+
+def _mode(line: _Line, x: float, z: complex):
+    """(s, u, v) of the eigenvector nearest z at x on a uniform grid of 201 points, complex, scaled so that the
+    larger of |u|, |v| peaks at 1 with zero phase there."""
+    A = line.fam.operator(**line.point(x))
+    lam, Y = sparse_qep_nearest(*A, k=2, sigma=z + 1e-7 * (1 + abs(z)), vectors=True, scale=line.band.scale,
+                                ordering=ORDER)
+    s, u, v = line.fam.field_values(Y[:, int(np.argmin(np.abs(lam - z)))], 201)
+    k = int(np.argmax(np.maximum(np.abs(u), np.abs(v))))
+    peak = u[k] if abs(u[k]) >= abs(v[k]) else v[k]
+    return s, u / peak, v / peak
+
+
+def default_hi(tether: Tether, axis: str) -> float:
+    """End of the line scanned when none is given: for the load, 3 x the expected first critical load of the
+    tether under its mean tension with the uniform load of its mean current; for the spin, 2 x the expected
+    critical spin (:func:`etcheck.rod.straight.exact.root_scale`), at least 1.1 x the operating value."""
+    from etcheck.rod.straight.exact import root_scale
+
+    mean = _mean_params(tether)
+    s = np.linspace(0.0, 1.0, 201)
+    b = max(float(np.mean(np.abs(tether.current(s)))), 0.1)
+    if axis == "B":
+        return max(3.0 * root_scale(mean.with_(B=0.0), "B", 1.0) / b, 1.1 * tether.params.B)
+    return max(2.0 * root_scale(mean.with_(omega=0.0), "omega", 1.0), 1.1 * tether.params.omega)

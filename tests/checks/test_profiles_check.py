@@ -1,0 +1,135 @@
+"""The check of a tether with its current and tension along it (rung 1v): plan, margins that name the kind of
+instability, damping honestly (the map when the mission does not fix it, the given value when it does), the
+uniform smallest tension as a bound, no coil after flutter, results that validate, and sweeps that carry the
+profiles and recompute the gravity-gradient tension at every length."""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import pytest
+
+from etcheck.checks.pipeline import check
+from etcheck.input.mission import mission_from_dict
+from etcheck.rod.straight.circulatory import critical
+from etcheck.scaling import scale, scene, with_length
+
+BASE = {
+    "mission": {"name": "small bare"},
+    "tether": {"length": "200 m", "bending_stiffness": ["38 N m2", "21 N m2"], "poisson_ratio": 0.3,
+               "mass_per_length": "0.1 kg/m", "rotary_inertia_ratio": 0.001, "end_masses": ["50 kg", "50 kg"]},
+    "operation": {"current": "1 A", "axial_field": "30 uT", "orbit_altitude": "400 km",
+                  "current_profile": {"at": [0, 0.3, 1], "fraction": [1, 0.8, 0]}},
+}
+
+
+def _mission(**changes):
+    d = copy.deepcopy(BASE)
+    for table, fields in changes.items():
+        d[table] = {k: v for k, v in (d.get(table, {}) | fields).items() if v is not None}
+    return mission_from_dict(d)
+
+
+@pytest.fixture(scope="module")
+def bare() -> dict:
+    return check(_mission()).results
+
+
+def test_a_mission_with_profiles_goes_to_rung_1v(bare):
+    assert bare["plan"]["route"] == "profiles" and bare["linear"]["route"] == "profiles"
+    pr = bare["profiles"]
+    assert pr["circulatory"] and pr["current"]["fraction"][0] == 1.0 and pr["current"]["fraction"][-1] == 0.0
+    assert max(pr["tension"]["tension_N"]) > min(pr["tension"]["tension_N"])
+    margin = bare["margins"][0]
+    assert "flutter" in margin["why"] and margin["model"].startswith("rung 1v")
+    assert bare["linear"]["critical_load"]["kind"] == "flutter"
+
+
+def test_the_verdict_takes_the_least_favourable_damping_and_says_so(bare):
+    pr = bare["profiles"]
+    damping = pr["damping"]
+    assert not damping["fixed"] and len(damping["map"]) == 5 and "least favourable" in damping["why"]
+    values = [q["B"] for q in damping["map"]] + [pr["undamped"]["value"]]
+    assert bare["linear"]["critical_load"]["value"] == pytest.approx(min(values), rel=1e-12)
+    # each map point is the rung's own answer at that damping (Ziegler: small damping lowers the threshold)
+    q = damping["map"][0]
+    t = scale(scene(_mission())).tether.with_(gamma=q["gamma"])
+    assert critical(t, mode=False).value == pytest.approx(q["B"], rel=1e-6)
+    assert q["destabilised"] == (q["B"] < pr["undamped"]["value"])
+
+
+def test_a_fixed_damping_is_used_with_the_undamped_threshold_beside_it(bare):
+    fixed = check(_mission(tether={"damping_time": "2 s"})).results
+    pr = fixed["profiles"]
+    assert pr["damping"]["fixed"] and pr["damping"]["map"] == [] and "fixes the damping" in pr["damping"]["why"]
+    assert pr["undamped"]["value"] == pytest.approx(bare["profiles"]["undamped"]["value"], rel=1e-8)
+    gamma = pr["damping"]["gamma"]
+    t = scale(scene(_mission(tether={"damping_time": "2 s"}))).tether
+    assert t.params.gamma == pytest.approx(gamma)
+    assert fixed["linear"]["critical_load"]["value"] == pytest.approx(critical(t, mode=False).value, rel=1e-8)
+
+
+def test_the_uniform_smallest_tension_is_a_bound(bare):
+    bound = bare["profiles"]["uniform_tension_bound"]
+    assert bound is not None and bound["value"] < bare["linear"]["critical_load"]["value"]
+
+
+def test_flutter_draws_no_coil(bare):
+    assert "no coil is drawn" in bare["profiles"]["post_buckling"]
+    post = bare["postbuckling"]
+    assert post is None or (not post["computed"] and "flutter" in post["reason"])
+    # past the threshold the rungs of the coil are not run
+    heavy = check(_mission(operation={"current": "30 A"})).results
+    assert heavy["postbuckling"]["computed"] is False and "flutter" in heavy["postbuckling"]["reason"]
+
+
+def test_a_round_wire_with_a_varying_current_never_passes_undamped():
+    wire = _mission(tether={"bending_stiffness": "38 N m2", "damping_time": "0 s"})
+    results = check(wire).results
+    assert results["linear"]["critical_load"]["value"] == 0.0
+    assert results["linear"]["critical_load"]["kind"] == "flutter" and results["verdict"] == "fail"
+
+
+def test_a_uniform_current_with_end_masses_is_conservative():
+    """One current, the gravity-gradient tension along the tether: rung 1v at the mission's damping, no map; the
+    tension profile gives a higher critical load than its smallest value held constant."""
+    results = check(_mission(operation={"current_profile": None})).results
+    pr = results["profiles"]
+    assert not pr["circulatory"] and pr["current"] is None and pr["damping"]["map"] == [] and pr["undamped"] is None
+    assert results["linear"]["critical_load"]["kind"] == "divergence"
+    assert pr["uniform_tension_bound"]["value"] < results["linear"]["critical_load"]["value"]
+
+
+def test_a_length_sweep_recomputes_the_gravity_gradient_tension():
+    """The end bodies and the tether's own mass pull harder on a longer tether: the tension at 400 m is not the
+    200 m tension (nor its dimensionless value scaled as L^2)."""
+    base = scene(_mission())
+    long = with_length(base, 400.0)
+    gg = long.gravity_gradient
+    assert gg.length == 400.0 and long.tension == gg.minimum > 1.9 * base.tension
+    assert scale(long).tether.params.T > 4 * scale(base).tether.params.T  # T-bar grows faster than L^2
+
+
+def test_a_sweep_point_with_profiles_is_solved_by_rung_1v():
+    from etcheck.studies.sweep import point_key, solve_point
+
+    sc = scale(scene(_mission()))
+    r = solve_point(sc.params, 1e-8, tether=sc.tether, damping_fixed=False)
+    assert r["model"].startswith("rung 1v") and r["status"] == "ok"
+    assert math.isclose(r["B_c"], min(critical(sc.tether.with_(gamma=g), mode=False).value
+                                      for g in (0.0, 1e-3 * sc.params.gamma, sc.params.gamma)), rel_tol=1e-8)
+    uniform = scale(scene(_mission(operation={"current_profile": None})))
+    assert point_key(sc.params, 1e-8, tether=sc.tether) != point_key(uniform.params, 1e-8, tether=uniform.tether)
+
+
+def test_an_undamped_round_wire_with_a_tension_profile_is_stable_at_every_spin_below_its_load_at_rest():
+    """One current (conservative), R = 1, undamped, spun: below the static load at rest no spin destabilises it,
+    whatever the tension along it (a hyperbolic gyroscopic pencil); the spin margin is unlimited."""
+    wire = _mission(tether={"bending_stiffness": "38 N m2", "damping_time": "0 s"},
+                    operation={"current_profile": None, "spin_rate": "0.05 rpm"})
+    results = check(wire).results
+    spin = results["linear"]["critical_spin"]
+    assert spin["kind"] == "never" and "every spin" in spin["message"]
+    margin = next(g for g in results["margins"] if g["name"].startswith("spin"))
+    assert margin["verdict"] == "pass" and margin["value"] is None

@@ -1,0 +1,169 @@
+"""Rung 1v: the straight tether with profiles (graded multi-domain collocation) against exact values
+(uniform profiles), analytic ones (pinned ends), an independent discretisation (Hermite finite elements,
+tests/independent_fe.py) and the physics of a circulatory load."""
+
+from __future__ import annotations
+
+import math
+
+import independent_fe as fe
+import numpy as np
+import pytest
+
+from etcheck.numerics.eigen import sparse_qep_nearest
+from etcheck.rod.core.parameters import RodParameters
+from etcheck.rod.core.profile import Profile
+from etcheck.rod.straight.analytic import critical_loads
+from etcheck.rod.straight.circulatory import critical
+from etcheck.rod.straight.exact import exact_critical
+from etcheck.rod.straight.profiles import Tether, family, layer_widths, mesh
+from etcheck.rod.straight.spectral import CriticalKind
+from etcheck.rod.straight.undamped import undamped_critical
+
+#: the shipped tape tether (missions/tape-tether.toml), scaled
+TAPE = RodParameters(P=2.0857142857142857e-10, R=2.556164383561644e-06, Gamma=7.671213267830194e-06,
+                     B=3.3796980016942935, T=1.4446060436451282, gamma=0.04375)
+RISING = Profile.piecewise_linear([0.0, 1.0], [0.0, 1.0])
+KINKED = Profile.piecewise_linear([0.0, 0.3, 1.0], [0.0, 0.8, 1.0])
+
+
+def test_profiles_evaluate_as_given():
+    p = Profile.piecewise_linear([0.0, 0.3, 1.0], [0.0, 0.8, 1.0])
+    s = np.array([0.0, 0.15, 0.3, 0.65, 1.0])
+    assert np.allclose(p(s), [0.0, 0.4, 0.8, 0.9, 1.0], atol=1e-15)
+    assert np.allclose(p.derivative(np.array([0.1, 0.5])), [0.8 / 0.3, 0.2 / 0.7])
+    q = Profile.from_function(lambda x: 1 + 3 * x * (1 - x), degree=2)
+    x = np.linspace(0, 1, 7)
+    assert np.allclose(q(x), 1 + 3 * x * (1 - x), atol=1e-14)
+    assert np.allclose(q.derivative(x), 3 - 6 * x, atol=1e-13)
+    assert np.allclose(p.reversed()(x), p(1 - x), atol=1e-15)
+    assert Profile.uniform(2.0).uniform_value == 2.0 and p.uniform_value is None
+    with pytest.raises(ValueError, match="rise from 0 to 1"):
+        Profile((0.0, 0.5), ((1.0,),))
+
+
+def test_mesh_grades_towards_thin_layers_and_puts_edges_at_kinks():
+    t = Tether(TAPE, KINKED)
+    w = layer_widths(t)[0]
+    assert w == pytest.approx(math.sqrt(TAPE.R / (TAPE.f * TAPE.T)), rel=1e-3)
+    m = mesh(t, 24)
+    assert 0.3 in m.edges and m.edges[1] == pytest.approx(2 * w)
+    assert max(np.diff(m.edges[:4]) / np.diff(m.edges[1:5])) < 1  # widths grow away from the end
+    assert mesh(Tether(TAPE.with_(T=0.0, B=0.0)), 24).edges == (0.0, 1.0)
+
+
+@pytest.mark.parametrize("gamma", [0.04375, 0.0])
+def test_uniform_tape_reproduces_the_exact_determinant(gamma):
+    """The shipped tape (layers of 6e-5 L, R = 2.6e-6): the first static load of the exact determinant,
+    damped and undamped (no spin: the undamped critical load is the static one)."""
+    p = TAPE.with_(gamma=gamma)
+    c = critical(Tether(p), mode=False)
+    exact = exact_critical(TAPE).critical_load
+    assert c.kind == CriticalKind.DIVERGENCE
+    assert abs(c.value - exact.value) <= max(c.error, 1e-9 * exact.value) + 1e-12 * exact.value
+    assert c.error <= 1e-8 * c.value
+
+
+@pytest.mark.parametrize("kw", [dict(omega=0.25), dict(omega=0.5, T=3.0)])
+@pytest.mark.parametrize("gamma", [0.04375, 0.0])
+def test_uniform_spinning_rod_reproduces_the_exact_routes(kw, gamma):
+    """SET with spin (and tension): the damped critical load of the exact determinant, the undamped one of the
+    undamped determinant."""
+    p = RodParameters(P=1e-3, R=0.5526315789473685, Gamma=0.7692307692307692, gamma=gamma, **kw)
+    c = critical(Tether(p), mode=False)
+    ref = exact_critical(p).critical_load.value if gamma else undamped_critical(p, spin=False).critical_load.value
+    assert c.value == pytest.approx(ref, rel=1e-9)
+    assert c.error <= 1e-8 * c.value
+
+
+def test_uniform_rod_at_rest_buckles_at_the_analytic_load():
+    p = RodParameters(P=1e-3, R=0.3, Gamma=0.77, gamma=0.01)
+    c = critical(Tether(p), mode=False)
+    assert c.value == pytest.approx(float(critical_loads(p.R, p.f, 1)[0]), rel=1e-7)  # beta_1 to 7 digits
+
+
+def test_thinnest_layers_reproduce_the_exact_determinant():
+    """R = 1e-7 under f T = 1e12: layers of 3e-10 L (u) and 1e-6 L (v), undamped."""
+    p = RodParameters(P=1e-12, R=1e-7, Gamma=1e-5, T=1e12 / 500.5639017404325)
+    c = critical(Tether(p), mode=False)
+    assert layer_widths(Tether(p))[0] < 1e-9
+    ref = exact_critical(p.with_(gamma=0.01)).critical_load.value
+    assert c.value == pytest.approx(ref, rel=1e-9)
+
+
+def test_pinned_ends_give_the_analytic_frequencies():
+    """A pinned-pinned beam under tension with rotary inertia: lambda = i sqrt((c4 k^4 + T k^2) / (1 + pc k^2)),
+    k = n pi, for both axes."""
+    p = RodParameters(P=1e-3, R=0.4, Gamma=0.7, T=2.0)
+    fam = family(Tether(p.with_(ends=("pinned", "swivel"))), 32)
+    lam = sparse_qep_nearest(*fam.operator(0.0, 0.0, p.T), k=16, sigma=0.01)
+    got = np.sort(lam.imag[lam.imag > 0])
+    k = np.pi * np.arange(1, 9)
+    ref = np.sort(np.concatenate([np.sqrt((c4 * k**4 + p.T * k**2) / (1 + pc * k**2))
+                                  for c4, pc in ((p.R / p.f, p.P * p.R), (1 / p.f, p.P))]))
+    assert np.allclose(got, ref[:got.size], rtol=1e-10)
+
+
+SCENES = [  # (params, current, tension shape): held-out kinds of tether, each against finite elements
+    (RodParameters(P=1e-6, R=1e-3, Gamma=0.7, T=2.0), KINKED, Profile.uniform()),
+    (RodParameters(P=1e-4, R=0.2, Gamma=0.7, T=0.5), Profile.piecewise_linear([0, 1], [0.2, 1]),
+     Profile.from_function(lambda s: 1 + 3 * s * (1 - s), degree=2)),
+    (RodParameters(P=1e-4, R=0.05, Gamma=0.7, T=5.0, omega=0.3, gamma=0.02), RISING,
+     Profile.from_function(lambda s: 1 + 3 * s * (1 - s), degree=2)),
+]
+
+
+@pytest.mark.parametrize("params, current, tension", SCENES)
+def test_critical_load_agrees_with_finite_elements(params, current, tension):
+    """Two discretisations agree: the collocation's first crossing and the B where Hermite cubic elements on a
+    graded mesh first show Re lambda > 0 (its own scan and bisection), to the elements' accuracy."""
+    t = Tether(params, current, tension)
+    c = critical(t, mode=False)
+    assert c.kind == CriticalKind.FLUTTER and c.error <= 1e-8 * c.value
+    layer = min(layer_widths(t.with_(B=c.value)))
+    nodes = fe.graded_nodes(min(layer, 0.05), 160, 1.15)
+    sigma = 0.0123 if params.gamma == 0 else 0.5 / params.gamma
+    B_fe = fe.critical_load(params, current, tension, nodes, 1.02 * c.value, n_scan=3, rtol=1e-10, sigma=sigma, k=16)
+    assert B_fe == pytest.approx(c.value, rel=5e-6)
+
+
+def test_tape_with_a_rising_current_flutters_below_its_operating_load():
+    """The issue's finding: the shipped tape with a current rising linearly along it flutters undamped at
+    about 0.7 of its operating load; damping (gamma = 0.04375) lowers that threshold (Ziegler)."""
+    undamped = critical(Tether(TAPE.with_(gamma=0.0), RISING))
+    assert undamped.kind == CriticalKind.FLUTTER
+    assert undamped.value / TAPE.B == pytest.approx(0.7222265, abs=1e-6)
+    s, u, v = undamped.mode
+    assert s.size == 201 and max(np.max(np.abs(u)), np.max(np.abs(v))) == pytest.approx(1.0)
+    assert abs(u[0]) < 1e-12 and abs(v[-1]) < 1e-12  # welded ends
+    damped = critical(Tether(TAPE, RISING), mode=False)
+    assert damped.kind == CriticalKind.FLUTTER and damped.value < 0.1 * undamped.value
+
+
+def test_round_wire_with_a_varying_current_flutters_at_any_load():
+    p = RodParameters(P=1e-4, R=1.0, Gamma=0.7, T=1.0)
+    c = critical(Tether(p, RISING), mode=False)
+    assert c.value == 0.0 and c.kind == CriticalKind.FLUTTER
+    # a uniform current on the same wire is conservative: stable up to its (double) static load
+    u = critical(Tether(p), mode=False)
+    assert u.value == pytest.approx(exact_critical(p.with_(gamma=0.01)).critical_load.value, rel=1e-8)
+
+
+def test_reversed_profiles_give_the_same_critical_load():
+    """The map (u, v)(s) -> (u(1 - s), -v(1 - s)) takes the tether with b(s), tau(s) to the one with b(1 - s),
+    tau(1 - s): the same spectrum."""
+    p = RodParameters(P=1e-4, R=0.2, Gamma=0.7, T=0.5)
+    tau = Profile.from_function(lambda s: 1 + 2 * s, degree=1)
+    a = critical(Tether(p, KINKED, tau), mode=False)
+    b = critical(Tether(p, KINKED.reversed(), tau.reversed()), mode=False)
+    assert a.value == pytest.approx(b.value, rel=1e-8)
+
+
+@pytest.mark.parametrize("ends", [("pinned", "pinned"), ("welded", "swivel")])
+def test_uniform_rod_with_other_ends_reproduces_the_exact_determinant(ends):
+    """Pinned or swivel ends (rows u = u'' = 0 per end) against the exact determinant with the same ends, under
+    tension (a tape's layers)."""
+    p = TAPE.with_(ends=ends)
+    c = critical(Tether(p), mode=False)
+    ref = exact_critical(p).critical_load
+    assert c.value == pytest.approx(ref.value, rel=1e-9)
