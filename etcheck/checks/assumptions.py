@@ -21,7 +21,8 @@ import time
 from dataclasses import replace
 
 from etcheck.checks.design_limits import Inputs, NoAnswer, inputs_of, not_sought, point_margins
-from etcheck.checks.sections import AlternativeMargin
+from etcheck.checks.margins import LOAD_AT_REST, LOAD_AT_SPIN
+from etcheck.checks.sections import AlternativeMargin, ProfilesSection
 from etcheck.checks.sections_verdict import AssumptionRecord, AssumptionsSection
 from etcheck.checks.straight import WhirlOptions
 from etcheck.input.mission import DEFAULT_GAMMA, Mission
@@ -35,13 +36,19 @@ DATA, ASSUMED, DEFAULT, MODEL = "data", "assumed", "default", "model"
 
 
 def assumptions(mission: Mission, base: Scene, margin_name: str | None, margin_value: float | None,
-                options: WhirlOptions, other_ends: tuple[AlternativeMargin, ...] = ()) -> AssumptionsSection:
+                options: WhirlOptions, other_ends: tuple[AlternativeMargin, ...] = (),
+                profiles: ProfilesSection | None = None) -> AssumptionsSection:
     """The records of the module docstring for the mission's worst-case scene ``base``; ``margin_name`` and
     ``margin_value``: the governing margin as the check reported it, ``options`` the check's rung-1 settings,
-    ``other_ends`` the same margin under the other attachments of the ends (:mod:`etcheck.checks.attachment`)."""
+    ``other_ends`` the same margin under the other attachments of the ends (:mod:`etcheck.checks.attachment`);
+    ``profiles``: rung 1v's section where the current or the tension varies along the tether (then
+    :func:`_profile_rows`)."""
     started = time.perf_counter()
     inp = inputs_of(mission, base, options)
-    rows = [_ends(mission, other_ends), _current(inp), _tension(inp), _field(inp), _damping(inp)]
+    if profiles is not None:
+        rows = [_ends(mission, other_ends), *_profile_rows(inp, margin_name, margin_value, profiles)]
+    else:
+        rows = [_ends(mission, other_ends), _current(inp), _tension(inp), _field(inp), _damping(inp)]
     return {"margin": margin_name, "margin_value": margin_value, "required": mission.required_margin,
             "rows": rows, "time_s": time.perf_counter() - started}
 
@@ -193,3 +200,78 @@ def _difference(inp: Inputs, name: str, x: float) -> tuple[float | None, str]:
     if not (0 < up < math.inf and 0 < down < math.inf) or math.isnan(up - down):
         return None, "not differentiable here (a margin of zero or without limit)"
     return (math.log(up) - math.log(down)) / (2 * STEP), f"central difference, relative step {STEP:g}"
+
+
+# --------------------------------------------------------------------------- profiles along the tether (rung 1v)
+
+#: why no difference is taken with profiles along the tether
+_RUNG_1V_COST = "not computed: each margin with profiles along the tether takes rung 1v (seconds)"
+
+
+def _profile_rows(inp: Inputs, name: str | None, value: float | None,
+                  profiles: ProfilesSection) -> list[AssumptionRecord]:
+    """The current, tension, field and damping records of a tether with its current or tension along it (rung 1v,
+    :mod:`etcheck.checks.profiles`). The load margin's elasticity in the largest current and in the field is -1
+    exactly (rung 1v's load is B b(s), b fixed); the alternatives are what the check computed beside its verdict:
+    the uniform check (one current, the smallest tension held constant), the smallest tension held constant under
+    the profile of current (``profiles.uniform_tension_bound``) and no damping (``profiles.undamped``)."""
+    m = inp.mission
+    p = scale(inp.base).params
+    load_governs = name == LOAD_AT_SPIN or name == LOAD_AT_REST
+    exact = (-1.0, "exact: the load margin is critical load / (|I| B0), the shape of the profile fixed") \
+        if load_governs else (None, _RUNG_1V_COST)
+    uniform = _margin_or_none(inp, "current", inp.current)  # the uniform check's: one current, smallest tension
+
+    def ratio(point) -> float | None:
+        """The load margin at another critical load (dimensionless), where the load margin governs."""
+        if not load_governs or point is None or point.get("value") is None or p.B == 0:
+            return None
+        return point["value"] / p.B
+
+    cp = m.current_profile
+    lo, hi = (float(x.to_value("A")) for x in m.current)
+    current = f"largest {inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
+    if cp is None:
+        current_row = _record("current", "current along the tether", current + "; uniform along the tether",
+                              "operation.current", _flag(m, "operation.current"),
+                              "an insulated tether: one current along its length", *exact)
+    else:
+        how = "orbital-motion-limited collection" if cp.collection is not None else "the points given"
+        current_row = _record(
+            "current", "current along the tether", f"{current}; varies along the tether ({how})",
+            "operation.current_profile", _flag(m, "operation.current_profile", "operation.collection"),
+            "a current that varies along the tether makes the magnetic load circulatory: flutter is possible and "
+            "damping can lower the threshold", *exact,
+            "one current along the whole tether (the uniform check, smallest tension held constant)", uniform)
+    tension_row = _profile_tension(inp, ratio(profiles["uniform_tension_bound"]),
+                                   uniform if cp is None else None)
+    field_row = _field(inp) if load_governs else {**_field(inp), "elasticity": None, "elasticity_method": _RUNG_1V_COST}
+    d = profiles["damping"]
+    undamped = ratio(profiles["undamped"]) if d["gamma"] > 0 else None
+    damping_row = _record(
+        "damping", "material damping (Kelvin-Voigt)", f"γ = {d['gamma']:.4g} ({d['damping_time_s']:.3g} s)",
+        "tether.damping_time" if m.damping_time is not None else "not given: the least favourable up to the "
+        "paper's estimate (Sec. VII B)", _flag(m, "tether.damping_time") if m.damping_time is not None else DEFAULT,
+        d["why"], None, "not an elasticity: with a circulatory load damping can lower the threshold (Ziegler)"
+        if profiles["circulatory"] else _RUNG_1V_COST, "no damping" if undamped is not None else None, undamped)
+    return [current_row, tension_row, field_row, damping_row]
+
+
+def _profile_tension(inp: Inputs, bound: float | None, uniform: float | None) -> AssumptionRecord:
+    """The tension record with a profile of current or of tension: under the gravity gradient the profile is used
+    and the smallest tension held constant is the alternative (``bound``, computed by the check); with one tension
+    along the tether the uniform check's margin is the one under its tension."""
+    m, T = inp.mission, inp.base.tension
+    gg = m.gravity_gradient
+    if gg is None:
+        row = _tension(inp)
+        return {**row, "elasticity": None, "elasticity_method": _RUNG_1V_COST if T > 0 else "",
+                "alternative": None, "margin_alternative": None}
+    source = (f"gravity gradient: end masses {gg.upper_mass:.4g} kg, {gg.lower_mass:.4g} kg (tether.end_masses), "
+              f"Ω = {gg.orbit_rate:.4g} rad/s ({_rate_source(gg.rate_source)})")
+    value = f"the profile along the tether: {gg.minimum:.4g} N ({gg.minimum_at}) … {gg.maximum:.4g} N (centre)"
+    alt, margin = ("the smallest tension held constant along the tether", bound) if bound is not None else \
+        ("the smallest tension held constant, one current (the uniform check)", uniform)
+    return _record("tension", "tension along the tether", value, source, _flag(m, "tether.end_masses"),
+                   "tension stabilises the straight tether; the profile is larger than its smallest value almost "
+                   "everywhere", None, _RUNG_1V_COST, alt if margin is not None else None, margin)

@@ -162,16 +162,43 @@ _LIMITS = {
 }
 
 
-def design_limits(mission: Mission, base: Scene, options: WhirlOptions) -> DesignLimitsSection:
+def design_limits(mission: Mission, base: Scene, options: WhirlOptions, rung_1v: bool = False,
+                  along: tuple[float, float] | None = None) -> DesignLimitsSection:
     """The four design limits of the mission's straight tether (module docstring) with the check's rung-1
-    settings ``options``, computed on two cores where a core is free."""
+    settings ``options``, computed on two cores where a core is free. ``rung_1v``: the tether has its current or
+    tension along it; ``along``: then its load margin and that margin's relative error, or None where the load
+    margin does not govern: the largest current follows from it exactly (the critical load of a profile of fixed
+    shape does not depend on the current), the other limits are not sought (:data:`RUNG_1V`)."""
     started = time.perf_counter()
     inp = inputs_of(mission, base, options)
+    if rung_1v:
+        limits = [_not_sought(inp, name, RUNG_1V) for name in _LIMITS]
+        if along is not None and base.spin_rate == 0:
+            limits[1] = _current_from_margin(inp, *along)
+        return {"required": inp.required, "tolerance": LIMIT_TOLERANCE, "limits": limits,
+                "time_s": time.perf_counter() - started}
     skip = not_sought(base)
     limits = [_not_sought(inp, name, skip) for name in _LIMITS] if skip else \
         split_map(lambda name: _limit(inp, name), list(_LIMITS))
     return {"required": inp.required, "tolerance": LIMIT_TOLERANCE, "limits": limits,
             "time_s": time.perf_counter() - started}
+
+
+#: why a limit is not sought for a tether with profiles along it
+RUNG_1V = ("not sought with the current or tension along the tether: each margin takes rung 1v (seconds an "
+           "evaluation); map it with etcheck sweep")
+
+
+def _current_from_margin(inp: Inputs, margin: float, error: float) -> DesignLimit:
+    """The largest current of a tether with profiles along it: the load margin is critical load / (|I| B0) with a
+    critical load that depends on neither (the profile's shape held), so the limit is |I| × margin / required."""
+    record = _not_sought(inp, "current", "")
+    if not math.isfinite(margin) or margin <= 0:
+        return record | {"status": "not located", "note": "the load margin is zero or without limit"}
+    return record | {"limit": inp.current * margin / inp.required, "status": "located",
+                     "margin_at_limit": inp.required, "governing": "load margin", "relative_error": error,
+                     "note": "exact from rung 1v's load margin: the critical load of a profile of fixed shape does "
+                             "not depend on the current"}
 
 
 def not_sought(base: Scene) -> str:

@@ -6,6 +6,7 @@ JSON-able data; reports are rendered from those alone (see :mod:`etcheck.report`
 
 from __future__ import annotations
 
+import math
 import time
 from contextlib import nullcontext
 from dataclasses import asdict, dataclass, replace
@@ -20,6 +21,8 @@ from etcheck.checks.flight import flight
 from etcheck.checks.margins import (
     FAIL,
     INCOMPLETE,
+    LOAD_AT_REST,
+    LOAD_AT_SPIN,
     OUTSIDE,
     PASS,
     Margin,
@@ -111,14 +114,18 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
     study = None
-    if mission.uncertainty is not None:  # [uncertainty]: the margins again at other inputs, by the same route
+    if mission.uncertainty is not None and profiles is not None:
+        skipped.append({"part": "uncertainty study", "why": "not computed with the current or tension along the "
+                        "tether: its margins take rung 1v (seconds each) and the study needs hundreds"})
+    elif mission.uncertainty is not None:  # [uncertainty]: the margins again at other inputs, by the same route
         from etcheck.checks.uncertainty import uncertainty_study
 
         study = uncertainty_study(mission, sc, scaled, chosen, margins, options).as_dict()
     scope = model_validity(mission, sc)
     verdict = overall_verdict(margins, scope["within"])
     extras = Extras(skipped, deadline, options.time_budget)
-    decides, limits = _what_decides(mission, sc, margins, chosen.complete and not fid.draft, options, extras)
+    decides, limits = _what_decides(mission, sc, margins, chosen.complete and not fid.draft, options, extras,
+                                    profiles)
     margin_records = [m.as_dict() for m in margins]
     results: CheckResults = {
         **results_header(mission),
@@ -189,18 +196,27 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
 
 
 def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bool, options: WhirlOptions,
-                  extras: Extras) -> tuple[AssumptionsSection | None, DesignLimitsSection | None]:
+                  extras: Extras, profiles: ProfilesSection | None
+                  ) -> tuple[AssumptionsSection | None, DesignLimitsSection | None]:
     """How far the smallest margin of the straight tether moves with each assumption, and how far each input may
     go (None for both in a draft or an incomplete check: ``wanted`` False; each None where the sign-off's time
-    budget ran out first, said in ``resources.skipped``)."""
+    budget ran out first, said in ``resources.skipped``); ``profiles``: rung 1v's section, where it answered."""
     if not wanted:
         return None, None
     straight = [m for m in margins if m.value is not None and m.rung < 3]
     governing = min(straight, key=lambda m: m.value) if straight else None
-    decides = extras("how far the margin moves with each assumption", lambda: assumptions(
-        mission, sc, governing.name if governing else None, governing.value if governing else None, options,
-        governing.alternatives if governing else ()))
-    return decides, extras("design limits", lambda: design_limits(mission, sc, options))
+    def decides() -> AssumptionsSection:
+        return assumptions(mission, sc, governing.name if governing else None,
+                           governing.value if governing else None, options,
+                           governing.alternatives if governing else (), profiles)
+
+    if profiles is not None:  # rung 1v's margins are not re-evaluated: milliseconds, whatever the time budget
+        along = None
+        if governing is not None and governing.name in (LOAD_AT_REST, LOAD_AT_SPIN):
+            along = (governing.value, governing.error if governing.error is not None else math.nan)
+        return decides(), design_limits(mission, sc, options, True, along)
+    return (extras("how far the margin moves with each assumption", decides),
+            extras("design limits", lambda: design_limits(mission, sc, options)))
 
 
 def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
