@@ -92,21 +92,17 @@ def _current(inp: Inputs) -> AssumptionRecord:
     value = f"{inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
     value += "; uniform along the tether"
     el, how = _load_elasticity(inp)
-    return _record("current", "current along the tether", value, "operation.current; uniform: the model's",
-                   _flag(m, "operation.current"), "a bare tether collects its current along its length, so the "
-                   "current varies along it (the load is then circulatory and flutter is possible): not modelled",
-                   el, how)
+    return _record("current", "current along the tether", value,
+                   "operation.current; uniform: no operation.current_profile", _flag(m, "operation.current"),
+                   "right for an insulated tether; a bare tether collects its current along its length, so the "
+                   "current varies along it (the load is then circulatory and flutter is possible): give "
+                   "operation.current_profile", el, how)
 
 
 def _tension(inp: Inputs) -> AssumptionRecord:
+    """The tension record of a tether with one tension along it (end masses make a profile: rung 1v's records)."""
     m, T = inp.mission, inp.base.tension
-    gg = m.gravity_gradient
-    if gg is not None:
-        source = (f"gravity gradient: end masses {gg.upper_mass:.4g} kg, {gg.lower_mass:.4g} kg (tether.end_masses), "
-                  f"Ω = {gg.orbit_rate:.4g} rad/s ({_rate_source(gg.rate_source)})")
-        value = f"{T:.4g} N, the smallest ({gg.minimum_at}; {gg.maximum:.4g} N at the centre)"
-        flag = _flag(m, "tether.end_masses")
-    elif T != 0:
+    if T != 0:
         source, flag = "operation.end_tension", _flag(m, "operation.end_tension")
         value = f"{T:.4g} N" + (" (compression)" if T < 0 else "")
     elif "operation.end_tension" in m.given:
@@ -239,7 +235,8 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
         how = "orbital-motion-limited collection" if cp.collection is not None else "the points given"
         current_row = _record(
             "current", "current along the tether", f"{current}; varies along the tether ({how})",
-            "operation.current_profile", _flag(m, "operation.current_profile", "operation.collection"),
+            "operation.current_profile", _flag(m, "operation.current", "operation.current_profile",
+                                                "operation.collection"),
             "a current that varies along the tether makes the magnetic load circulatory: flutter is possible and "
             "damping can lower the threshold", *exact,
             "one current along the whole tether (the uniform check, smallest tension held constant)", uniform)

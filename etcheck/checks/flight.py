@@ -70,8 +70,12 @@ def _not_modelled(mission: Mission, validity: ModelValidity, smallest: MarginRec
         f"the bow under the lateral Lorentz load: computed here, {100 * lat['bow_over_length']:.3g} % of the length with "
         f"{lat['cross_field_T'] * 1e6:.3g} µT across the tether ({lat['cross_field_source']}); the stability "
         "analysis itself assumes a straight tether",
-        "the current profile along the tether: the model takes one current along the whole tether (a bare "
-        "tether's varies along it, and the load is then circulatory)",
+        "the current along the tether: " + (
+            "one current along the whole tether, as for an insulated tether (a bare tether's current varies "
+            "along it and the load is then circulatory: give operation.current_profile)"
+            if mission.current_profile is None else
+            "the profile given (operation.current_profile) is the model's; the real one varies with the plasma "
+            "along the orbit"),
         _ends(mission, smallest),
         "libration, the orbit's eccentricity and the deployment dynamics: the model's tether is deployed and at "
         "rest on the local vertical (a swing lowers the tension by about cos² of its angle; slack or rebound at "
@@ -81,6 +85,7 @@ def _not_modelled(mission: Mission, validity: ModelValidity, smallest: MarginRec
     ]
     if gg is not None:
         assumed = " (marked as assumed)" if mission.is_assumed("tether.end_masses") else ""
-        items.append(f"the tension along the tether: the model holds one tension, the smallest, {gg.minimum:.3g} N, "
-                     f"from end masses {gg.upper_mass:.4g} kg and {gg.lower_mass:.4g} kg{assumed}")
+        items.append(f"the tension along the tether: the gravity-gradient profile ({gg.minimum:.3g} N at its "
+                     f"{gg.minimum_at} to {gg.maximum:.3g} N at the centre) from end masses {gg.upper_mass:.4g} kg "
+                     f"and {gg.lower_mass:.4g} kg{assumed}, on a tether at rest on the local vertical")
     return items

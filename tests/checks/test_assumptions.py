@@ -34,39 +34,67 @@ def test_rows_and_flags_follow_the_mission_file(tape):
     rows = _rows(tape)
     assert list(rows) == ["ends", "current", "tension", "field", "damping"]
     assert rows["tension"]["flag"] == "assumed" and "tether.end_masses" in rows["tension"]["source"]
+    assert "the profile along the tether" in rows["tension"]["value"]
     assert rows["field"]["flag"] == "assumed"  # [orbit] listed under [mission] assumed
-    assert rows["current"]["flag"] == "assumed" and "uniform along the tether" in rows["current"]["value"]
+    assert rows["current"]["flag"] == "assumed" and "varies along the tether" in rows["current"]["value"]
     assert rows["damping"]["flag"] == "default" and rows["ends"]["flag"] == "default"
     spun = _rows(check(MISSIONS / "set.toml").results)
     assert spun["tension"]["flag"] == "data" and spun["tension"]["value"] == "0 N"  # given in the file
-    assert spun["current"]["flag"] == "data"
+    assert spun["current"]["flag"] == "data" and "uniform along the tether" in spun["current"]["value"]
 
 
-def test_no_tension_alternative_is_the_check_without_tension(tape):
-    """The tape without its gravity-gradient tension: the margin a check of that mission gives."""
-    raw = _raw("tape-tether.toml")
-    del raw["tether"]["end_masses"]
-    raw["mission"]["assumed"] = [a for a in raw["mission"]["assumed"] if a != "tether.end_masses"]
-    raw["operation"]["end_tension"] = "0 N"
-    free = check(raw).results
-    assert _rows(tape)["tension"]["margin_alternative"] == pytest.approx(free["margins"][0]["value"], rel=1e-8)
-    assert free["margins"][0]["verdict"] == "fail"
+def _tensioned(**fields) -> dict:
+    """SET with an end tension (rung 1, the exact determinant's route)."""
+    return set_like(name="taut", **({"end_tension": "0.02 N"} | fields))
 
 
-def test_exact_elasticities_and_the_tension_one(tape):
-    rows = _rows(tape)
+def test_no_tension_alternative_is_the_check_without_tension():
+    """One tension along the tether: the margin without it is the margin a check of that mission gives."""
+    taut = check(_tensioned()).results
+    free = check(set_like(name="free", end_tension="0 N")).results
+    assert _rows(taut)["tension"]["margin_alternative"] == pytest.approx(free["margins"][0]["value"], rel=1e-8)
+    assert _rows(taut)["tension"]["margin_alternative"] < taut["margins"][0]["value"]
+
+
+def test_exact_elasticities_and_the_tension_one():
+    taut = check(_tensioned()).results
+    rows = _rows(taut)
     assert rows["current"]["elasticity"] == -1.0 and rows["field"]["elasticity"] == -1.0  # margin ∝ 1 / (I B0)
     assert rows["damping"]["elasticity"] == 0.0  # Kelvin-Tait-Chetaev: damping does not move the critical values
     # the tension's, against a difference of two checks 1 % apart
     margins = []
     for factor in (1.01, 1 / 1.01):
-        raw = _raw("tape-tether.toml")
-        raw["tether"]["end_masses"] = [f"{12 * factor!r} kg", f"{12 * factor!r} kg"]
-        raw["check"]["fidelity"] = "draft"  # the margins alone (to ~1e-8 on this route)
-        r = check(raw).results
+        r = check(_tensioned(end_tension=f"{0.02 * factor!r} N", check={"fidelity": "draft"})).results
         margins.append((r["scene"]["tension_N"], r["margins"][0]["value"]))
     (t1, m1), (t2, m2) = margins
     assert rows["tension"]["elasticity"] == pytest.approx(math.log(m1 / m2) / math.log(t1 / t2), rel=1e-3)
+
+
+def test_with_profiles_the_alternatives_are_the_checks_beside_the_verdict(tape):
+    """The tape tether (rung 1v: its collected current and its gravity-gradient tension along it): one current
+    along the whole tether gives the margin of the uniform check of the same tether under its smallest tension;
+    the tension's and the damping's alternatives are what rung 1v computed beside its verdict."""
+    rows = _rows(tape)
+    load = tape["scaled"]["B"]
+    prof = tape["profiles"]
+    assert rows["tension"]["margin_alternative"] == pytest.approx(prof["uniform_tension_bound"]["value"] / load,
+                                                                  rel=1e-12)
+    assert rows["damping"]["alternative"] == "no damping"
+    assert rows["damping"]["margin_alternative"] == pytest.approx(prof["undamped"]["value"] / load, rel=1e-12)
+    assert rows["current"]["elasticity"] == -1.0 and rows["field"]["elasticity"] == -1.0  # b(s) fixed: B_c / B
+    raw = _raw("tape-tether.toml")
+    del raw["operation"]["current_profile"], raw["operation"]["collection"], raw["tether"]["end_masses"]
+    raw["operation"]["end_tension"] = f"{tape['mission']['operation']['gravity_gradient']['minimum_N']!r} N"
+    raw["mission"]["assumed"] = [a for a in raw["mission"]["assumed"] if a != "tether.end_masses"]
+    uniform = check(raw).results
+    assert uniform["plan"]["route"] != "profiles"
+    assert rows["current"]["margin_alternative"] == pytest.approx(uniform["margins"][0]["value"], rel=1e-8)
+    # the largest current from the load margin (exact for a profile of fixed shape)
+    (current,) = [lim for lim in tape["design_limits"]["limits"] if lim["input"] == "current"]
+    margin = tape["margins"][0]
+    assert current["limit"] == pytest.approx(current["mission_value"] * margin["value"] / margin["required"],
+                                             rel=1e-14)
+    assert {lim["status"] for lim in tape["design_limits"]["limits"] if lim["input"] != "current"} == {"not sought"}
 
 
 def test_undamped_alternative_is_the_undamped_check():
