@@ -30,8 +30,10 @@ def set_like(name: str = "api", description: str = "", check: dict | None = None
 
 def tension_free(mission: Path, folder: Path) -> Path:
     """A copy of a shipped flight mission (PMG, ProSEDS) in ``folder`` with its gravity-gradient tension
-    neglected, as the paper did (Sec. VII A): end_tension = 0 instead of end_masses and the orbit rate."""
-    text = re.sub(r"^(end_masses|orbit_rate|orbit_altitude) = .*$", "", mission.read_text(), flags=re.M)
+    neglected, as the paper did (Sec. VII A): end_tension = 0 instead of end_masses and the orbit rate, and one
+    current along the tether (no current_profile)."""
+    text = re.sub(r"^(end_masses|orbit_rate|orbit_altitude|current_profile) = .*$", "", mission.read_text(), flags=re.M)
+    text = re.sub(r"^\[operation\.collection\]\n(?:(?!\[).*\n)*", "", text, flags=re.M)  # one current, as the paper
     path = folder / mission.name
     path.write_text(text.replace("[operation]\n", '[operation]\nend_tension = "0 N"\n', 1))
     return path
