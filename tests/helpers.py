@@ -37,3 +37,23 @@ def tension_free(mission: Path, folder: Path) -> Path:
     path = folder / mission.name
     path.write_text(text.replace("[operation]\n", '[operation]\nend_tension = "0 N"\n', 1))
     return path
+
+
+def tape(current_profile: bool = True, end_masses: bool = True) -> dict:
+    """The shipped tape tether as a mission dict; without its collected current (one current along the tether)
+    and/or with its smallest gravity-gradient tension as one end tension instead of its end masses (the uniform
+    routes of rung 1: the exact determinant)."""
+    import tomllib
+
+    from etcheck.input.mission import mission_from_dict
+
+    data = tomllib.loads((Path(__file__).resolve().parents[1] / "missions" / "tape-tether.toml").read_text())
+    if not current_profile:
+        del data["operation"]["current_profile"], data["operation"]["collection"]
+    if not end_masses:
+        minimum = mission_from_dict(tomllib.loads(
+            (Path(__file__).resolve().parents[1] / "missions" / "tape-tether.toml").read_text())).gravity_gradient.minimum
+        del data["tether"]["end_masses"]
+        data["operation"]["end_tension"] = f"{minimum!r} N"
+        data["mission"]["assumed"] = [a for a in data["mission"]["assumed"] if a != "tether.end_masses"]
+    return data

@@ -168,25 +168,38 @@ def design_limits(mission: Mission, base: Scene, options: WhirlOptions, rung_1v:
     settings ``options``, computed on two cores where a core is free. ``rung_1v``: the tether has its current or
     tension along it; ``along``: then its load margin and that margin's relative error, or None where the load
     margin does not govern: the largest current follows from it exactly (the critical load of a profile of fixed
-    shape does not depend on the current), the other limits are not sought (:data:`RUNG_1V`)."""
+    shape does not depend on the current); the other limits are located under the smallest tension held constant
+    where only the tension varies (:data:`BOUND`), and not sought under a current along the tether
+    (:data:`RUNG_1V`)."""
     started = time.perf_counter()
     inp = inputs_of(mission, base, options)
-    if rung_1v:
+    skip = not_sought(base)
+    if rung_1v and mission.current_profile is not None:  # circulatory: the uniform routes are no bound
         limits = [_not_sought(inp, name, RUNG_1V) for name in _LIMITS]
+    else:
+        limits = [_not_sought(inp, name, skip) for name in _LIMITS] if skip else \
+            split_map(lambda name: _limit(inp, name), list(_LIMITS))
+    if rung_1v:
+        limits = [_on_the_bound(lim) for lim in limits]
         if along is not None and base.spin_rate == 0:
             limits[1] = _current_from_margin(inp, *along)
-        return {"required": inp.required, "tolerance": LIMIT_TOLERANCE, "limits": limits,
-                "time_s": time.perf_counter() - started}
-    skip = not_sought(base)
-    limits = [_not_sought(inp, name, skip) for name in _LIMITS] if skip else \
-        split_map(lambda name: _limit(inp, name), list(_LIMITS))
     return {"required": inp.required, "tolerance": LIMIT_TOLERANCE, "limits": limits,
             "time_s": time.perf_counter() - started}
 
 
-#: why a limit is not sought for a tether with profiles along it
-RUNG_1V = ("not sought with the current or tension along the tether: each margin takes rung 1v (seconds an "
-           "evaluation); map it with etcheck sweep")
+#: why a limit is not sought for a tether with a current along it
+RUNG_1V = ("not sought with the current along the tether: each margin takes rung 1v (seconds an evaluation) and "
+           "one current is no bound for a circulatory load; map it with etcheck sweep")
+#: what a limit of a tether with only its tension along it is
+BOUND = ("under the smallest tension held constant along the tether (a conservative bound: tension stabilises; "
+         "rung 1v takes seconds a margin)")
+
+
+def _on_the_bound(limit: DesignLimit) -> DesignLimit:
+    """A limit located under the uniform smallest tension, said so (for a tether with its tension along it)."""
+    if limit["status"] == "not sought" and limit["note"] == RUNG_1V:
+        return limit
+    return limit | {"note": f"{limit['note']}; {BOUND}" if limit["note"] else BOUND}
 
 
 def _current_from_margin(inp: Inputs, margin: float, error: float) -> DesignLimit:

@@ -121,7 +121,7 @@ def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> Ma
     for probabilities on their own (:func:`etcheck.checks.probability.failure_probability`)."""
     from etcheck.checks.margins import straight_margins
     from etcheck.checks.orbit_field import with_orbit_field
-    from etcheck.checks.plan import plan
+    from etcheck.checks.plan import plan, varies_along
     from etcheck.checks.static_buckling import static_buckling, static_limits
     from etcheck.checks.straight import linear_stability
     from etcheck.scaling import scale, scene
@@ -129,6 +129,9 @@ def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> Ma
     mission = with_orbit_field(mission)
     sc = scene(mission)
     scaled = scale(sc)
+    if varies_along(sc):
+        raise ValueError(f"no margin model with {varies_along(sc)} along the tether: its margins take rung 1v "
+                         "(seconds each), and the check computes no uncertainty study for it")
     chosen = plan(scaled.params, mission.fidelity)
     rung0 = static_buckling(scaled)
     static = {**rung0, "limits": static_limits(rung0, mission, sc)}

@@ -11,12 +11,13 @@ from dataclasses import replace
 from pathlib import Path
 
 import pytest
-from helpers import set_like
+from helpers import set_like, tape
 
 from etcheck import check
 from etcheck.checks.design_limits import design_limits
+from etcheck.checks.plan import EXACT
 from etcheck.checks.straight import DEFAULT_OPTIONS
-from etcheck.input.mission import load_mission
+from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.scaling import RPM, scene
 
 MISSIONS = Path(__file__).resolve().parents[2] / "missions"
@@ -66,20 +67,25 @@ def test_rung0_limits_are_the_closed_forms():
 
 
 def test_tape_limits_on_the_exact_determinant_route():
-    """The tape tether (exact characteristic determinant): the smallest tension, given as a fixed end tension,
-    and the largest current each put a fresh check at the required margin; the end masses that give that
-    tension under the gravity gradient are the mission's times the stated factor."""
-    mission = load_mission(MISSIONS / "tape-tether.toml")
+    """The tape tether with one current and its gravity-gradient tension along it (rung 1v): the smallest tension
+    located under the smallest tension held constant (the exact determinant's route, a conservative bound) puts a
+    check of the tape under that end tension at the required margin; the end masses that give it are the
+    mission's times the stated factor; the largest current is exact from rung 1v's own load margin."""
+    data = tape(current_profile=False)
+    mission = mission_from_dict(data)
     r = check(mission).results
+    assert r["plan"]["route"] == "profiles"
     limits = _limits(r)
     tension = limits["end_tension"]
     assert tension["status"] == "located" and 0 < tension["limit"] < r["scene"]["tension_N"]
+    assert "smallest tension held constant" in tension["note"]
     gg = mission.gravity_gradient
     k = tension["end_mass_factor"]
     scaled_gg = replace(gg, upper_mass=k * gg.upper_mass, lower_mass=k * gg.lower_mass)
     assert scaled_gg.minimum == pytest.approx(tension["limit"], rel=1e-10)
-    at = check(replace(mission, gravity_gradient=scaled_gg, end_tension=scaled_gg.minimum * mission.end_tension.unit,
+    at = check(replace(mission, gravity_gradient=None, end_tension=tension["limit"] * mission.end_tension.unit,
                        fidelity="draft"))
+    assert at.results["plan"]["route"] == EXACT
     assert _smallest(at.results) == pytest.approx(2.0, rel=1e-6)
     current = limits["current"]
     assert current["limit"] == pytest.approx(1.0 * r["margins"][0]["value"] / 2.0, rel=1e-12)

@@ -105,7 +105,7 @@ def _round_wire_undamped(current: str) -> dict:
     data = tomllib.loads((Path(__file__).parents[2] / "missions" / "pmg.toml").read_text())
     minimum = mission_from_dict(copy.deepcopy(data)).gravity_gradient.minimum
     data["tether"].pop("end_masses")
-    data["operation"].pop("orbit_rate")
+    data["operation"].pop("orbit_rate", None), data["operation"].pop("orbit_altitude", None)
     data["tether"]["damping_time"] = "0 s"
     data["operation"] |= {"spin_rate": "0.5 rpm", "current": current, "end_tension": f"{minimum!r} N"}
     return data

@@ -106,12 +106,13 @@ def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch
 
 
 def test_exact_map_rows_agree_with_the_critical_spin_at_the_operating_load():
-    """The shipped tape: every spin row of its map below the critical spin at the operating load holds the operating
-    load in its stable interval, and no row above it does (near the unloaded critical spin the rows' roots carry ~1e-8
-    from their two formulations: held to the margins' 1e-10 they were left empty, drawn unstable)."""
-    from pathlib import Path
+    """The shipped tape with one current and its smallest tension (the exact route): every spin row of its map below
+    the critical spin at the operating load holds the operating load in its stable interval, and no row above it
+    does (near the unloaded critical spin the rows' roots carry ~1e-8 from their two formulations: held to the
+    margins' 1e-10 they were left empty, drawn unstable)."""
+    from helpers import tape
 
-    lin = check(Path(__file__).resolve().parents[2] / "missions" / "tape-tether.toml").results["linear"]
+    lin = check(tape(current_profile=False, end_masses=False)).results["linear"]
     critical, load = lin["critical_spin"]["rpm"], lin["operating"]["IB0_N_per_m"]
     rows = lin["stability_map"]["stable_rows"]
     assert sum(row["spin_rpm"] < critical for row in rows) >= 30

@@ -13,6 +13,7 @@ from pathlib import Path
 import mpmath as mp
 import numpy as np
 import pytest
+from helpers import tape
 from scipy import integrate, stats
 from scipy.optimize import brentq
 
@@ -35,8 +36,9 @@ EI_AND_FIELD = {"bending_stiffness": {"distribution": "normal", "sigma": "15 %"}
                 "axial_field": {"distribution": "lognormal", "sigma": "30 %"}}
 
 
-def mission(base: str = "set.toml", uncertainty: dict | None = None, **operation):
-    data = tomllib.loads((MISSIONS / base).read_text())
+def mission(base: str | dict = "set.toml", uncertainty: dict | None = None, **operation):
+    """A shipped mission (its file name) or a mission dict, with ``uncertainty`` and ``operation`` fields set."""
+    data = base if isinstance(base, dict) else tomllib.loads((MISSIONS / base).read_text())
     data["operation"] |= operation
     if uncertainty:
         data["uncertainty"] = uncertainty
@@ -191,9 +193,9 @@ def test_sampling_of_several_inputs_is_unbiased_against_quadrature():
 
 
 def test_one_input_on_the_exact_determinant_route_against_its_margin_root():
-    """The tape tether (exact determinant), its length normal 10 %: the probability is one conditional; the
+    """The tape tether with one current under one tension (exact determinant), its length normal 10 %: the probability is one conditional; the
     truth here from the rod's own exact_critical through the scalings, its root found by brentq to 1e-13."""
-    m = mission("tape-tether.toml", {"length": {"distribution": "normal", "sigma": "10 %"}})
+    m = mission(tape(current_profile=False, end_masses=False), {"length": {"distribution": "normal", "sigma": "10 %"}})
     model = study_model(m)
     assert model.route == EXACT
     p = failure_probability(model, LOAD_AT_SPIN, m.uncertainty)
@@ -264,13 +266,14 @@ def test_far_from_failure_one_margin_at_the_adverse_corner_bounds_it():
 def test_samples_use_the_checks_route_and_tolerance():
     """Each sample's margin is the check's: at the mission's own inputs the study's margin is the check's value
     (to the check's tolerance), on the check's route."""
-    for name in ("set.toml", "tape-tether.toml"):
-        m = mission(name)
+    for m in (mission("set.toml"), mission_from_dict(tape(current_profile=False, end_masses=False))):
         model = study_model(m)
         r = check(m, replace(DEFAULT_OPTIONS, accuracy_N=())).results
         for g in r["margins"]:
             assert model.margin(model.values(), g["name"]).value == pytest.approx(g["value"], rel=1e-8)
         assert model.route == r["plan"]["route"]
+    with pytest.raises(ValueError, match="rung 1v"):  # the current and tension along the tape: no margin model
+        study_model(mission("tape-tether.toml"))
 
 
 def test_a_margin_that_jumps_at_the_missions_values_is_not_bounded_away():
@@ -373,7 +376,7 @@ def test_elasticities_match_an_independent_physical_difference():
 
 def test_torsion_provably_does_not_move_the_critical_values():
     """GJ is an inert input on every rung-1 route (torsion decouples from bending about the straight tether)."""
-    for name, route in (("set.toml", "spectral"), ("tape-tether.toml", EXACT)):
+    for name, route in (("set.toml", "spectral"), (tape(current_profile=False, end_masses=False), EXACT)):
         p = scale(scene(with_orbit_field(mission(name)))).params
         for q in (p, p.with_(gamma=0.0)):
             a, b = (critical_values(x, DEFAULT_OPTIONS, route) for x in (q, q.with_(Gamma=3.7 * q.Gamma)))
