@@ -16,7 +16,8 @@ margins at perturbed inputs:
   margin by the check's rule (:func:`etcheck.checks.margins.margin_from_critical`);
 * rungs 2-3 (the buckled tether's margin to its secondary pitchfork): not
   re-evaluated (seconds per point); only inputs that scale it exactly are
-  integrated (see :meth:`MarginModel.powers`).
+  integrated (see :meth:`MarginModel.powers`: the current and the field; without
+  spin and tension also the length and both stiffnesses together).
 
 **Exact structure.** Each margin is critical / operating, and some inputs
 enter only the operating value: every margin is an exact power law in them,
@@ -159,13 +160,27 @@ class MarginModel:
             return dict(RUNG0_POWERS)
         if kind == SPIN:
             return {"spin_rate": -1.0}
+        if kind == BUCKLED and self.static:
+            return {"current": -1.0, "axial_field": -1.0, "length": -3.0} | (
+                {"bending_stiffness": 1.0} if self.gj_ratio is not None else {})
         return {"current": -1.0, "axial_field": -1.0}
+
+    @property
+    def static(self) -> bool:
+        """No spin and no end tension at the mission's values: the buckled tether's secondary pitchfork is then a
+        static bifurcation of the coil, B*(R, Gamma) (Sec. VI), and its margin B* f EI1 / (|I B0| L^3) is a
+        power law in the length and (with R and Gamma fixed: GJ from poisson_ratio) in both stiffnesses together."""
+        return self.nominal["spin_rate"] == 0 and self.nominal["end_tension"] == 0
 
     def inert(self, kind: str, uncertain: tuple[str, ...] = ()) -> dict[str, str]:
         """Inputs that provably do not move the margin ``kind`` (input -> why), given the ``uncertain`` inputs
-        (none for the buckled tether: its torsion, mass and damping all act)."""
+        (for the buckled tether only where it is static: then neither its mass nor its damping enters its
+        equilibria or their static bifurcation)."""
         if kind == BUCKLED:
-            return {}
+            if not self.static or {"spin_rate", "end_tension"} & set(uncertain):
+                return {}
+            why = "the coil's equilibria and its static secondary pitchfork (no spin) do not contain it"
+            return {"mass_per_length": why, "damping_time": why}
         if self.route == CLOSED:
             return {k: "rung 0: the static load of eq. (91) does not contain it" for k in INPUTS
                     if k not in RUNG0_POWERS}
@@ -180,8 +195,9 @@ class MarginModel:
     def unanswered(self, kind: str, shape: tuple[str, ...]) -> str:
         """Why the margin ``kind`` cannot be re-evaluated at other values of the inputs ``shape`` ("" if it can)."""
         if kind == BUCKLED and shape:
-            return (f"the buckled tether's margin takes rungs 2-3 (seconds per point): only the current and the field, "
-                    f"which scale it exactly, are integrated, not {', '.join(shape)}")
+            scaled = ", ".join(self.powers(BUCKLED))
+            return (f"the buckled tether's margin takes rungs 2-3 (seconds per point): only the inputs that scale it "
+                    f"exactly ({scaled}) are integrated, not {', '.join(shape)}")
         if not self.damped and "damping_time" in shape:
             return "a damping tolerance on an undamped mission changes its model (give a damping time)"
         return ""
@@ -193,13 +209,24 @@ class MarginModel:
         kinds = kinds or self.kinds
         out = {}
         if BUCKLED in kinds:
-            scale = self.nominal["current"] * self.nominal["axial_field"] / (v["current"] * v["axial_field"])
-            out[BUCKLED] = MarginValue(self.at_nominal[BUCKLED] * scale)
+            out[BUCKLED] = MarginValue(self.at_nominal[BUCKLED] * self._buckled_scale(v))
         straight = tuple(k for k in kinds if k != BUCKLED)
         if straight and self.route == CLOSED:
             m = float(closed_form_margin({k: np.asarray(x) for k, x in v.items()}, self.ends))
             return out | {k: MarginValue(m, 3.0 * static_roots(self.ends, 1)[0].error) for k in straight}
         return out | (self.at_params(self.params(v), straight) if straight else {})
+
+    def _buckled_scale(self, v: dict[str, float]) -> float:
+        """The buckled tether's margin at ``v`` over the check's: the product of its powers (:meth:`powers`; the
+        stiffnesses' common factor read as their geometric mean)."""
+        scale = 1.0
+        for k, a in self.powers(BUCKLED).items():
+            if k == "bending_stiffness":
+                x = math.sqrt(v["EI1"] * v["EI2"] / (self.nominal["EI1"] * self.nominal["EI2"]))
+            else:
+                x = v[k] / self.nominal[k]
+            scale *= x**a
+        return scale
 
     def at_params(self, p: RodParameters, kinds: tuple[str, ...]) -> dict[str, MarginValue]:
         """The straight tether's margins ``kinds`` at dimensionless parameters p (rung 1; the elasticities

@@ -104,10 +104,18 @@ def sensitivities(model: MarginModel, step: float = STEP) -> tuple[MarginSensiti
 
 
 def _buckled(model: MarginModel) -> MarginSensitivity:
-    """The buckled tether's margin: exact in the current and the field (-1), not differentiated otherwise."""
-    els = tuple(Elasticity(k, -1.0, "exact (margin ∝ 1/input)") if k in ("current", "axial_field") else
-                Elasticity(k, None, "not differentiated (rungs 2-3, seconds per point)") for k in INPUTS)
-    return MarginSensitivity(BUCKLED, model.at_nominal[BUCKLED], els)
+    """The buckled tether's margin: exact in the inputs that scale it (:meth:`MarginModel.powers`) or do not move
+    it (:meth:`MarginModel.inert`), not differentiated otherwise."""
+    powers, inert = model.powers(BUCKLED), model.inert(BUCKLED)
+
+    def one(k: str) -> Elasticity:
+        if k in powers:
+            return Elasticity(k, powers[k], "exact (a power law: B* f EI1 / (|I B0| L^3))")
+        if k in inert:
+            return Elasticity(k, 0.0, f"exact ({inert[k]})")
+        return Elasticity(k, None, "not differentiated (rungs 2-3, seconds per point)")
+
+    return MarginSensitivity(BUCKLED, model.at_nominal[BUCKLED], tuple(one(k) for k in INPUTS))
 
 
 def _margin_sensitivity(model: MarginModel, kind: str, p0: RodParameters, base: float,

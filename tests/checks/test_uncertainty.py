@@ -416,27 +416,48 @@ def test_a_bound_is_shown_as_a_bound():
     assert "&lt; 1×10<sup>-9</sup>" in row
 
 
-def test_the_buckled_margin_is_scaled_exactly_by_current_and_field_and_otherwise_not_answered():
-    """The buckled tether's margin (rungs 2-3, seconds per point) is not re-evaluated: a current tolerance scales
-    the check's value exactly (P = P(current factor > margin / required)); a length tolerance is refused with
-    the reason."""
+def test_the_buckled_margin_is_scaled_exactly_where_it_is_a_power_law_and_otherwise_not_answered():
+    """The buckled tether's margin (rungs 2-3, seconds per point) is not re-evaluated: without spin and tension
+    it is B*(R, Gamma) f EI1 / (|I B0| L^3), so a current or a length tolerance scales the check's value exactly
+    (P = P(length factor > (margin / required)^(1/3))); a tolerance on EI1 alone (R moves) is refused with the
+    reason."""
     from etcheck.checks.margin_model import margin_model
     from etcheck.checks.margins import BUCKLED, Margin
     from etcheck.checks.plan import plan
 
-    for table, answered in (({"current": {"distribution": "normal", "sigma": "10 %"}}, True),
-                            ({"current": "±10 %", "length": "±1 %"}, False)):
+    L_star = (2.44 / 2.0) ** (1 / 3)  # the length factor at which the margin is the required one
+    for table, truth in (({"current": {"distribution": "normal", "sigma": "10 %"}},
+                          stats.truncnorm(-10.0, np.inf, 1.0, 0.1).sf(2.44 / 2.0)),
+                         ({"length": {"distribution": "normal", "sigma": "3 %"}},
+                          stats.truncnorm(-1 / 0.03, np.inf, 1.0, 0.03).sf(L_star)),
+                         ({"current": "±10 %", "EI1": "±1 %"}, None)):
         m = mission("set-600m.toml", table)
         sc = scene(m)
         scaled = scale(sc)
         buckled = Margin(BUCKLED, "N/m", 2.44 * sc.load, sc.load, 2.44, 2.0, "pass", 3, 1e-8, "")
         model = margin_model(m, sc, scaled, plan(scaled.params), [buckled])
         p = failure_probability(model, BUCKLED, m.uncertainty)
-        if answered:
+        if truth is not None:
             assert p.method == "exact" and p.evaluations == 1
-            assert p.value == pytest.approx(stats.truncnorm(-10.0, np.inf, 1.0, 0.1).sf(2.44 / 2.0), rel=1e-9)
+            assert p.value == pytest.approx(truth, rel=1e-9)
         else:
-            assert p.method == "not answered" and "rungs 2-3" in p.how and "length" in p.how
+            assert p.method == "not answered" and "rungs 2-3" in p.how and "EI1" in p.how
+
+
+def test_the_static_buckled_margin_is_the_power_law_the_study_takes():
+    """Rungs 2-3 themselves at another length and at both stiffnesses 10 % larger: the buckled SET (600 m, no
+    spin) has the margin the study's power law gives (B* depends on R and Gamma alone: not on P, which moves with
+    the length)."""
+    from etcheck.checks.margins import BUCKLED
+
+    def buckled(**tether) -> float:
+        data = tomllib.loads((MISSIONS / "set-600m.toml").read_text())
+        data["tether"] |= tether
+        return next(g["value"] for g in check(data).results["margins"] if g["name"] == BUCKLED)
+
+    m0 = buckled()
+    assert buckled(length="630 m") == pytest.approx(m0 * (600 / 630) ** 3, rel=1e-6)
+    assert buckled(bending_stiffness=["41.8 N m2", "23.1 N m2"]) == pytest.approx(m0 * 1.1, rel=1e-6)
 
 
 def test_the_cli_prints_the_probabilities(tmp_path, capsys):
