@@ -129,7 +129,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     margin_records = [m.as_dict() for m in margins]
     results: CheckResults = {
         **results_header(mission),
-        "scene": _scene_dict(mission, sc),
+        "scene": scene_section(mission, sc),
         "scaled": cast(ScaledSection, asdict(scaled.params)),
         "scales": {
             "length_m": scaled.scales.length,
@@ -261,7 +261,9 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
         return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c, "reason": str(exc)}
 
 
-def _scene_dict(mission: Mission, sc: Scene) -> SceneSection:
+def scene_section(mission: Mission, sc: Scene) -> SceneSection:
+    """The ``scene`` section of a check's results: the worst-case operating point in SI (the tension the minimum
+    of a gravity-gradient profile, which is given beside it)."""
     return {
         "worst_current_A": float(mission.worst_current.to_value("A")),
         "worst_field_T": float(mission.worst_field.to_value("T")),
