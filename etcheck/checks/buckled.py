@@ -602,20 +602,26 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
     return out
 
 
-def buckled_point(params: RodParameters, N: int = 24) -> dict:
+@dataclass(frozen=True)
+class BuckledPoint:
+    """Whether the coiled state on b1 is stable at a straight-unstable point (None: not assessed, ``reason`` says
+    why), and its largest lateral deflection (units of L)."""
+
+    stable: bool | None
+    max_deflection: float | None
+    reason: str
+
+
+def buckled_point(params: RodParameters, N: int = 24) -> BuckledPoint:
     """Is the tether stable on b1 at this (straight-unstable) point? Dimensionless, for sweeps.
 
     b1 exists when its pitchfork has not lifted off at this spin; it is
     followed from its pitchfork to the point's load and the state there is
-    classified by its spectrum (rung 3, the scene's damping). Returns
-    ``stable`` (True/False, None when not assessed), ``max_deflection`` (units
-    of L) and ``reason``.
+    classified by its spectrum (rung 3, the scene's damping).
     """
-    out = {"stable": None, "max_deflection": None, "reason": ""}
     start, branch, why = _b1_to(params, N)
     if branch is None:
-        return out | {"stable": False if start is None else None, "reason": why}
+        return BuckledPoint(False if start is None else None, None, why)
     st = state_at(branch, params.B)
     flag, _, _ = state_stability(st, params.gamma)
-    return out | {"stable": flag, "max_deflection": eq.measures(st).max_deflection,
-                  "reason": "" if flag is not None else "spectrum not converged"}
+    return BuckledPoint(flag, eq.measures(st).max_deflection, "" if flag is not None else "spectrum not converged")

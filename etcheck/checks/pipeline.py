@@ -151,7 +151,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "model_validity": scope,
         "assumptions": decides,
         "design_limits": limits,
-        "flight": flight(mission, verdict, margin_records, scope),
+        "flight": flight(mission, verdict, margins, scope),
         "validity": validity(mission, scaled, chosen, post),
         "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,

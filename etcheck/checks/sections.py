@@ -598,8 +598,10 @@ class AlternativeMargin(TypedDict):
 
 
 class MarginRecord(TypedDict):
-    """One margin = critical / operating (:meth:`etcheck.checks.margins.Margin.as_dict`); ``alternatives``: the
-    same margin under the other attachments (none for the buckled tether's)."""
+    """One margin = critical / operating, as written to results.json: the JSON form of
+    :class:`etcheck.checks.margins.Margin`, the one source of its fields (made only by its ``as_dict``; its fields
+    and ``model`` are these keys, tests/checks/test_margin_record.py); ``alternatives``: the same margin under the
+    other attachments (none for the buckled tether's)."""
 
     name: str
     unit: str
