@@ -33,7 +33,7 @@ from etcheck.checks.coil import (
     spin_limit,
     state_stability,
 )
-from etcheck.checks.sections import (
+from etcheck.checks.sections_buckled import (
     BifurcationDiagram,
     BranchRecord,
     BuckledOperatingPoint,

@@ -40,13 +40,13 @@ from etcheck.checks.sections import (
     CheckResults,
     DesignLimitsSection,
     LinearSection,
-    PostbucklingSection,
     ProfilesSection,
     ScaledSection,
     SceneSection,
     SkippedPart,
     StraightRodSection,
 )
+from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
 from etcheck.checks.validity import model_validity, validity
