@@ -48,8 +48,8 @@ def points() -> None:
                 return solve_point(p.with_(P=p.P * (1 + 1e-9 * k[0])), 1e-8)
 
             t, r = _time(run, 1 if p.gamma == 0 else 3)
-            print(f"{label:40s} {t * 1e3:8.1f} ms  N={r['N']}  B_c={r['B_c']:.12g} err={r['B_c_error']:.1e}  "
-                  f"omega_c={r['omega_c']:.12g} err={r['omega_c_error']:.1e}")
+            print(f"{label:40s} {t * 1e3:8.1f} ms  N={r.N}  B_c={r.B_c:.12g} err={r.B_c_error:.1e}  "
+                  f"omega_c={r.omega_c:.12g} err={r.omega_c_error:.1e}")
         print("== damped pencil error versus resolution (critical load at omega = 0.25, T = 1; operators cached)")
         p = SET.with_(omega=0.25, T=1.0)
         ref = first_root(p, "B", 1e-14, ladder=(96,)).value

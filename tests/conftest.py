@@ -5,6 +5,8 @@ import compileall
 import sys
 from pathlib import Path
 
+import pytest
+
 sys.path.insert(0, str(Path(__file__).parent))
 
 
@@ -22,7 +24,8 @@ def pytest_sessionstart(session):
     (etcheck.numerics.parallel.serial_here; the results are the same bytes either way). A helper forked from a
     worker of several hundred MB only oversubscribed the cores and copied pages: the suite took 176 s with
     them, 155 s without (measured back to back, fresh clone). The helpers are tested where they are the subject:
-    tests/numerics/test_parallel.py and the comparisons that switch them on (monkeypatch parallel._SERIAL)."""
+    tests/numerics/test_parallel.py and the comparisons that switch them on (the fixture ``forks_allowed``, or
+    ``with parallel.serial(False)``)."""
     from etcheck.numerics.heap import keep_freed_memory
 
     keep_freed_memory()
@@ -30,3 +33,12 @@ def pytest_sessionstart(session):
         from etcheck.numerics.parallel import serial_here
 
         serial_here()
+
+
+@pytest.fixture
+def forks_allowed():
+    """Forked helpers allowed in this test whatever the test process says (the suite's workers fork none)."""
+    from etcheck.numerics.parallel import serial
+
+    with serial(False):
+        yield

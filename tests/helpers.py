@@ -57,3 +57,47 @@ def tape(current_profile: bool = True, end_masses: bool = True) -> dict:
         data["operation"]["end_tension"] = f"{minimum!r} N"
         data["mission"]["assumed"] = [a for a in data["mission"]["assumed"] if a != "tether.end_masses"]
     return data
+
+
+def assert_well_formed(results: dict) -> None:
+    """A check's results as a user may rely on them: strict JSON (no NaN, no Infinity), a verdict, every margin with
+    its model and either its numerical error and value or why it is incomplete, and an HTML report that renders."""
+    import json
+    import math
+
+    from etcheck.report import render
+
+    json.dumps(results, allow_nan=False)
+    assert results["verdict"] in ("pass", "fail", "incomplete", "outside")
+    assert (results["verdict"] == "outside") == bool(results["model_validity"]["reasons"])
+    assert results["margins"]
+    for m in results["margins"]:
+        assert m["model"]
+        if m["verdict"] == "incomplete":
+            assert m["why"]
+        else:
+            assert m["error"] is not None and math.isfinite(m["error"]) and m["error"] >= 0
+            assert m["value"] is None or (math.isfinite(m["value"]) and m["value"] >= 0)
+    html = render(results, ("html",))["html"].decode()
+    assert "</html>" in html
+
+
+def collocation_growth(p, N: int = 24) -> float:
+    """Largest real part of the whole collocation spectrum of the straight rod with parameters ``p``
+    (:class:`etcheck.rod.core.parameters.RodParameters`) at N, dense QZ (the spurious modes at |lambda| ~ 1e8 left
+    out): an independent check of the critical values that the solvers locate."""
+    import numpy as np
+    import scipy.linalg as sl
+
+    from etcheck.numerics.blas import one_blas_thread
+    from etcheck.rod.core.base_state import straight
+    from etcheck.rod.core.linear import linear_operator
+
+    A0, A1, A2 = (np.asarray(a.todense()) if hasattr(a, "todense") else np.asarray(a)
+                  for a in linear_operator(p, straight(p), N))
+    n = A0.shape[0]
+    Z, eye = np.zeros((n, n)), np.eye(n)
+    with one_blas_thread():
+        lam = sl.eigvals(np.block([[Z, eye], [-A0, -A1]]), np.block([[eye, Z], [Z, A2]]))
+    lam = lam[np.isfinite(lam) & (np.abs(lam) < 1e3)]
+    return float(lam.real.max())

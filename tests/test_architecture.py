@@ -195,6 +195,41 @@ def test_relative_imports_resolve():
     assert "etcheck.numerics.blas" in graph["etcheck.numerics.eigen"]
 
 
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def _etcheck_imports(tree, where: str, package: bool) -> tuple[list[str], set[str]]:
+    """The private names imported from etcheck (relative imports count in the package), and the local names of the
+    etcheck modules and names imported."""
+    import ast
+
+    bad, modules = [], set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and ((package and node.level) or (node.module or "").startswith("etcheck")):
+            bad += [f"{where}: from {node.module} import {a.name}" for a in node.names if _private(a.name)]
+            modules |= {a.asname or a.name for a in node.names}
+        elif isinstance(node, ast.Import):
+            modules |= {a.asname or a.name for a in node.names if a.name.startswith("etcheck")}
+    return bad, modules
+
+
+def _private_attributes(tree, where: str, modules: set[str]) -> list[str]:
+    """``module._name`` and ``setattr(module, "_name", ...)`` (monkeypatch's included) on the ``modules``."""
+    import ast
+
+    bad = []
+    for node in ast.walk(tree):
+        if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in modules
+                and _private(node.attr)):
+            bad.append(f"{where}: {node.value.id}.{node.attr}")
+        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute) and node.func.attr == "setattr"
+              and len(node.args) >= 2 and isinstance(node.args[0], ast.Name) and node.args[0].id in modules
+              and isinstance(node.args[1], ast.Constant) and _private(str(node.args[1].value))):
+            bad.append(f"{where}: setattr({node.args[0].id}, {node.args[1].value!r})")
+    return bad
+
+
 def _private_imports(root: Path = ROOT) -> list[str]:
     """``from etcheck.x import _name`` and ``module._name`` on an imported etcheck module, anywhere in the
     package (a private name belongs to its module; what another module needs is public)."""
@@ -203,25 +238,54 @@ def _private_imports(root: Path = ROOT) -> list[str]:
     bad = []
     for path in (root / "etcheck").rglob("*.py"):
         tree = ast.parse(path.read_text())
-        modules = set()
-        for node in ast.walk(tree):
-            if isinstance(node, ast.ImportFrom) and (node.level or (node.module or "").startswith("etcheck")):
-                for a in node.names:
-                    if a.name.startswith("_") and not a.name.startswith("__"):
-                        bad.append(f"{path.relative_to(root)}: from {node.module} import {a.name}")
-                    modules.add(a.asname or a.name)
-            elif isinstance(node, ast.Import):
-                modules |= {a.asname or a.name for a in node.names if a.name.startswith("etcheck")}
-        for node in ast.walk(tree):
-            if (isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in modules
-                    and node.attr.startswith("_") and not node.attr.startswith("__")):
-                bad.append(f"{path.relative_to(root)}: {node.value.id}.{node.attr}")
+        where = str(path.relative_to(root))
+        imported, modules = _etcheck_imports(tree, where, package=True)
+        bad += imported + _private_attributes(tree, where, modules)
     return sorted(bad)
 
 
 def test_no_private_name_crosses_a_module():
     bad = _private_imports()
     assert not bad, "\n".join(bad)
+
+
+def _private_uses_in_tests(tests: Path = ROOT / "tests") -> list[str]:
+    """What the tests reach that is not etcheck's public interface: ``from etcheck.x import _name``, ``from etcheck
+    import _module``, ``module._name`` on an imported etcheck module, ``setattr(module, "_name", ...)`` (monkeypatch
+    included) on one, and any name imported from another test module (shared helpers live in tests/helpers.py)."""
+    import ast
+
+    bad = []
+    for path in sorted(tests.rglob("*.py")):
+        tree = ast.parse(path.read_text())
+        where = str(path.relative_to(tests.parent))
+        imported, modules = _etcheck_imports(tree, where, package=False)
+        bad += imported + _private_attributes(tree, where, modules)
+        for node in ast.walk(tree):
+            names = ([node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level else
+                     [a.name for a in node.names] if isinstance(node, ast.Import) else [])
+            bad += [f"{where}: import from {n} (another test module)" for n in names if n.startswith("test")]
+    return sorted(bad)
+
+
+def test_tests_use_only_public_names():
+    """The tests exercise etcheck through its public interface (a private name may change with no one told)."""
+    bad = _private_uses_in_tests()
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("planted, found", [
+    ("from etcheck.checks.straight import _critical\n", "import _critical"),
+    ("from etcheck import numpy_clone as hook\nhook._HOOK\n", "hook._HOOK"),
+    ("import etcheck.numerics.parallel as par\ndef test_x(monkeypatch):\n"
+     "    monkeypatch.setattr(par, '_SERIAL', False)\n", "setattr(par, '_SERIAL')"),
+    ("from test_scene_space import assert_well_formed\n", "another test module"),
+])
+def test_a_planted_private_use_in_a_test_is_found(tmp_path, planted, found):
+    (tmp_path / "tests").mkdir()
+    (tmp_path / "tests" / "test_planted.py").write_text(planted)
+    bad = _private_uses_in_tests(tmp_path / "tests")
+    assert len(bad) == 1 and found in bad[0], bad
 
 
 def test_a_planted_private_import_is_found(tmp_path):

@@ -26,16 +26,16 @@ import json, sys
 from etcheck.cli.main import main
 at_start = sorted(m for m in ("numpy", "scipy", "astropy") if m in sys.modules)
 code = main(["missions/set.toml", "--draft", "--format", "json", "--out", sys.argv[1]])
-from etcheck.numerics.blas import _blas
+from etcheck.numerics.blas import pinned_by_environment
 import numpy, scipy._lib.array_api_compat.numpy as clone
-from etcheck._numpy_clone import _HOOK
+from etcheck.numpy_clone import installed
 tools = {"numpy_tools": sorted(m for m in ("numpy.f2py", "charset_normalizer") if m in sys.modules),
          "numpy_restored": "testing" in dir(numpy) and numpy.__dict__["__dir__"].__name__ != "<lambda>",
-         "hook_left": _HOOK in sys.meta_path,
+         "hook_left": installed(),
          "clone_works": float(clone.sum(clone.asarray([1.0, 2.0]))) == 3.0}
 print(json.dumps(tools | {"at_start": at_start, "code": code, "loaded": sorted({m.split(".")[0] for m in sys.modules}),
                   "scipy_optimize": "scipy.optimize" in sys.modules, "scipy_sparse": "scipy.sparse" in sys.modules,
-                  "blas_scanned": _blas() is not None}))
+                  "blas_scanned": not pinned_by_environment()}))
 """
 
 
@@ -83,8 +83,8 @@ def test_the_report_process_of_a_check_loads_no_units_or_solvers():
 DIAGRAM_PROBE = """
 import json, sys
 import numpy as np
-from etcheck.report.figures.diagram import _smooth
-_smooth(np.linspace(0.0, 1.0, 7), np.sin(np.linspace(0.0, 3.0, 7)), (1.0, 1.0))
+from etcheck.report.figures.diagram import smooth
+smooth(np.linspace(0.0, 1.0, 7), np.sin(np.linspace(0.0, 3.0, 7)), (1.0, 1.0))
 print(json.dumps(sorted(m for m in sys.modules if m == "scipy" or m.startswith("scipy."))))
 """
 
@@ -100,7 +100,7 @@ def test_a_diagram_s_branches_are_drawn_without_scipy():
 def test_the_import_hook_hides_numpys_tools_only_while_the_clone_is_made(tmp_path, monkeypatch, fails):
     import numpy
 
-    from etcheck import _numpy_clone as hook
+    from etcheck import numpy_clone as hook
 
     before = (list(numpy.__all__), dir(numpy))
     name = f"fake_clone_{int(fails)}"
@@ -121,4 +121,4 @@ def test_the_import_hook_hides_numpys_tools_only_while_the_clone_is_made(tmp_pat
         hook.uninstall()
         sys.modules.pop(name, None)
     assert (list(numpy.__all__), dir(numpy)) == before and "testing" in dir(numpy)
-    assert hook._HOOK not in sys.meta_path
+    assert not hook.installed()

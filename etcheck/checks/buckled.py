@@ -33,7 +33,7 @@ from etcheck.checks.coil import (
     spin_limit,
     state_stability,
 )
-from etcheck.checks.sections import (
+from etcheck.checks.sections_buckled import (
     BifurcationDiagram,
     BranchRecord,
     BuckledOperatingPoint,
@@ -108,6 +108,30 @@ class DiagramOptions:
 
 #: the default diagram (b1, b2, b3 with stability, paths of b1 and b12)
 DEFAULT_DIAGRAM = DiagramOptions()
+
+
+@dataclass(frozen=True)
+class BranchStability:
+    """The stability of each state of a branch at the scene's damping (rung 3): ``stable`` (None where the
+    spectrum did not converge), the largest growth rate Re(lambda) and its two-resolution error (dimensionless)."""
+
+    stable: list[bool | None]
+    max_growth: list[float | None]
+    growth_error: list[float | None]
+
+    def entries(self) -> dict:
+        """The stability keys of a branch's record."""
+        return {"stable": self.stable, "max_growth": self.max_growth, "growth_error": self.growth_error}
+
+
+@dataclass(frozen=True, eq=False)
+class Diagram:
+    """A bifurcation diagram: its record (JSON-able: what the report draws and results.json holds), the
+    continued primary branches by label and, where computed, their states' stability by label."""
+
+    record: BifurcationDiagram
+    branches: dict[str, Branch]
+    stability: dict[str, BranchStability]
 
 
 @lru_cache(maxsize=256)
@@ -259,10 +283,11 @@ def _shape(state: eq.Equilibrium, L: float) -> Shape:
 
 
 def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float,
-                 check: ResolutionCheck | None = None, stability: bool = True) -> BranchRecord:
-    """The record of a branch (``check``: its resolution check, when already made; ``stability=False``: without
-    its stability, which :func:`_with_stability` adds, unless its eigenvalue paths are computed: their spectra give
-    it)."""
+                 check: ResolutionCheck | None = None, stability: bool = True
+                 ) -> tuple[BranchRecord, BranchStability | None]:
+    """The record of a branch and the stability of its states where the record has it (``check``: its resolution
+    check, when already made; ``stability=False``: without its stability, which :func:`_with_stability` adds,
+    unless its eigenvalue paths are computed: their spectra give it)."""
     L = scales.length
     t0 = time.perf_counter()
     check = resolution_check(branch) if check is None else check
@@ -276,10 +301,12 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
         "N_check": check.N_check,
         "special": [_special_point(q, scales) for q in branch.special],
     }
+    stab = None
     if options.stability:
         paths = path_spectra(branch, gamma) if options.with_paths(label) else None
         if stability or paths is not None:  # a branch's paths decide its probed states' stability as well
-            out |= _stability(branch, gamma, paths)[0]
+            stab = _stability(branch, gamma, paths)[0]
+            out |= stab.entries()
         if paths is not None:
             out["eigenvalue_paths"] = eigenvalue_paths(paths)
     shapes = {}
@@ -292,7 +319,7 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
                                                     "measure1": float(branch.measure1[-1])}
     out["shapes"] = shapes
     out["check_time"] = time.perf_counter() - t0
-    return out
+    return out, stab
 
 
 def _special_point(q, scales: Scales) -> SpecialPoint:
@@ -318,21 +345,21 @@ def _second_step(attached: list[_Primary], options: DiagramOptions) -> list[tupl
     return jobs
 
 
-def _stability(branch: Branch, gamma: float, paths: BranchSpectra | None = None) -> tuple[dict, float]:
-    """The stability entries of a branch's record (:func:`~etcheck.checks.coil.branch_stability`, from the spectra
-    of its eigenvalue ``paths`` where computed) and the seconds they took."""
+def _stability(branch: Branch, gamma: float, paths: BranchSpectra | None = None) -> tuple[BranchStability, float]:
+    """The stability of a branch's states (:func:`~etcheck.checks.coil.branch_stability`, from the spectra of its
+    eigenvalue ``paths`` where computed) and the seconds it took."""
     t0 = time.perf_counter()
     stable, growth, errs = branch_stability(branch, gamma, paths)
-    return {"stable": stable, "max_growth": growth, "growth_error": errs}, time.perf_counter() - t0
+    return BranchStability(stable, growth, errs), time.perf_counter() - t0
 
 
-def _with_stability(record: BranchRecord, stability: tuple[dict, float]) -> BranchRecord:
+def _with_stability(record: BranchRecord, stability: tuple[BranchStability, float]) -> BranchRecord:
     """A record made with ``stability=False`` and its branch's :func:`_stability`: the same record, in the same
     order, as one made in one go."""
     entries, spent = stability
     i = min(list(record).index(k) for k in ("eigenvalue_paths", "shapes") if k in record)  # where they stand
     items = list(record.items())
-    out = dict(items[:i]) | entries | dict(items[i:])
+    out = dict(items[:i]) | entries.entries() | dict(items[i:])
     out["check_time"] = record["check_time"] + spent
     return out
 
@@ -350,23 +377,24 @@ def bifurcation_diagram(params: RodParameters, scales: Scales, options: DiagramO
     the two-resolution error and, with ``options.stability``, the stability
     of every point at the scene's damping.
     """
-    return _diagram(params, scales, options)[0]
+    return diagram(params, scales, options).record
 
 
-def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> tuple[dict, dict[str, Branch]]:
-    """:func:`bifurcation_diagram` and the continued primary branches by label."""
+def diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DEFAULT_DIAGRAM) -> Diagram:
+    """:func:`bifurcation_diagram`'s record with the continued primary branches and their states' stability."""
     t_all = time.perf_counter()
     attached, lifted, B_max = _primaries(params, options)
     kept: dict[str, Branch] = {a.label: a.branch for a in attached}
     info = {a.label: a for a in attached}
 
-    def primary_record(lab: str) -> BranchRecord:
+    def primary_record(lab: str) -> tuple[BranchRecord, BranchStability | None]:
         a = info[lab]
         B_pf, B_pf_error = a.load
-        return _branch_data(a.branch, lab, scales, options, params.gamma, stability=False) | {
+        rec, stab = _branch_data(a.branch, lab, scales, options, params.gamma, stability=False)
+        return rec | {
             "pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
             "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": a.which,
-            "liftoff_omega": _finite(a.liftoff.omega), "liftoff_omega_error": _finite(a.liftoff.error)}
+            "liftoff_omega": _finite(a.liftoff.omega), "liftoff_omega_error": _finite(a.liftoff.error)}, stab
 
     def first(job):
         """A primary branch's record without its stability, or that stability (the spectra of its probe states),
@@ -388,18 +416,25 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
     weights = [len(kept[lab].states) * COST[kind] for lab, kind in jobs]
     firsts = dict(zip(jobs, split_map(first, jobs, weights=weights)))
 
+    stabilities: dict[str, BranchStability] = {}
+
     def record(lab: str, kind: str) -> BranchRecord:
         done = firsts[(lab, kind)]
         if kind == "connect":
             return _branch_data(done[0], f"b{int(lab[1:])}{int(lab[1:]) + 1}", scales, options, params.gamma,
-                                done[1]) | {"symmetry": None, "from": lab}
+                                done[1])[0] | {"symmetry": None, "from": lab}
+        rec, stab = done
         stability = firsts.get((lab, "stability"))
-        return done if stability is None else _with_stability(done, stability)
+        if stability is not None:
+            rec, stab = _with_stability(rec, stability), stability[0]
+        if stab is not None:
+            stabilities[lab] = stab
+        return rec
 
     out_branches = [record(lab, kind) for lab, kind in jobs if kind != "stability"]
     if not out_branches and not lifted:
         raise SolverError("rung 2: no branch was found")
-    return {
+    return Diagram({
         "model": "rung 2 (whirling equilibria, pseudo-arclength continuation)"
         + (" + rung 3 (stability of each state)" if options.stability else ""),
         "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "omega", "T", "gamma")},
@@ -410,7 +445,7 @@ def _diagram(params: RodParameters, scales: Scales, options: DiagramOptions) -> 
         "lifted_off": lifted,
         "paths_computed": [b["label"] for b in out_branches if "eigenvalue_paths" in b],
         "time_s": time.perf_counter() - t_all,
-    }, kept
+    }, kept, stabilities)
 
 
 def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: Branch | None = None) -> BuckledOperatingPoint:
@@ -480,17 +515,30 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: 
 MAX_LOAD_RATIO = 6.0
 
 
-def _secondary_pitchfork(params: RodParameters, branch: Branch, N: int) -> dict:
+@dataclass(frozen=True)
+class SecondaryPitchforkLoad:
+    """b1's first secondary pitchfork B* (dimensionless) with its relative error, or None and the reason why
+    there is none."""
+
+    B: float | None
+    error: float | None
+    reason: str
+
+
+NO_SECONDARY = SecondaryPitchforkLoad(None, None, "no secondary pitchfork on b1 in the computed range")
+
+
+def _secondary_pitchfork(params: RodParameters, branch: Branch, N: int) -> SecondaryPitchforkLoad:
     """b1's first secondary pitchfork at the scene's spin: :func:`~etcheck.rod.buckled.secondary_pitchfork`
     (the one implementation of B*) on the diagram's b1 at N and b1 recomputed at 1.5 N; the value at 1.5 N,
     its relative error estimate (the change from N), or the reason why there is none."""
     try:
         pt = secondary_pitchfork(params, params.omega, N=N, N_check=N + N // 2, branch=branch)
     except ValueError:
-        return {"B": None, "error": None, "reason": "no secondary pitchfork on b1 in the computed range"}
+        return NO_SECONDARY
     except SolverError as exc:
-        return {"B": None, "error": None, "reason": f"not converged: {exc}"}
-    return {"B": pt.B, "error": pt.error / pt.B, "reason": ""}
+        return SecondaryPitchforkLoad(None, None, f"not converged: {exc}")
+    return SecondaryPitchforkLoad(pt.B, pt.error / pt.B, "")
 
 
 def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, required: float, N: int = 32) -> PostbucklingSection:
@@ -511,24 +559,23 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
     # far enough for a stable coil without a secondary pitchfork to prove the required margin (within rung 2's range)
     B_max = max(1.5 * params.B, 5.0 * B_c, min(1.02 * required * params.B, MAX_LOAD_RATIO * B_c))
     opts = DiagramOptions(branches=1, connect=False, stability=True, paths=(), N=N, B_max=B_max)
-    diagram, kept = _diagram(params, scales, opts)
-    out = base | {"computed": True, "diagram": diagram}
-    b1 = next((b for b in diagram["branches"] if b["label"] == "b1"), None)
+    d = diagram(params, scales, opts)
+    out = base | {"computed": True, "diagram": d.record}
+    b1 = d.branches.get("b1")
     if b1 is not None:
-        breaks = [q for q in b1["special"] if q["kind"] == "break"]
-        first_unstable = next((v for v, st in zip(b1["values"], b1["stable"]) if st is False), None)
-        star = (_secondary_pitchfork(params, kept["b1"], N) if breaks
-                else {"B": None, "error": None, "reason": "no secondary pitchfork on b1 in the computed range"})
-        out["secondary_pitchfork_B"] = star["B"]
-        out["secondary_pitchfork_error"] = star["error"]
-        out["secondary_pitchfork_IB0_N_per_m"] = None if star["B"] is None else star["B"] * scales.load
-        if star["reason"]:
-            out["secondary_pitchfork_reason"] = star["reason"]
+        values, stable = [float(v) for v in b1.values], d.stability["b1"].stable
+        first_unstable = next((v for v, st in zip(values, stable) if st is False), None)
+        star = _secondary_pitchfork(params, b1, N) if any(q.kind == "break" for q in b1.special) else NO_SECONDARY
+        out["secondary_pitchfork_B"] = star.B
+        out["secondary_pitchfork_error"] = star.error
+        out["secondary_pitchfork_IB0_N_per_m"] = None if star.B is None else star.B * scales.load
+        if star.reason:
+            out["secondary_pitchfork_reason"] = star.reason
         out["b1_first_unstable_B"] = first_unstable
-        out["b1_stable_at_start"] = bool(b1["stable"][1]) if len(b1["stable"]) > 1 else None
+        out["b1_stable_at_start"] = bool(stable[1]) if len(stable) > 1 else None
         # no secondary pitchfork and every state from the operating load on stable: b1 is stable up to its end
-        past = [st for v, st in zip(b1["values"], b1["stable"]) if v >= params.B]
-        bound = float(max(b1["values"])) if star["B"] is None and past and all(st is True for st in past) else None
+        past = [st for v, st in zip(values, stable) if v >= params.B]
+        bound = float(max(values)) if star.B is None and past and all(st is True for st in past) else None
         out["b1_stable_to_B"] = bound
         out["b1_stable_to_IB0_N_per_m"] = None if bound is None else bound * scales.load
     else:  # e.g. lifted off at this spin: b1 does not leave the straight tether
@@ -538,9 +585,8 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
                 "secondary_pitchfork_reason": "b1 was not found at the operating spin and tension"}
     out["operating"] = None
     if params.B > B_c:
-        b1_branch = kept.get("b1")
-        if b1_branch is not None and b1_branch.values[-1] >= params.B:
-            out["operating"] = operating_state(params, scales, N, branch=b1_branch)
+        if b1 is not None and b1.values[-1] >= params.B:
+            out["operating"] = operating_state(params, scales, N, branch=b1)
         else:
             out["operating"] = operating_state(params, scales, N)
     if out["operating"] and out["operating"].get("available"):
@@ -556,20 +602,26 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
     return out
 
 
-def buckled_point(params: RodParameters, N: int = 24) -> dict:
+@dataclass(frozen=True)
+class BuckledPoint:
+    """Whether the coiled state on b1 is stable at a straight-unstable point (None: not assessed, ``reason`` says
+    why), and its largest lateral deflection (units of L)."""
+
+    stable: bool | None
+    max_deflection: float | None
+    reason: str
+
+
+def buckled_point(params: RodParameters, N: int = 24) -> BuckledPoint:
     """Is the tether stable on b1 at this (straight-unstable) point? Dimensionless, for sweeps.
 
     b1 exists when its pitchfork has not lifted off at this spin; it is
     followed from its pitchfork to the point's load and the state there is
-    classified by its spectrum (rung 3, the scene's damping). Returns
-    ``stable`` (True/False, None when not assessed), ``max_deflection`` (units
-    of L) and ``reason``.
+    classified by its spectrum (rung 3, the scene's damping).
     """
-    out = {"stable": None, "max_deflection": None, "reason": ""}
     start, branch, why = _b1_to(params, N)
     if branch is None:
-        return out | {"stable": False if start is None else None, "reason": why}
+        return BuckledPoint(False if start is None else None, None, why)
     st = state_at(branch, params.B)
     flag, _, _ = state_stability(st, params.gamma)
-    return out | {"stable": flag, "max_deflection": eq.measures(st).max_deflection,
-                  "reason": "" if flag is not None else "spectrum not converged"}
+    return BuckledPoint(flag, eq.measures(st).max_deflection, "" if flag is not None else "spectrum not converged")

@@ -22,7 +22,7 @@ from collections import Counter
 
 import numpy as np
 
-from etcheck.checks.sections import CoilRegion, DampingSensitivity
+from etcheck.checks.sections_buckled import CoilRegion, DampingSensitivity
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.parallel import split_map
 from etcheck.numerics.pchip import Pchip

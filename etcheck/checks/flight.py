@@ -8,7 +8,7 @@ explain a difference, with this mission's numbers where the check has them.
 
 from __future__ import annotations
 
-from etcheck.checks.sections import MarginRecord
+from etcheck.checks.margins import Margin
 from etcheck.checks.sections_verdict import FlightSection, ModelValidity
 from etcheck.input.mission import Mission
 from etcheck.rod.core.ends import describe
@@ -16,24 +16,25 @@ from etcheck.rod.core.ends import describe
 COILED, STRAIGHT = "coiled", "straight"
 
 
-def flight(mission: Mission, verdict: str, margins: list[MarginRecord], validity: ModelValidity) -> FlightSection | None:
+def flight(mission: Mission, verdict: str, margins: list[Margin], validity: ModelValidity) -> FlightSection | None:
     """The flight section (None for a mission without a flight record)."""
     if not mission.flight:
         return None
     outcome, reported = mission.flight["outcome"], mission.flight.get("reported", "")
-    straight = [g for g in margins if g["value"] is not None and not g["name"].startswith("buckled")]
-    smallest = min(straight, key=lambda g: g["value"]) if straight else None
+    straight = [g for g in margins if g.value is not None and not g.name.startswith("buckled")]
+    smallest = min(straight, key=lambda g: g.value) if straight else None
     within = ("the straight tether's smallest margin is "
-              f"{smallest['value']:.3g} ({smallest['name']})" if smallest else "no margin of the straight tether")
+              f"{smallest.value:.3g} ({smallest.name})" if smallest else "no margin of the straight tether")
     return {"outcome": outcome, "reported": reported, "prediction": verdict,
             "agreement": _agreement(outcome, verdict),
             "comparison": _comparison(outcome, verdict, within, validity),
             "not_modelled": _not_modelled(mission, validity, smallest)}
 
 
-def _ends(mission: Mission, smallest: MarginRecord | None) -> str:
+def _ends(mission: Mission, smallest: Margin | None) -> str:
     """The attachment as checked, and the smallest margin under the other attachments where they were computed."""
-    others = "; ".join(f"with both ends {a['ends'][0]} {a['value']:.3g}" for a in (smallest or {}).get("alternatives", [])
+    others = "; ".join(f"with both ends {a['ends'][0]} {a['value']:.3g}" for a in (smallest.alternatives if smallest
+                                                                                       else ())
                        if a["value"] is not None and a["ends"][0] == a["ends"][1])
     return (f"the end attachment: the check holds the tether {describe(mission.end_conditions)}, on its axis"
             + (f" (the smallest margin {others})" if others else "") + "; a real end turns, slides or slackens")
@@ -63,7 +64,7 @@ def _comparison(outcome: str, verdict: str, within: str, validity: ModelValidity
     return f"The tether {flown}; the check {said} ({within}): {_agreement(outcome, verdict)}."
 
 
-def _not_modelled(mission: Mission, validity: ModelValidity, smallest: MarginRecord | None) -> list[str]:
+def _not_modelled(mission: Mission, validity: ModelValidity, smallest: Margin | None) -> list[str]:
     lat = validity["lateral"]
     gg = mission.gravity_gradient
     items = [

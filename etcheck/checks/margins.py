@@ -11,9 +11,9 @@ from etcheck.checks.sections import (
     AlternativeMargin,
     LinearSection,
     MarginRecord,
-    PostbucklingSection,
     StraightRodSection,
 )
+from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.input.mission import Mission
 from etcheck.rod.core.ends import describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind

@@ -40,13 +40,13 @@ from etcheck.checks.sections import (
     CheckResults,
     DesignLimitsSection,
     LinearSection,
-    PostbucklingSection,
     ProfilesSection,
     ScaledSection,
     SceneSection,
     SkippedPart,
     StraightRodSection,
 )
+from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
 from etcheck.checks.validity import model_validity, validity
@@ -129,7 +129,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     margin_records = [m.as_dict() for m in margins]
     results: CheckResults = {
         **results_header(mission),
-        "scene": _scene_dict(mission, sc),
+        "scene": scene_section(mission, sc),
         "scaled": cast(ScaledSection, asdict(scaled.params)),
         "scales": {
             "length_m": scaled.scales.length,
@@ -151,7 +151,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "model_validity": scope,
         "assumptions": decides,
         "design_limits": limits,
-        "flight": flight(mission, verdict, margin_records, scope),
+        "flight": flight(mission, verdict, margins, scope),
         "validity": validity(mission, scaled, chosen, post),
         "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
@@ -261,7 +261,9 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
         return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c, "reason": str(exc)}
 
 
-def _scene_dict(mission: Mission, sc: Scene) -> SceneSection:
+def scene_section(mission: Mission, sc: Scene) -> SceneSection:
+    """The ``scene`` section of a check's results: the worst-case operating point in SI (the tension the minimum
+    of a gravity-gradient profile, which is given beside it)."""
     return {
         "worst_current_A": float(mission.worst_current.to_value("A")),
         "worst_field_T": float(mission.worst_field.to_value("T")),

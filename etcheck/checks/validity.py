@@ -32,7 +32,7 @@ import math
 
 from etcheck.checks.attachment import alternative_ends
 from etcheck.checks.plan import EXACT, PROFILES, Plan
-from etcheck.checks.sections import PostbucklingSection
+from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.checks.sections_verdict import LateralLoad, ModelValidity, ValidityCheck
 from etcheck.input.mission import Mission
 from etcheck.numerics.optimize import brentq

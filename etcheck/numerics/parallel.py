@@ -29,9 +29,12 @@ from typing import Any
 
 from etcheck.numerics.lifetime import die_with_parent, kill_and_reap
 
-__all__ = ["split_map", "ahead", "serial_here", "serial", "can_split"]
+__all__ = ["split_map", "ahead", "serial_here", "serial", "can_split", "QUEUE_BLOCKS"]
 
 _SERIAL = False
+#: the most entries of 8 bytes the queue of :func:`split_map` writes to its pipe (32 KiB, within Linux's 64 KiB
+#: pipe buffer): more items than this travel in blocks
+QUEUE_BLOCKS = 4096
 
 
 def serial_here() -> None:
@@ -41,12 +44,13 @@ def serial_here() -> None:
 
 
 @contextlib.contextmanager
-def serial() -> Iterator[None]:
+def serial(on: bool = True) -> Iterator[None]:
     """No forked helpers inside the block (a study that keeps every core busy with its own workers, or that
-    shares memoised results between its items)."""
+    shares memoised results between its items); ``on=False``: helpers allowed inside the block whatever this
+    process said before (:func:`serial_here`), where the cores allow them (:func:`can_split`)."""
     global _SERIAL
     before = _SERIAL
-    _SERIAL = True
+    _SERIAL = on
     try:
         yield
     finally:
@@ -186,7 +190,7 @@ class _Queue:
     pipe is atomic), end-of-file when all are taken. Positions travel in blocks so that any number fits the
     pipe's buffer."""
 
-    BLOCKS = 4096  # at most this many entries of 8 bytes: 32 KiB, within Linux's 64 KiB pipe buffer
+    BLOCKS = QUEUE_BLOCKS
 
     def __init__(self, order: list[int]) -> None:
         size = -(-len(order) // self.BLOCKS)

@@ -46,7 +46,7 @@ def renderer(formats: tuple[str, ...], kind: str = "check"
     Use as ``with renderer(fmts) as render: ... write_reports(..., renderer=render)``; leaving the block
     ends the process whether or not it was used.
     """
-    if not _worth_a_process(formats):
+    if not worth_a_process(formats):
         yield render
         return
     import multiprocessing
@@ -87,7 +87,7 @@ def renderer(formats: tuple[str, ...], kind: str = "check"
             proc.join()
 
 
-def _worth_a_process(formats: tuple[str, ...]) -> bool:
+def worth_a_process(formats: tuple[str, ...]) -> bool:
     """A fork is cheap and safe here: Linux, two or more cores, one thread, numpy not loaded yet."""
     return (any(f in DRAWN for f in formats) and sys.platform.startswith("linux")
             and len(os.sched_getaffinity(0)) >= 2 and threading.active_count() == 1 and "numpy" not in sys.modules)

@@ -38,16 +38,15 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass, replace
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
 from etcheck import __version__
-from etcheck.checks.buckled import buckled_point
 from etcheck.checks.orbit_field import with_orbit_field
-from etcheck.checks.plan import EXACT, PROFILES_MODEL, straight_route
+from etcheck.checks.plan import EXACT, straight_route
 from etcheck.checks.results import results_header
-from etcheck.checks.validity import BOW_LIMIT, P_LIMIT, cross_field, mid_span_bow
+from etcheck.checks.validity import BOW_LIMIT, cross_field, mid_span_bow
 from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.gravity_gradient import circular_rate
 from etcheck.input.mission import Mission
@@ -55,27 +54,29 @@ from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none
 from etcheck.numerics.blas import one_blas_thread
 from etcheck.numerics.lifetime import die_with_parent, stop_words
-from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.optimize import brentq
 from etcheck.numerics.parallel import serial
-from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.damped_critical import first_root
-from etcheck.rod.straight.exact import MODEL as EXACT_ROOTS
-from etcheck.rod.straight.exact import exact_critical, first_exact_root, pencil_or_exact
-from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.rod.straight.undamped import MODEL as UNDAMPED_MODEL
-from etcheck.rod.straight.undamped import has_real_pair, undamped_critical
+from etcheck.rod.straight.exact import first_exact_root
+from etcheck.rod.straight.undamped import has_real_pair
 from etcheck.scaling import RPM, Scene, scale, scene, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
+from etcheck.studies.sweep_point import (
+    STATUS_FAILED,
+    STATUS_OK,
+    STATUS_OUTSIDE,
+    PointResult,
+    PointStatus,
+    point_key,
+    solve_point,
+)
 
-if TYPE_CHECKING:  # rung 1v (scipy.sparse) is imported only for a sweep of a mission with profiles
-    from etcheck.rod.straight.profiles import Tether
+__all__ = ["sweep", "SweepOptions", "DEFAULT_SWEEP", "SweepInterrupted", "critical_length", "point_scene",
+           "load_axes_or_table", "Cache", "PointResult", "PointStatus", "solve_point", "point_key", "STATUS_OK",
+           "STATUS_FAILED", "STATUS_OUTSIDE", "SWEEP_SCHEMA"]
 
 SWEEP_SCHEMA = 3  # 2: the bow of each point and the verdict "outside", the verdict counts; 3: profiles (rung 1v)
-#: Rod theory assumes a slender rod: P = I1 / (A L^2) << 1 (the check's limit).
-P_MAX = P_LIMIT
-STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE = "ok", "failed", "outside validated range"
 REGION_STABLE, REGION_UNSTABLE, REGION_FAILED = "straight-stable", "straight-unstable", "failed"
 REGION_BUCKLED = "buckled-stable"
 
@@ -143,153 +144,6 @@ def point_scene(base: Scene, current: float, field: float, values: dict[str, flo
     return replace(s, **changes)
 
 
-def solve_point(params: RodParameters, tol: float, spin: bool = True, buckled: bool = False,
-                tether: Tether | None = None, damping_fixed: bool = True) -> dict[str, Any]:
-    """The straight-tether critical values at one point (dimensionless, JSON-able).
-
-    Returns ``status`` (ok, failed, outside validated range), ``reason``,
-    ``model``, ``B_c`` (critical load at the point's spin and tension; 0 if
-    unstable without load), ``omega_c`` (critical spin at the point's load; 0
-    if statically buckled), ``omega_rest`` (critical spin without load, damped
-    only), their relative errors, ``stable`` and the resolution ``N`` (None
-    or 0: no grid). ``spin=False`` skips the critical spin (damped only). ``buckled=True``
-    adds ``buckled_stable`` (and ``buckled_deflection``, units of L) at
-    straight-unstable points: is the coiled state on b1 stable there (rungs 2-3). ``tether``: the point's
-    problem with its current and tension along it (rung 1v; ``params`` then ignored), ``damping_fixed`` whether
-    the mission gives its damping (:func:`profiles_point`).
-    """
-    out: dict[str, Any] = {"status": STATUS_OK, "reason": "", "model": "", "B_c": None, "B_c_error": None,
-                           "omega_c": None, "omega_c_error": None, "omega_rest": None, "stable": None, "N": None}
-    if params.P > P_MAX:
-        return out | {"status": STATUS_OUTSIDE,
-                      "reason": f"P = {params.P:.3g} > {P_MAX}: the tether is too short for rod theory (P << 1)"}
-    try:
-        if tether is not None:
-            out |= profiles_point(tether, tol, spin, damping_fixed)
-        else:
-            out |= _damped(params, tol, spin) if params.gamma > 0 else _undamped(params, tol, spin)
-    except (np.linalg.LinAlgError, ValueError, ArithmeticError) as exc:
-        out |= {"status": STATUS_FAILED, "reason": f"solver error: {type(exc).__name__}: {exc}"}
-    except OverBudget as exc:  # no route fits the memory budget: this point is not answered, the others are
-        out |= {"status": STATUS_FAILED, "reason": str(exc)}
-    out = _finite(out, spin)
-    if out["status"] != STATUS_OK:
-        out["stable"] = None
-    elif buckled and out["stable"] is False and params.gamma > 0:
-        out |= _buckled(params)
-    return out
-
-
-def _damped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
-    """With damping, static pencils or the exact determinant (Kelvin-Tait-Chetaev)."""
-    exact = straight_route(params) == EXACT  # boundary layers too thin for collocation
-    d = exact_critical(params, tol, spin=spin) if exact else pencil_or_exact(params, tol, spin=spin)
-    exact = exact or d.critical_load.model == EXACT_ROOTS  # a pencil root next to the end of its line
-    pencil = "rung 1 (exact determinant)" if exact else "rung 1 (static pencil)"
-    out = {"model": d.critical_load.model if params.omega == 0 and params.T == 0 else pencil,
-           "B_c": d.critical_load.value, "B_c_error": d.critical_load.error,
-           "omega_c": d.critical_spin.value, "omega_c_error": d.critical_spin.error,
-           "omega_rest": d.spin_at_rest.value, "stable": d.stable,
-           "N": max(d.critical_load.N, d.critical_spin.N)}
-    return out if d.converged else out | {"status": STATUS_FAILED, "reason": d.message}
-
-
-def _finite(out: dict[str, Any], spin: bool) -> dict[str, Any]:
-    """Infinite values stay (no root: None in JSON later), NaN ones fail the point."""
-    out = dict(out)
-    for key in ("B_c", "omega_c", "omega_rest", "B_c_error", "omega_c_error"):
-        v = out[key]
-        if v is not None and not math.isfinite(v):
-            if math.isnan(v) and out["status"] == STATUS_OK and (spin or not key.startswith("omega_c")):
-                out |= {"status": STATUS_FAILED, "reason": f"{key} is not a number"}
-            out[key] = None if math.isnan(v) else v
-    return out
-
-
-def _buckled(params: RodParameters) -> dict[str, Any]:
-    """Is the coiled state on b1 stable at a straight-unstable point (rungs 2-3; welded ends only)."""
-    if not is_welded(params.ends):
-        return {"buckled_stable": None, "buckled_deflection": None,
-                "buckled_reason": f"not computed: rungs 2-3 are {BUCKLED_WELDED_ONLY}"}
-    try:
-        b = buckled_point(params)
-    except (ArithmeticError, ValueError, EtcheckError, np.linalg.LinAlgError) as exc:
-        b = {"stable": None, "max_deflection": None, "reason": f"rung 2 failed: {exc}"}
-    return {"buckled_stable": b["stable"], "buckled_deflection": b["max_deflection"], "buckled_reason": b["reason"]}
-
-
-def _undamped(params: RodParameters, tol: float, spin: bool) -> dict[str, Any]:
-    """Without damping flutter is possible: the exact undamped determinant (rung 1u), located
-    divergence and flutter points along the load and spin lines through the point (``spin=False``:
-    the load line alone where there is a load)."""
-    u = undamped_critical(params, tol, windows=False, spin=spin)
-    out: dict[str, Any] = {"model": UNDAMPED_MODEL, "N": None, "stable": bool(u.stable)}
-    for name, c in (("B_c", u.critical_load), ("omega_c", u.critical_spin)):
-        if c.kind == CriticalKind.UNSTABLE_AT_START:
-            out |= {name: 0.0, f"{name}_error": 0.0}
-        elif c.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER):
-            out |= {name: math.inf, f"{name}_error": 0.0}
-        else:
-            out |= {name: c.value, f"{name}_error": c.error / abs(c.value) if c.value else c.error}
-    if not u.converged:
-        bad = [c.message for c in (u.critical_load, u.critical_spin)
-               if not c.converged and c.kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND,
-                                                     CriticalKind.NEVER)]
-        if bad:
-            out |= {"status": STATUS_FAILED, "reason": "rung 1u did not converge: " + "; ".join(bad)}
-    return out
-
-
-#: The damping of a sweep point with a circulatory load and no damping fixed by the mission: none, a thousandth of
-#: the paper's estimate (the limit of small damping, Ziegler) and the estimate itself; the point takes the least
-#: favourable (the check's map has five).
-SWEEP_DAMPING = (0.0, 1e-3, 1.0)
-
-
-def profiles_point(tether: Tether, tol: float, spin: bool = True, damping_fixed: bool = True) -> dict[str, Any]:
-    """Rung 1v at one sweep point: the critical load at the point's spin (the least favourable of
-    :data:`SWEEP_DAMPING` for a circulatory load without a fixed damping, else at the point's damping) and the
-    critical spin at its load at that damping (dimensionless, JSON-able, as :func:`solve_point`)."""
-    from etcheck.rod.straight.circulatory import critical, critical_spin
-
-    p = tether.params
-    fractions = SWEEP_DAMPING if tether.circulatory and not damping_fixed and p.gamma > 0 else (1.0,)
-    worst, near = None, None
-    for frac in fractions:
-        c = critical(tether.with_(gamma=frac * p.gamma), tol=tol, mode=False, near=near)
-        located = CriticalKind(c.kind).located
-        near = (0.8 * c.value, 1.25 * c.value) if located and c.value > 0 else None
-        value = c.value if located else 0.0 if c.kind == CriticalKind.UNSTABLE_AT_START else math.inf
-        if worst is None or value < worst[0]:
-            worst = (value, c, frac * p.gamma)
-    value, c, gamma = worst
-    out: dict[str, Any] = {"model": PROFILES_MODEL, "N": c.N, "B_c": value,
-                           "B_c_error": c.error / value if 0 < value < math.inf else 0.0, "omega_c": None,
-                           "omega_c_error": None, "omega_rest": None, "kind": str(c.kind), "gamma_used": gamma}
-    if c.kind == CriticalKind.NOT_LOCATED:
-        out |= {"status": STATUS_FAILED, "reason": f"rung 1v: {c.message}"}
-    if spin and p.omega > 0:
-        w = critical_spin(tether.with_(gamma=gamma), tol=tol)
-        out["omega_c"] = (w.value if CriticalKind(w.kind).located else 0.0 if w.kind == CriticalKind.UNSTABLE_AT_START
-                          else math.inf)
-        out["omega_c_error"] = w.error / w.value if CriticalKind(w.kind).located and w.value > 0 else 0.0
-    out["stable"] = bool(p.B < value and (out["omega_c"] is None or p.omega < out["omega_c"]))
-    if math.isinf(value):  # stable up to the end of the line: the margin shown is a lower bound
-        out |= {"B_c": c.hi, "reason": f"stable up to B = {c.hi:.6g}, the end of the scanned line (a lower bound)"}
-    return out
-
-
-def point_key(params: RodParameters, tol: float, kind: str = "point", tether: Tether | None = None,
-              damping_fixed: bool = True) -> str:
-    """Cache key: dimensionless parameters (exact floats), the profiles along the tether, settings and version."""
-    # welded ends (the paper's) leave the key as it was before the ends were a parameter
-    fields = {k: repr(v) for k, v in asdict(params).items() if not (k == "ends" and is_welded(v))}
-    extra = {} if tether is None else {"tether": repr(tether), "damping_fixed": damping_fixed}
-    text = json.dumps({"kind": kind, "params": fields, "tol": repr(tol), "version": __version__} | extra,
-                      sort_keys=True)
-    return hashlib.sha256(text.encode()).hexdigest()
-
-
 # --------------------------------------------------------------------------- critical length
 
 
@@ -321,14 +175,14 @@ def critical_length(base: Scene, current: float, field: float, values: dict[str,
         if onset is not None:
             a, b, spent = onset
             if h(a) > 0:
-                return {"status": STATUS_OK, "reason": "the unloaded tether gains a real pair of eigenvalues "
+                return {"status": STATUS_OK.value, "reason": "the unloaded tether gains a real pair of eigenvalues "
                         "(divergence) at this spin", "length_m": b, "evaluations": spent + 1,
                         "time_s": time.perf_counter() - t0}
             hi, spent = a, spent + 1
         L, res = brentq(h, lo, hi, xtol=1e-12, rtol=rtol, full_output=True)
     except _NoAnswer as exc:
-        return {"status": STATUS_FAILED, "reason": str(exc), "length_m": None, "time_s": time.perf_counter() - t0}
-    return {"status": STATUS_OK if res.converged else STATUS_FAILED, "reason": res.flag, "length_m": float(L),
+        return {"status": STATUS_FAILED.value, "reason": str(exc), "length_m": None, "time_s": time.perf_counter() - t0}
+    return {"status": (STATUS_OK if res.converged else STATUS_FAILED).value, "reason": res.flag, "length_m": float(L),
             "evaluations": int(res.function_calls) + spent, "time_s": time.perf_counter() - t0}
 
 
@@ -342,11 +196,11 @@ def _length_margin(p: RodParameters, L: float, tol: float) -> float:
             raise _NoAnswer(f"at L = {L:.6g} m: ray root not converged at N = {t.N} (error {t.error:.1e})")
         return math.log(t.value)
     r = solve_point(p, tol, spin=False)
-    if r["status"] != STATUS_OK:
-        raise _NoAnswer(f"at L = {L:.6g} m: {r['reason']}")
+    if r.status != STATUS_OK:
+        raise _NoAnswer(f"at L = {L:.6g} m: {r.reason}")
     if p.B > 0:
-        return (r["B_c"] / p.B if r["B_c"] is not None else math.inf) - 1.0
-    return (r["omega_c"] / p.omega if r["omega_c"] is not None else math.inf) - 1.0
+        return (r.B_c / p.B if r.B_c is not None else math.inf) - 1.0
+    return (r.omega_c / p.omega if r.omega_c is not None else math.inf) - 1.0
 
 
 def _real_pair_onset(at: Callable[[float], RodParameters], lo: float, hi: float,
@@ -387,7 +241,7 @@ def _worker_init(parent: int) -> None:
     keep_freed_memory()
 
 
-def _solve_chunk(items: list[tuple]) -> list[tuple[str, dict]]:
+def _solve_chunk(items: list[tuple]) -> list[tuple[str, PointResult]]:
     """Worker entry: solve a list of (key, params dict, tol, buckled, tether or None, damping fixed); adds wall
     time."""
     out = []
@@ -395,7 +249,7 @@ def _solve_chunk(items: list[tuple]) -> list[tuple[str, dict]]:
         for key, pdict, tol, buckled, tether, fixed in items:
             t0 = time.perf_counter()
             r = solve_point(RodParameters(**pdict), tol, buckled=buckled, tether=tether, damping_fixed=fixed)
-            out.append((key, r | {"time_s": time.perf_counter() - t0}))
+            out.append((key, replace(r, time_s=time.perf_counter() - t0)))
     return out
 
 
@@ -522,10 +376,10 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
         kind = "point+buckled" if options.buckled else "point"
         points.append((idx, values, sc, scaled, point_key(scaled.params, options.tol, kind, scaled.tether, fixed)))
 
-    results: dict[str, dict] = {}
+    results: dict[str, PointResult] = {}
     todo, queued = [], set()
     for _, _, _, scaled, key in points:
-        hit = cache.get(key)
+        hit = _cached_point(cache, key)
         if hit is not None:
             results[key] = hit
         elif key not in queued:
@@ -533,8 +387,8 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
             todo.append((key, asdict(scaled.params), options.tol, options.buckled, scaled.tether, fixed))
     total, cached = len({p[4] for p in points}), len(results)
 
-    def arrived(key: str, r: dict) -> None:
-        cache.put(key, r)
+    def arrived(key: str, r: PointResult) -> None:
+        cache.put(key, r.as_dict())  # JSON only here, at the edge
         results[key] = r
         if progress:
             progress(len(results), total, cached)
@@ -552,7 +406,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
                                   " (no cache folder: nothing kept)"), stop) from None
     solve_time = time.perf_counter() - t_solve
     solved = [r for k, r in results.items() if k in queued]
-    cpu = sum(r.get("time_s", 0.0) for r in solved)
+    cpu = sum(r.time_s or 0.0 for r in solved)
     return {
         **results_header(mission, SWEEP_SCHEMA),
         "axes": [a.as_dict() for a in axes],
@@ -573,9 +427,18 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
             "solve_wall_s": solve_time,
             "cpu_s_solved_points": cpu,
             "points_per_s_per_core": len(todo) / cpu if cpu > 0 else None,
-            "max_resolution": max((r.get("N") or 0 for r in results.values()), default=0),
+            "max_resolution": max((r.N or 0 for r in results.values()), default=0),
         },
     }
+
+
+def _cached_point(cache: Cache, key: str) -> PointResult | None:
+    """The point cached under ``key`` (None when there is none, or its file is of another layout: solved again)."""
+    hit = cache.get(key)
+    try:
+        return None if hit is None else PointResult.from_dict(hit)
+    except (TypeError, ValueError):
+        return None
 
 
 def _operating(base: Scene, current: float, field: float) -> dict[str, float]:
@@ -596,27 +459,27 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
         r, p, scales = results[key], scaled.params, scaled.scales
         wc, load_scale = scales.frequency, scales.load
         d = {"load_N_per_m": sc.load, "spin_rpm": sc.spin_rate * RPM, "B": p.B, "omega": p.omega, "T": p.T,
-             "gamma": p.gamma, "P": p.P, "N": r.get("N") or np.nan, "bow_over_length": bow}
-        ok = r["status"] == STATUS_OK
+             "gamma": p.gamma, "P": p.P, "N": r.N or np.nan, "bow_over_length": bow}
+        ok = r.status == STATUS_OK
         if ok:
-            Bc, wrest = r["B_c"], r["omega_rest"]
-            wcrit = np.nan if r["omega_c"] is None else r["omega_c"]  # None: not asked (rung 1v without spin)
+            Bc, wrest = r.B_c, r.omega_rest
+            wcrit = np.nan if r.omega_c is None else r.omega_c  # None: not asked (rung 1v without spin)
             d |= {"critical_load_N_per_m": Bc * load_scale, "critical_spin_rpm": wcrit * wc * RPM,
-                  "load_error": r["B_c_error"], "spin_error": r["omega_c_error"],
+                  "load_error": r.B_c_error, "spin_error": r.omega_c_error,
                   "critical_spin_at_rest_rpm": np.nan if wrest is None else wrest * wc * RPM,
                   "load_margin": Bc / p.B if p.B > 0 else np.inf,
                   "spin_margin": wcrit / p.omega if p.omega > 0 else np.inf}
-            if r.get("buckled_deflection") is not None:
-                d["buckled_deflection_m"] = r["buckled_deflection"] * scales.length
+            if r.buckled_deflection is not None:
+                d["buckled_deflection_m"] = r.buckled_deflection * scales.length
         for f, v in d.items():
             data[f][idx] = v
-        text["status"][idx] = r["status"]
-        text["reason"][idx] = r["reason"] or r.get("buckled_reason", "")
-        text["model"][idx] = r["model"]
-        text["region"][idx] = (REGION_FAILED if not ok else REGION_STABLE if r["stable"] else
-                               REGION_BUCKLED if r.get("buckled_stable") else REGION_UNSTABLE)
+        text["status"][idx] = r.status.value
+        text["reason"][idx] = r.reason or r.buckled_reason or ""
+        text["model"][idx] = r.model
+        text["region"][idx] = (REGION_FAILED if not ok else REGION_STABLE if r.stable else
+                               REGION_BUCKLED if r.buckled_stable else REGION_UNSTABLE)
         if ok:
-            meets[idx] = r["stable"] and d["load_margin"] >= required and d["spin_margin"] >= required
+            meets[idx] = r.stable and d["load_margin"] >= required and d["spin_margin"] >= required
             text["verdict"][idx] = "outside" if bow > BOW_LIMIT else "pass" if meets[idx] else "fail"
         else:
             text["verdict"][idx] = "no answer"
@@ -624,7 +487,7 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     out |= {f: v.tolist() for f, v in text.items()}
     out["shape"] = list(shape)
     status = text["status"].ravel().tolist()
-    out["counts"] = {s: status.count(s) for s in (STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE)}
+    out["counts"] = {s.value: status.count(s.value) for s in PointStatus}
     region = text["region"].ravel().tolist()
     out["regions"] = {s: region.count(s) for s in (REGION_STABLE, REGION_BUCKLED, REGION_UNSTABLE, REGION_FAILED)}
     verdict = text["verdict"].ravel().tolist()
@@ -689,14 +552,14 @@ def _length_row(col: list, other: Axis | None, length: Axis, mission_scene: tupl
                            "length_m": None}
     if other is not None:
         row["other_display"] = row["other"] * other.to_display
-    first_bad = next((i for i, (_, r) in enumerate(col) if r["status"] != STATUS_OK or not r["stable"]), None)
+    first_bad = next((i for i, (_, r) in enumerate(col) if r.status != STATUS_OK or not r.stable), None)
     if first_bad is None:
         return row | {"status": "beyond range", "reason": f"stable up to the longest length swept ({length.stop:.6g} m)"}, None
     if first_bad == 0:
         return row | {"status": "below range", "reason": f"not stable at the shortest length swept ({length.start:.6g} m)"}, None
-    if col[first_bad][1]["status"] != STATUS_OK:
-        return row | {"status": STATUS_FAILED, "reason": "the first unstable-looking point did not converge: "
-                      + col[first_bad][1]["reason"]}, None
+    if col[first_bad][1].status != STATUS_OK:
+        return row | {"status": STATUS_FAILED.value, "reason": "the first unstable-looking point did not converge: "
+                      + col[first_bad][1].reason}, None
     values = {k: v for k, v in col[0][0].items() if k != "length"}
     lo, hi = col[first_bad - 1][0]["length"], col[first_bad][0]["length"]
     args = (*mission_scene, values, lo, hi, options.tol)

@@ -91,14 +91,14 @@ def test_a_guessed_branch_that_fails_is_not_needed_when_it_lifted_off(set_scaled
     first S1 pitchfork) is not needed (b1 lifted off; the diagram's branch is b2), so its failure costs nothing."""
     from etcheck.checks import buckled
 
-    real = buckled._class_branches
+    real = buckled.class_starts
 
-    def s1_fails(params, which, ks, options, B_max):
+    def s1_fails(params, which, ks, N):
         if which == "S1":
             raise ValueError("no pitchfork in class S1")
-        return real(params, which, ks, options, B_max)
+        return real(params, which, ks, N)
 
-    monkeypatch.setattr(buckled, "_class_branches", s1_fails)
+    monkeypatch.setattr(buckled, "class_starts", s1_fails)  # where the diagram starts a class's branches
     d = _diagram(set_scaled, 0.75, branches=1, B_max=0.6, stability=False, connect=False)
     assert [b["label"] for b in d["branches"]] == ["b2"] and [x["label"] for x in d["lifted_off"]] == ["b1"]
 
@@ -183,13 +183,17 @@ def test_past_critical_reports_the_buckled_state(coiled):
 
 
 def test_operating_state_is_resolution_independent():
-    from etcheck.checks.buckled import _b1_to, operating_state
-    from etcheck.rod.buckled.branches import state_at
+    from etcheck.checks.buckled import operating_state
+    from etcheck.rod.buckled.branches import continue_branch, primary_branches, state_at
 
     sc = scale(scene(load_mission(ROOT / "missions" / "set-600m.toml")))
-    a = operating_state(sc.params, sc.scales, N=32)
-    # the same state at N = 44: b1 continued to the operating load (its stability and spectra are not compared)
-    fine = eq.measures(state_at(_b1_to(sc.params, 44)[1], sc.params.B))
+    p = sc.params
+    a = operating_state(p, sc.scales, N=32)
+    # the same state at N = 44: b1 continued from its pitchfork to the operating load (its stability and spectra are
+    # not compared)
+    start = next(s for s in primary_branches(p.with_(B=0.0), 1, 44) if s.which == "S1")
+    b1 = continue_branch(p, start, stop=(0.0, p.B * (1 + 1e-9)), N=44, max_points=800)
+    fine = eq.measures(state_at(b1, p.B))
     assert a["max_deflection_m"] == pytest.approx(fine.max_deflection * sc.scales.length, rel=1e-8)
     moment = sc.scales.force * sc.scales.length
     assert np.allclose(a["end_moment_N_m"]["s=0"], np.asarray(fine.M0) * moment, rtol=1e-7, atol=1e-12)
@@ -313,8 +317,9 @@ def test_special_points_carry_the_measures_of_their_located_state(set_scaled):
     bracket), in the units of the branch's own arrays."""
     from etcheck.checks import buckled
 
-    d, kept = buckled._diagram(set_scaled.params.with_(omega=0.25), set_scaled.scales,
-                               DiagramOptions(branches=1, B_max=2.2, stability=False, connect=False))
+    dg = buckled.diagram(set_scaled.params.with_(omega=0.25), set_scaled.scales,
+                         DiagramOptions(branches=1, B_max=2.2, stability=False, connect=False))
+    d, kept = dg.record, dg.branches
     (brk,) = [q for q in d["branches"][0]["special"] if q["kind"] == "break"]
     (q,) = [q for q in kept["b1"].special if q.kind == "break"]
     ms = eq.measures(q.state)

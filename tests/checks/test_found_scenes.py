@@ -8,7 +8,7 @@ from __future__ import annotations
 import copy
 
 import pytest
-from test_scene_space import _assert_well_formed
+from helpers import assert_well_formed
 
 from etcheck import check, mission_from_dict
 
@@ -93,7 +93,7 @@ def test_taut_tape_at_rest_gets_its_static_load():
 @pytest.mark.parametrize("data", FOUND)
 def test_found_scene_is_answered(data):
     results = check(mission_from_dict(data)).results
-    _assert_well_formed(results)
+    assert_well_formed(results)
 
 
 def _round_wire_undamped(current: str) -> dict:
@@ -116,7 +116,7 @@ def test_round_wire_undamped_is_stable_at_every_spin():
     scan's lower bound: the coupled determinant's touching roots once left it "not located"); the load margin is
     the gyroscopically raised flutter load, just above the static load at rest."""
     results = check(mission_from_dict(_round_wire_undamped("0.3 A"))).results
-    _assert_well_formed(results)
+    assert_well_formed(results)
     load, spin = results["margins"]
     assert spin["verdict"] == "pass" and spin["value"] is None and "every spin" in spin["why"]
     assert load["verdict"] == "pass" and load["error"] < 1e-8
@@ -126,7 +126,7 @@ def test_round_wire_undamped_is_stable_at_every_spin():
 def test_round_wire_undamped_past_its_load_is_answered():
     """The same wire past its critical load: both margins answered (unstable at zero spin), never incomplete."""
     results = check(mission_from_dict(_round_wire_undamped("12 A"))).results
-    _assert_well_formed(results)
+    assert_well_formed(results)
     load, spin = results["margins"][:2]
     assert load["verdict"] == "fail" and 0.4 < load["value"] < 1 and load["error"] < 1e-8
     assert spin["verdict"] == "fail" and spin["value"] == 0.0

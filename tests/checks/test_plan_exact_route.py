@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 import time
 
-import numpy as np
 import pytest
 from helpers import set_like
 
@@ -76,15 +75,15 @@ def test_buckled_tape_is_beyond_rungs_2_3_and_says_why():
     assert "beyond rungs 2-3" in post["reason"]
 
 
-def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch):
+def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch, forks_allowed):
     """The damped map's rows on the exact route (one first determinant root per spin) are independent: on two
     cores a forked helper takes half of them; the same rows, in order, as one by one."""
+    from dataclasses import replace
+
     import etcheck.checks.straight as straight
-    from etcheck.checks.straight import _exact_rows
-    from etcheck.numerics import parallel
+    from etcheck.checks.straight import DEFAULT_OPTIONS, linear_stability
     from etcheck.numerics.parallel import serial, split_map
 
-    monkeypatch.setattr(parallel, "_SERIAL", False)  # forks allowed (the suite's workers turn them off)
     shared_out = []
 
     def counted(fn, items):
@@ -92,17 +91,17 @@ def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch
         return split_map(fn, items)
 
     monkeypatch.setattr(straight, "split_map", counted)
-
-    p = scale(scene(mission_from_dict(set_like(name="tape", **TAPE)))).params
-    rest = exact_critical(p).spin_at_rest.value  # the unloaded tether's critical spin
-    w_rows = np.linspace(0.0, 1.25 * rest, 9)  # the last two at or past it: empty
-    shared = _exact_rows(p, w_rows, 1e3, rest, 1e-10)
+    scaled = scale(scene(mission_from_dict(set_like(name="tape", **TAPE))))
+    options = replace(DEFAULT_OPTIONS, row_points=9)
+    shared = linear_stability(scaled, options, EXACT)["stability_map"]["stable_rows"]
     with serial():
-        alone = _exact_rows(p, w_rows, 1e3, rest, 1e-10)
+        alone = linear_stability(scaled, options, EXACT)["stability_map"]["stable_rows"]
     assert shared == alone and shared_out == [9, 9]  # every row goes through the shared map
-    assert [len(r) for r in shared] == [1] * 7 + [0, 0]
-    loads = [r[0][1] for r in shared[:7]]
-    assert all(0 < b for b in loads) and loads == sorted(loads, reverse=True)  # spin lowers the critical load
+    rest = exact_critical(scaled.params).spin_at_rest.value  # the unloaded tether's critical spin: empty past it
+    assert [len(r["IB0_N_per_m"]) for r in shared] == [int(r["omega"] < rest) for r in shared]
+    loads = [r["IB0_N_per_m"][0][1] for r in shared if r["IB0_N_per_m"]]
+    assert len(loads) >= 4 and all(0 < b for b in loads)
+    assert loads == sorted(loads, reverse=True)  # spin lowers the critical load
 
 
 def test_exact_map_rows_agree_with_the_critical_spin_at_the_operating_load():

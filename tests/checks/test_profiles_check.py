@@ -116,8 +116,8 @@ def test_a_sweep_point_with_profiles_is_solved_by_rung_1v():
 
     sc = scale(scene(_mission()))
     r = solve_point(sc.params, 1e-8, tether=sc.tether, damping_fixed=False)
-    assert r["model"].startswith("rung 1v") and r["status"] == "ok"
-    assert math.isclose(r["B_c"], min(critical(sc.tether.with_(gamma=g), mode=False).value
+    assert r.model.startswith("rung 1v") and r.status == "ok"
+    assert math.isclose(r.B_c, min(critical(sc.tether.with_(gamma=g), mode=False).value
                                       for g in (0.0, 1e-3 * sc.params.gamma, sc.params.gamma)), rel_tol=1e-8)
     uniform = scale(scene(_mission(operation={"current_profile": None})))
     assert point_key(sc.params, 1e-8, tether=sc.tether) != point_key(uniform.params, 1e-8, tether=uniform.tether)

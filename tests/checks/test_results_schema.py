@@ -1,6 +1,6 @@
 """docs/results.schema.json (issue 12): the documented layout of a check's results.json.
 
-The schema and the TypedDicts of etcheck/checks/sections.py describe the same
+The schema and the TypedDicts of etcheck/checks/sections*.py describe the same
 records (with the echo of the inputs in etcheck/input/echo.py): same keys, same
 required keys, compatible value types, and every object of the schema has its type. Fresh results (draft and sign-off of the SET mission, the static SET mission, the
 tensioned and orbit missions, an [uncertainty] study) validate as written (strict
@@ -26,6 +26,7 @@ from etcheck.checks import fidelity as fidelity_module
 from etcheck.checks import margins as margins_module
 from etcheck.checks import plan as plan_module
 from etcheck.checks import sections as S
+from etcheck.checks import sections_buckled as B
 from etcheck.checks import sections_verdict as V
 from etcheck.checks.pipeline import check
 from etcheck.checks.results import SCHEMA_VERSION
@@ -86,20 +87,20 @@ SECTIONS = {
     "profiles.uniform_tension_bound": S.CriticalLoad,
     "profiles.mode": S.ProfileMode,
     "accuracy[]": S.AccuracyRow,
-    "postbuckling": S.PostbucklingSection,
-    "postbuckling.diagram": S.BifurcationDiagram,
-    "postbuckling.diagram.params": S.DiagramParameters,
-    "postbuckling.diagram.branches[]": S.BranchRecord,
-    "postbuckling.diagram.branches[].special[]": S.SpecialPoint,
-    "postbuckling.diagram.lifted_off[]": S.LiftedOff,
-    "postbuckling.operating": S.BuckledOperatingPoint,
-    "postbuckling.operating.damping_sensitivity[]": S.DampingSensitivity,
-    "postbuckling.operating.shape": S.Shape,
-    "postbuckling.operating.least_damped": S.LeastDamped,
-    "postbuckling.region": S.CoilRegion,
-    "postbuckling.region.rows[]": S.RegionRow,
-    "postbuckling.region.pitchfork_curve": S.RegionCurve,
-    "postbuckling.region.secondary_curve": S.SecondaryCurve,
+    "postbuckling": B.PostbucklingSection,
+    "postbuckling.diagram": B.BifurcationDiagram,
+    "postbuckling.diagram.params": B.DiagramParameters,
+    "postbuckling.diagram.branches[]": B.BranchRecord,
+    "postbuckling.diagram.branches[].special[]": B.SpecialPoint,
+    "postbuckling.diagram.lifted_off[]": B.LiftedOff,
+    "postbuckling.operating": B.BuckledOperatingPoint,
+    "postbuckling.operating.damping_sensitivity[]": B.DampingSensitivity,
+    "postbuckling.operating.shape": B.Shape,
+    "postbuckling.operating.least_damped": B.LeastDamped,
+    "postbuckling.region": B.CoilRegion,
+    "postbuckling.region.rows[]": B.RegionRow,
+    "postbuckling.region.pitchfork_curve": B.RegionCurve,
+    "postbuckling.region.secondary_curve": B.SecondaryCurve,
     "margins[]": S.MarginRecord,
     "margins[].alternatives[]": S.AlternativeMargin,
     "attachment": S.AttachmentSection,

@@ -12,17 +12,15 @@ CI runs the same scenes every time; failing examples found are kept below as reg
 
 from __future__ import annotations
 
-import json
 import math
 
 import pytest
-from helpers import set_like
+from helpers import assert_well_formed, set_like
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from etcheck import check
 from etcheck.errors import EtcheckError
-from etcheck.report import render
 
 #: the first static critical load of SET, I*B0 [N/m]: loads are drawn relative to a tether's own
 SET_IB0 = 1.1135e-2
@@ -68,22 +66,6 @@ def _answer(data: dict):
         return None
 
 
-def _assert_well_formed(results: dict) -> None:
-    json.dumps(results, allow_nan=False)  # strict JSON: no NaN, no Infinity
-    assert results["verdict"] in ("pass", "fail", "incomplete", "outside")
-    assert (results["verdict"] == "outside") == bool(results["model_validity"]["reasons"])
-    assert results["margins"]
-    for m in results["margins"]:
-        assert m["model"]
-        if m["verdict"] == "incomplete":
-            assert m["why"]
-        else:
-            assert m["error"] is not None and math.isfinite(m["error"]) and m["error"] >= 0
-            assert m["value"] is None or (math.isfinite(m["value"]) and m["value"] >= 0)
-    html = render(results, ("html",))["html"].decode()
-    assert "</html>" in html
-
-
 def _undamped_isotropic(current: str, tension: str) -> dict:
     """R = 1, undamped, spun, draft: where the exact undamped determinant met a tangency of two roots."""
     data = set_like(name="scene", check={"fidelity": "draft"})
@@ -100,7 +82,7 @@ def _undamped_isotropic(current: str, tension: str) -> dict:
 def test_every_draft_scene_is_answered_or_refused_clearly(data):
     results = _answer(data)
     if results is not None:
-        _assert_well_formed(results)
+        assert_well_formed(results)
 
 
 @settings(max_examples=2, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
@@ -108,7 +90,7 @@ def test_every_draft_scene_is_answered_or_refused_clearly(data):
 def test_sign_off_scenes_are_answered_or_refused_clearly(data):
     results = _answer(data)
     if results is not None:
-        _assert_well_formed(results)
+        assert_well_formed(results)
 
 
 @settings(max_examples=15, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
@@ -141,4 +123,4 @@ REGRESSIONS = [
 def test_regressions_found_in_the_scene_space(fields):
     results = _answer(set_like(name="regression", check={"fidelity": "draft"}, **fields))
     assert results is not None
-    _assert_well_formed(results)
+    assert_well_formed(results)

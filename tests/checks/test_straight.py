@@ -159,16 +159,14 @@ def test_unconverged_critical_value_carries_its_error_or_is_not_located(monkeypa
 
 
 @pytest.mark.parametrize("beside", [True, False])
-def test_the_accuracy_table_beside_the_spectra_or_after_them(monkeypatch, beside):
+def test_the_accuracy_table_beside_the_spectra_or_after_them(monkeypatch, beside, forks_allowed):
     """With ``accuracy_beside`` the table goes to a helper (``ahead``) while the spectra are computed; without it
     (the CLI while its report process loads the report stack: the table's solves are timed) it is computed here,
     after the rest. The same table either way, times aside."""
     from dataclasses import replace
 
     import etcheck.checks.pipeline as pipeline
-    from etcheck.numerics import parallel
 
-    monkeypatch.setattr(parallel, "_SERIAL", False)  # a helper allowed (the suite's workers turn them off)
     started = []
     real = pipeline.ahead
     monkeypatch.setattr(pipeline, "ahead", lambda fn: started.append(fn) or real(fn))

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from etcheck import MissionError, load_mission, mission_from_dict
-from etcheck.checks.pipeline import _scene_dict
+from etcheck.checks.pipeline import scene_section
 from etcheck.input.gravity_gradient import MU_EARTH, R_EARTH, GravityGradient, apogee_rate, circular_rate
 from etcheck.scaling import scene
 
@@ -145,7 +145,7 @@ def test_shipped_missions_carry_gravity_gradient_tension(name, at, lo, hi):
     g = m.gravity_gradient
     assert g is not None and g.minimum_at == at and lo < m.end_tension.to_value("N") == g.minimum < hi
     assert g.maximum > g.minimum
-    sd = _scene_dict(m, scene(m))
+    sd = scene_section(m, scene(m))
     assert sd["tension_N"] == g.minimum and sd["tension_profile"]["minimum_N"] == g.minimum
 
 

@@ -7,6 +7,8 @@ import numpy as np
 import pytest
 
 from etcheck.numerics import continuation as cont
+from etcheck.numerics import corrector
+from etcheck.numerics import special_points as sp
 
 
 class _Parabola:
@@ -33,19 +35,19 @@ class _Parabola:
 
 def _run(offset: float, settle: bool, monkeypatch) -> tuple[cont.ContinuationResult, int]:
     trials = []
-    locate = cont._locate
+    locate = sp.locate
 
     def counted(problem, a, b, name, W, opts, settled=None):
         return locate(problem, a, b, name, W, opts, settled=settled if settle else None)
 
-    trial = cont._trial_point
+    trial = sp.trial_point
 
     def counted_trial(problem, br, s_a, sig, name, W, opts):
         trials.append(name)
         return trial(problem, br, s_a, sig, name, W, opts)
 
-    monkeypatch.setattr(cont, "_locate", counted)
-    monkeypatch.setattr(cont, "_trial_point", counted_trial)
+    monkeypatch.setattr(sp, "locate", counted)
+    monkeypatch.setattr(sp, "trial_point", counted_trial)
     opts = cont.ContinuationOptions(ds=0.13, ds_max=0.13, p_max=0.5, detect_bp=False)
     # from u_1 = -1/2 (p = 1/4, u_2 = u_1^3) towards the fold, then up the other arm to p = 1/2
     res = cont.continuation(_Parabola(offset), np.array([-0.5, -0.125]), 0.25, np.array([1.0, 0.75, -1.0]), opts)
@@ -119,7 +121,7 @@ def test_corrector_stops_when_quadratic_convergence_makes_the_next_update_neglig
     solves.clear()
     u, p, rn, it, ok = cont.correct(problem, u0, p0, tau, ds, W, tol, 40)
     quick = len(solves)
-    monkeypatch.setattr(cont, "_QUADRATIC", 0.0)  # the plain test only
+    monkeypatch.setattr(corrector, "QUADRATIC", 0.0)  # the plain test only
     u_ref, p_ref, _, _, ok_ref = cont.correct(problem, u0, p0, tau, ds, W, 1e-15, 40)
     solves.clear()
     _, _, _, it_plain, _ = cont.correct(problem, u0, p0, tau, ds, W, tol, 40)
@@ -135,7 +137,7 @@ def test_newton_at_a_fixed_parameter_has_the_same_quadratic_exit(solves, monkeyp
     u, _, rn, it, ok = cont.correct_at(problem, start, p, tol, 20)
     quick = len(solves)
     u_ref, _, _, _, _ = cont.correct_at(problem, start, p, 1e-15, 20)
-    monkeypatch.setattr(cont, "_QUADRATIC", 0.0)
+    monkeypatch.setattr(corrector, "QUADRATIC", 0.0)
     solves.clear()
     _, _, _, it_plain, _ = cont.correct_at(problem, start, p, tol, 20)
     assert ok and rn < tol and np.max(np.abs(u - u_ref)) < tol
@@ -157,8 +159,8 @@ def test_branch_point_test_from_the_tangents_factors_is_the_bordered_determinant
 
     W = rng.uniform(0.5, 2.0, m + 1) / (m + 1)
     tau0 = rng.standard_normal(m + 1)
-    tau, _, _, bp = cont._tangent(Linear(), None, 0.0, tau0, W)
-    direct = cont.signed_smallness(cont._bordered(Ju, Jp, tau))
+    tau, _, _, bp = corrector.tangent(Linear(), None, 0.0, tau0, W)
+    direct = cont.signed_smallness(corrector.bordered(Ju, Jp, tau))
     assert np.sign(bp) == np.sign(direct) and bp == pytest.approx(direct, rel=1e-9)
     # the tangent itself: in the kernel of [Ju, Jp], unit in the W-norm, oriented like tau0
     assert np.max(np.abs(np.c_[Ju, Jp] @ tau)) < 1e-12 and np.sum(W * tau * tau) == pytest.approx(1.0)
@@ -172,12 +174,12 @@ def test_step_control_grows_on_nearly_straight_branches_and_rejects_slow_steps(m
     half the length is accepted however many it takes (next to a branch point every step may be slow)."""
     opts = cont.ContinuationOptions(ds=0.1, ds_max=0.5, max_angle=0.3)
     grown, kept, halved = 0.15, 0.1, 0.05
-    assert cont._next_step(0.1, 3, 0.29, opts) == pytest.approx(grown)
-    assert cont._next_step(0.1, 4, 0.049, opts) == pytest.approx(grown)
-    assert cont._next_step(0.1, 4, 0.051, opts) == kept
-    assert cont._next_step(0.1, 5, 0.0, opts) == kept
-    assert cont._next_step(0.1, 6, 0.0, opts) == pytest.approx(halved)
-    assert cont._next_step(0.4, 3, 0.0, opts) == 0.5  # at most ds_max
+    assert cont.next_step(0.1, 3, 0.29, opts) == pytest.approx(grown)
+    assert cont.next_step(0.1, 4, 0.049, opts) == pytest.approx(grown)
+    assert cont.next_step(0.1, 4, 0.051, opts) == kept
+    assert cont.next_step(0.1, 5, 0.0, opts) == kept
+    assert cont.next_step(0.1, 6, 0.0, opts) == pytest.approx(halved)
+    assert cont.next_step(0.4, 3, 0.0, opts) == 0.5  # at most ds_max
 
     problem = _Circle()
     u0, p0 = np.array([0.6, np.sin(0.6) * 0.5]), 0.5
@@ -185,7 +187,7 @@ def test_step_control_grows_on_nearly_straight_branches_and_rejects_slow_steps(m
         Ju, _ = problem.jacobian(u0, p0)
         u0 = u0 - np.linalg.solve(Ju, problem.residual(u0, p0))
     W = cont.weights(2, opts)
-    a = cont._make_point(problem, u0, p0, np.array([1.0, 0.0, 0.0]), W, 0.0, 0.0, 0, opts)
+    a = corrector.make_point(problem, u0, p0, np.array([1.0, 0.0, 0.0]), W, 0.0, 0.0, 0, opts)
     correct = cont.correct
     for solves, retry, accepted in ((6, False, True), (7, False, False), (8, True, True)):
         def slow(*args, _n=solves, **kw):
@@ -193,7 +195,7 @@ def test_step_control_grows_on_nearly_straight_branches_and_rejects_slow_steps(m
             return u, p, rn, _n, ok
 
         monkeypatch.setattr(cont, "correct", slow)
-        b, it, _ = cont._advance(problem, a, 0.05, W, opts, slow_ok=retry)
+        b, it, _ = cont.advance(problem, a, 0.05, W, opts, slow_ok=retry)
         assert it == solves and (b is not None) is accepted
 
 
@@ -204,7 +206,7 @@ def test_branch_point_next_to_a_fold_is_bracketed_from_the_fold(offset, monkeypa
     with monkeypatch.context() as m:
         near, near_trials = _run(offset, True, m)
     with monkeypatch.context() as m:
-        m.setattr(cont, "_beside_fold", lambda problem, a, b, folds, W, opts: (a, b))
+        m.setattr(sp, "beside_fold", lambda problem, a, b, folds, W, opts: (a, b))
         whole, whole_trials = _run(offset, True, m)
     (bp,) = [q for q in near.special if q.kind == "bp"]
     (ref,) = [q for q in whole.special if q.kind == "bp"]

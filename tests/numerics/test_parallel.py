@@ -11,21 +11,18 @@ from etcheck.numerics.parallel import can_split, split_map
 
 def _forkable() -> bool:
     """can_split() with forking allowed (the suite's xdist workers turn it off: tests/conftest.py)."""
-    before = parallel._SERIAL
-    parallel._SERIAL = False
-    try:
+    with parallel.serial(False):
         return can_split()
-    finally:
-        parallel._SERIAL = before
 
 
 forks = pytest.mark.skipif(not _forkable(), reason="needs fork, two cores and a single thread")
 
 
 @pytest.fixture(autouse=True)
-def _forking_allowed(monkeypatch):
+def forking_allowed():
     """These tests are about the forks: allowed here whatever the test process says."""
-    monkeypatch.setattr(parallel, "_SERIAL", False)
+    with parallel.serial(False):
+        yield
 
 
 def _square_and_pid(x):
@@ -111,9 +108,8 @@ def test_neither_side_forks_again_while_both_run():
     assert can_split()
 
 
-def test_serial_here_turns_forking_off(monkeypatch):
-    monkeypatch.setattr(parallel, "_SERIAL", False)
-    parallel.serial_here()
+def test_serial_here_turns_forking_off():
+    parallel.serial_here()  # until the fixture's block ends
     assert not can_split()
     assert {pid for _, pid in split_map(_square_and_pid, range(6))} == {os.getpid()}
 
@@ -129,16 +125,19 @@ def test_weights_order_the_queue_heaviest_first():
 @forks
 def test_more_items_than_the_queue_has_entries():
     """Items travel in blocks when there are more than the queue's entries (the pipe must not fill up)."""
-    n = 3 * parallel._Queue.BLOCKS + 7
+    n = 3 * parallel.QUEUE_BLOCKS + 7
     assert split_map(abs, [-x for x in range(n)]) == list(range(n))
 
 
-def test_serial_turns_forking_off_inside_its_block_only(monkeypatch):
-    monkeypatch.setattr(parallel, "_SERIAL", False)
+@forks
+def test_serial_turns_forking_off_inside_its_block_only():
     with parallel.serial():
         assert not can_split()
         assert {pid for _, pid in split_map(_square_and_pid, range(6))} == {os.getpid()}
-    assert parallel._SERIAL is False
+        with parallel.serial(False):  # and on again inside an inner block
+            assert can_split()
+        assert not can_split()
+    assert can_split()
 
 
 def test_no_process_to_spare_means_one_by_one(monkeypatch):
@@ -166,8 +165,8 @@ def test_ahead_computes_in_a_helper_while_this_process_goes_on():
     assert later() == there  # asked again: the same result, no second run
 
 
-def test_ahead_without_a_helper_computes_here_when_asked(monkeypatch):
-    monkeypatch.setattr(parallel, "_SERIAL", True)
+def test_ahead_without_a_helper_computes_here_when_asked():
+    parallel.serial_here()  # until the fixture's block ends
     calls = []
     with parallel.ahead(lambda: calls.append(os.getpid()) or 7) as later:
         assert calls == []  # nothing yet

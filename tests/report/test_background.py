@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy  # noqa: F401  (loaded, as in any test run: no fork from here)
 import pytest
 
-from etcheck.report.background import _worth_a_process
+from etcheck.report.background import worth_a_process
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -56,8 +56,8 @@ def test_the_report_process_renders_the_same_bytes_and_reports_failures():
 
 
 def test_no_process_for_data_only_formats_or_after_numpy():
-    assert not _worth_a_process(("json",))
-    assert not _worth_a_process(("html", "pdf"))  # this test process has numpy loaded: rendered in place
+    assert not worth_a_process(("json",))
+    assert not worth_a_process(("html", "pdf"))  # this test process has numpy loaded: rendered in place
 
 
 def _plain(value) -> bool:

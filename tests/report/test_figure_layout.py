@@ -83,7 +83,7 @@ def _drawn(draw) -> list:
         seen.append((fig, _legend_problems(fig), _label_problems(fig), _has_operating_point(fig)))
 
     with pytest.MonkeyPatch.context() as mp, inspecting(keep):
-        mp.setattr(common, "_cropped_png", _blank_png)
+        mp.setattr(common, "cropped_png", _blank_png)
         draw()
     return seen
 

@@ -71,13 +71,13 @@ def test_coil_region_without_any_secondary_pitchfork_is_drawn():
 def test_spin_margin_curve_of_the_damped_map_follows_the_exact_rows():
     """The critical spin at each load is interpolated between the spin rows' exact stability boundaries,
     not read off as the first unstable row (a staircase of one row's height); none where buckled at rest."""
-    from etcheck.report.figures.check import _shade_rows
+    from etcheck.report.figures.check import shade_rows
 
     rpm = np.linspace(0.0, 1.0, 11)  # rows 0.1 rpm apart; stable for load < 1 - rpm^2
     rows = [{"spin_rpm": float(w), "IB0_N_per_m": [[0.0, 1.0 - w**2]] if w < 1.0 else []} for w in rpm]
     plt = pyplot()
     fig, ax = plt.subplots()
-    _, _, cols, w_col = _shade_rows(ax, rows, np.linspace(0.0, 1.2, 50))
+    _, _, cols, w_col = shade_rows(ax, rows, np.linspace(0.0, 1.2, 50))
     plt.close(fig)
     inside = (cols > 0.05) & (cols < 0.95)
     exact = np.sqrt(1.0 - cols[inside])
@@ -101,7 +101,7 @@ def test_spin_margin_curve_of_the_damped_map_follows_the_exact_rows():
 ])
 def test_campbell_shades_the_unstable_spins_the_report_states(lin, shaded):
     """The Campbell diagram's shading agrees with the report's 'stable spin ranges' sentence."""
-    from etcheck.report.figures.check import _shade_unstable_spin
+    from etcheck.report.figures.check import shade_unstable_spin
 
     spans = []
 
@@ -109,7 +109,7 @@ def test_campbell_shades_the_unstable_spins_the_report_states(lin, shaded):
         def axvspan(self, a, b, **kw):
             spans.append((a, b))
 
-    _shade_unstable_spin(Axes(), lin, np.linspace(0.0, 0.5, 11))
+    shade_unstable_spin(Axes(), lin, np.linspace(0.0, 0.5, 11))
     assert spans == shaded
 
 
@@ -117,18 +117,18 @@ def test_campbell_shades_the_unstable_spins_the_report_states(lin, shaded):
 def test_a_special_point_is_marked_where_it_was_located_not_on_the_nearest_state(ykey, own):
     """A fold between two computed states far apart is marked at its own measure (the located state's); results
     without that measure (written before it was recorded) fall back to the nearest computed state."""
-    from etcheck.report.figures.diagram import _draw_special_points
+    from etcheck.report.figures.diagram import draw_special_points
 
     b = {"values": [0.5, 0.9], "IB0_N_per_m": [1.0, 1.8], ykey: [0.0, 1.0],
          "special": [{"kind": "fold", "B": 0.6, "IB0_N_per_m": 1.2, ykey: own}]}
     plt = pyplot()
     for key in ("values", "IB0_N_per_m"):
         fig, ax = plt.subplots()
-        assert _draw_special_points(ax, b, key, ykey, set()) == {"fold"}
+        assert draw_special_points(ax, b, key, ykey, set()) == {"fold"}
         assert list(ax.lines[-1].get_xdata()) == [b["special"][0][{"values": "B"}.get(key, key)]]
         assert list(ax.lines[-1].get_ydata()) == [own]
         old = {**b, "special": [{k: v for k, v in b["special"][0].items() if k != ykey}]}
-        _draw_special_points(ax, old, key, ykey, set())
+        draw_special_points(ax, old, key, ykey, set())
         assert list(ax.lines[-1].get_ydata()) == [0.0]  # the nearest state's
         plt.close(fig)
 
@@ -136,11 +136,11 @@ def test_a_special_point_is_marked_where_it_was_located_not_on_the_nearest_state
 def test_a_branch_is_drawn_through_its_computed_states_without_overshoot():
     """The drawn curve passes through every computed state, and between two states it stays within their range
     (monotone cubic: no bumps the branch does not have), here a quarter circle sampled at five points."""
-    from etcheck.report.figures.diagram import SMOOTH, _smooth
+    from etcheck.report.figures.diagram import SMOOTH, smooth
 
     a = np.linspace(0.0, np.pi / 2, 5)
     x, y = np.cos(a), np.sin(a)
-    xs, ys = _smooth(x, y, (1.0, 1.0))
+    xs, ys = smooth(x, y, (1.0, 1.0))
     assert xs.size == SMOOTH * 4 + 1
     np.testing.assert_allclose(xs[::SMOOTH], x, atol=1e-15)
     np.testing.assert_allclose(ys[::SMOOTH], y, atol=1e-15)
@@ -149,18 +149,18 @@ def test_a_branch_is_drawn_through_its_computed_states_without_overshoot():
         assert np.all(np.diff(xs[seg]) <= 1e-15) and np.all(np.diff(ys[seg]) >= -1e-15)
     # closer to the circle than the polyline through the same states
     assert np.max(np.abs(np.hypot(xs, ys) - 1.0)) < 0.5 * (1.0 - np.cos(np.pi / 16))  # measured: 0.26 of it
-    two = _smooth(np.array([0.0, 1.0]), np.array([0.0, 2.0]), (1.0, 2.0))
+    two = smooth(np.array([0.0, 1.0]), np.array([0.0, 2.0]), (1.0, 2.0))
     assert [list(v) for v in two] == [[0.0, 1.0], [0.0, 2.0]]
 
 
 def test_stable_and_unstable_parts_meet_at_the_located_special_point():
     """Stability changes at a located special point (a secondary pitchfork): the solid and dashed parts of a branch
     meet there, not at the first computed state past it; without one they meet at that state."""
-    from etcheck.report.figures.diagram import _segments
+    from etcheck.report.figures.diagram import segments
 
     x, y, st = [0.0, 1.0, 2.0, 3.0], [0.0, 1.0, 2.0, 3.0], [True, True, False, False]
-    (xa, ya, sa), (xb, yb, sb) = _segments(x, y, st, [(1.4, 1.5)])
+    (xa, ya, sa), (xb, yb, sb) = segments(x, y, st, [(1.4, 1.5)])
     assert (sa, sb) == (True, False) and list(xa) == [0.0, 1.0, 1.4] and list(xb) == [1.4, 2.0, 3.0]
     assert ya[-1] == yb[0] == 1.5
-    (xa, _, _), (xb, _, _) = _segments(x, y, st)
+    (xa, _, _), (xb, _, _) = segments(x, y, st)
     assert list(xa) == [0.0, 1.0, 2.0] and list(xb) == [2.0, 3.0]

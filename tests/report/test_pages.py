@@ -55,7 +55,7 @@ def undrawn_figures(monkeypatch):
         Image.new("RGB", (max(1, round(40 * w)), max(1, round(40 * h))), "white").save(out, format="PNG")
         return out.getvalue()
 
-    monkeypatch.setattr(common, "_cropped_png", blank)
+    monkeypatch.setattr(common, "cropped_png", blank)
 
 
 def _figure_captions(html: str) -> list[str]:

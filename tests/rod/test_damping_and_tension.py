@@ -108,7 +108,7 @@ def test_no_rotary_inertia_with_damping():
 
 
 @pytest.mark.parametrize("where", ["two cores", "one core"])
-def test_static_curves_are_the_same_on_two_cores(monkeypatch, where):
+def test_static_curves_are_the_same_on_two_cores(where):
     """Rows and columns are shared with a forked helper where it can help: the same numbers."""
     from etcheck.numerics import parallel
 
@@ -118,10 +118,10 @@ def test_static_curves_are_the_same_on_two_cores(monkeypatch, where):
     def run():
         return static_curves(p, 2.0, 1.0, omega_rows=spins, n_loads=5, N=16)
 
-    monkeypatch.setattr(parallel, "_SERIAL", True)
-    serial_curves = run()
-    monkeypatch.setattr(parallel, "_SERIAL", where == "one core")
-    curves = run()
+    with parallel.serial():
+        serial_curves = run()
+    with parallel.serial(where == "one core"):
+        curves = run()
     np.testing.assert_array_equal(curves.B, serial_curves.B)
     np.testing.assert_array_equal(curves.omega_points, serial_curves.omega_points)
     for a, b in zip(curves.loads + curves.changes, serial_curves.loads + serial_curves.changes):

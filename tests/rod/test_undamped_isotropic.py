@@ -13,12 +13,9 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-import scipy.linalg as sl
+from helpers import collocation_growth
 from scipy.optimize import brentq
 
-from etcheck.numerics.blas import one_blas_thread
-from etcheck.rod.core.base_state import straight
-from etcheck.rod.core.linear import linear_operator
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.exact import exact_root
 from etcheck.rod.straight.undamped import has_real_pair, undamped_critical
@@ -26,18 +23,6 @@ from etcheck.rod.straight.undamped_isotropic import characteristic_plus
 from etcheck.rod.straight.undamped_kernel import characteristic_mu
 
 GAMMA = 0.76923
-
-
-def _growth(p: RodParameters, N: int = 24) -> float:
-    """Largest real part of the whole collocation spectrum at N (the spurious modes at |lambda| ~ 1e8 left out)."""
-    A0, A1, A2 = (np.asarray(a.todense()) if hasattr(a, "todense") else np.asarray(a)
-                  for a in linear_operator(p, straight(p), N))
-    n = A0.shape[0]
-    Z, eye = np.zeros((n, n)), np.eye(n)
-    with one_blas_thread():
-        lam = sl.eigvals(np.block([[Z, eye], [-A0, -A1]]), np.block([[eye, Z], [Z, A2]]))
-    lam = lam[np.isfinite(lam) & (np.abs(lam) < 1e3)]
-    return float(lam.real.max())
 
 
 def _rest(p: RodParameters) -> float:
@@ -80,8 +65,8 @@ def test_below_the_static_load_at_rest_stable_at_every_spin():
     assert u.stable and u.critical_spin.kind == "never" and "every spin" in u.critical_spin.message
     assert not has_real_pair(p.with_(B=0.95 * Bs, omega=3.0))
     for omega in (0.2, 2.0, 8.0):
-        assert _growth(p.with_(B=0.95 * Bs, omega=omega)) < 1e-8
-    assert _growth(p.with_(B=1.02 * Bs)) > 1e-3
+        assert collocation_growth(p.with_(B=0.95 * Bs, omega=omega)) < 1e-8
+    assert collocation_growth(p.with_(B=1.02 * Bs)) > 1e-3
 
 
 @pytest.mark.parametrize("kw", [dict(P=0.02, T=2.0, omega=1.0), dict(P=0.1, T=0.3, omega=0.05),
@@ -93,8 +78,8 @@ def test_critical_load_against_the_collocation_spectrum(kw):
     u = undamped_critical(p, windows=False)
     Bc = u.critical_load.value
     assert u.critical_load.converged and u.critical_load.kind == "flutter" and Bc > _rest(p)
-    assert _growth(p.with_(B=Bc * (1 - 1e-6))) < 1e-8
-    assert _growth(p.with_(B=Bc * (1 + 1e-6))) > 1e-5
+    assert collocation_growth(p.with_(B=Bc * (1 - 1e-6))) < 1e-8
+    assert collocation_growth(p.with_(B=Bc * (1 + 1e-6))) > 1e-5
 
 
 def test_stable_window_against_the_collocation_spectrum():
@@ -105,8 +90,8 @@ def test_stable_window_against_the_collocation_spectrum():
     assert u.critical_spin.kind == "unstable at start" and not u.stable
     start = u.windows[0][0]
     assert 0.5 < start < 2.0
-    assert _growth(p.with_(omega=start * (1 - 1e-6))) > 1e-6
-    assert _growth(p.with_(omega=start * (1 + 1e-6))) < 1e-8
+    assert collocation_growth(p.with_(omega=start * (1 - 1e-6))) > 1e-6
+    assert collocation_growth(p.with_(omega=start * (1 + 1e-6))) < 1e-8
 
 
 def test_unstable_where_a_selected_spectrum_saw_a_window():
@@ -116,7 +101,7 @@ def test_unstable_where_a_selected_spectrum_saw_a_window():
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, T=0.0, B=20.0, omega=6.0)
     u = undamped_critical(p)
     assert not u.stable and u.windows == ()
-    assert _growth(p) == pytest.approx(4.23499, rel=1e-4)
+    assert collocation_growth(p) == pytest.approx(4.23499, rel=1e-4)
 
 
 TAUT = (3.3195457008935313e-03, 490.5875991336071, 1731.180710937537, 0.05727789819714589)
@@ -129,8 +114,8 @@ def test_taut_isotropic_critical_load_against_the_collocation_spectrum():
     P, T, B, omega = TAUT
     p = RodParameters(P=P, R=1.0, Gamma=GAMMA, B=B, omega=omega, T=T)
     Bc = undamped_critical(p, windows=False).critical_load.value
-    assert _growth(p.with_(B=Bc * (1 - 1e-4)), N=48) < 1e-8
-    assert _growth(p.with_(B=Bc * (1 + 1e-4)), N=48) > 1e-3
+    assert collocation_growth(p.with_(B=Bc * (1 - 1e-4)), N=48) < 1e-8
+    assert collocation_growth(p.with_(B=Bc * (1 + 1e-4)), N=48) > 1e-3
 
 
 @pytest.mark.parametrize("P,T,B,omega", [
@@ -158,7 +143,7 @@ def test_collocation_indicator_looks_at_the_whole_coupled_band():
     from etcheck.rod.straight.spectral import straight_family
 
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, T=0.0)
-    assert straight_family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
+    assert straight_family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(collocation_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
 
 
 def test_a_change_of_stability_below_the_static_load_at_rest_is_refused(monkeypatch):

@@ -267,11 +267,11 @@ def test_nearly_isotropic_pair_closer_than_the_samples_is_counted():
 def test_nearly_isotropic_flutter_load_against_the_collocation_spectrum():
     """The scene above: its critical load is bracketed by the whole collocation spectrum (N = 48 for the layers at
     T-bar = 198)."""
-    from test_undamped_isotropic import _growth
+    from helpers import collocation_growth
 
     Bc = undamped_critical(NEARLY_ISOTROPIC, windows=False).critical_load.value
-    assert _growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 - 1e-6)), N=48) < 1e-8
-    assert _growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 + 1e-6)), N=48) > 1e-4
+    assert collocation_growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 - 1e-6)), N=48) < 1e-8
+    assert collocation_growth(NEARLY_ISOTROPIC.with_(B=Bc * (1 + 1e-6)), N=48) > 1e-4
 
 
 def test_horner_in_k_squared_is_the_polynomial_and_its_derivative():
@@ -288,13 +288,13 @@ def test_horner_in_k_squared_is_the_polynomial_and_its_derivative():
 
 
 @pytest.mark.parametrize("omega", [0.0, 0.25])
-def test_the_load_line_followed_by_a_helper_gives_the_same_answer(monkeypatch, omega):
+def test_the_load_line_followed_by_a_helper_gives_the_same_answer(omega):
     """On two cores the load line is followed in a forked helper while the spin line is followed here."""
     from etcheck.numerics import parallel
 
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, B=0.2, omega=omega, T=0.05, gamma=0.0)
-    monkeypatch.setattr(parallel, "_SERIAL", True)
-    serial = undamped_critical(p, 1e-8, windows=True)
+    with parallel.serial():
+        serial = undamped_critical(p, 1e-8, windows=True)
     import etcheck.rod.straight.exact as ex
     import etcheck.rod.straight.undamped as us
 
@@ -302,8 +302,8 @@ def test_the_load_line_followed_by_a_helper_gives_the_same_answer(monkeypatch, o
         for fn in vars(module).values():
             if hasattr(fn, "cache_clear"):
                 fn.cache_clear()
-    monkeypatch.setattr(parallel, "_SERIAL", False)
-    assert undamped_critical(p, 1e-8, windows=True) == serial
+    with parallel.serial(False):
+        assert undamped_critical(p, 1e-8, windows=True) == serial
 
 
 def _edge(proof, lo: float = 0.0, hi: float = 10.0) -> float:

@@ -175,7 +175,7 @@ def test_critical_length_with_spin_is_the_boundary():
         L = row["length_m"]
         for f, stable in ((1 - 1e-6, True), (1 + 1e-6, False)):
             p = scale(scene_with(m, L * f, row["other"])).params
-            assert solve_point(p, 1e-8)["stable"] is stable
+            assert solve_point(p, 1e-8).stable is stable
 
 
 def test_undamped_critical_length_at_the_onset_of_a_real_pair():
@@ -193,7 +193,7 @@ def test_undamped_critical_length_at_the_onset_of_a_real_pair():
     assert row["status"] == "ok" and "real pair" in row["reason"]
     for f, stable in ((1 - 1e-6, True), (1 + 1e-6, False)):
         p = scale(scene_with(m, row["length_m"] * f, spin)).params
-        assert solve_point(p, 1e-8)["stable"] is stable
+        assert solve_point(p, 1e-8).stable is stable
 
 
 def scene_with(m, length, spin):
@@ -246,7 +246,7 @@ def test_no_nan_in_reports(small):
 
 def test_short_tether_is_outside_validated_range():
     r = solve_point(RodParameters(**(SET | {"P": 0.5})), 1e-8)
-    assert r["status"] == STATUS_OUTSIDE and "P = 0.5" in r["reason"]
+    assert r.status == STATUS_OUTSIDE and "P = 0.5" in r.reason
 
 
 def _sign_change_at(g, x, rel=1e-6, below: int = 40) -> bool:
@@ -268,16 +268,16 @@ def test_extremes_converge_and_agree_with_exact_shooting(kw):
 
     p = RodParameters(**(SET | kw))
     r = solve_point(p, 1e-8)
-    assert r["status"] == STATUS_OK
+    assert r.status == STATUS_OK
     if p.omega == 0 and p.T == 0:  # double zero of chi: rung 0 is the reference
-        assert r["B_c"] == pytest.approx(critical_loads(p.R, p.f, 1)[0], rel=1e-12)
+        assert r.B_c == pytest.approx(critical_loads(p.R, p.f, 1)[0], rel=1e-12)
         return
     args = (p.P, p.R, p.f)
-    if r["B_c"] == 0.0:  # spinning past the unloaded critical spin: unstable without load
-        assert r["stable"] is False and p.omega >= r["omega_rest"]
-        assert _sign_change_at(lambda w: static_determinant(0.0, *args, w, p.T), r["omega_rest"])
+    if r.B_c == 0.0:  # spinning past the unloaded critical spin: unstable without load
+        assert r.stable is False and p.omega >= r.omega_rest
+        assert _sign_change_at(lambda w: static_determinant(0.0, *args, w, p.T), r.omega_rest)
     else:
-        assert _sign_change_at(lambda b: static_determinant(b, *args, p.omega, p.T), r["B_c"])
+        assert _sign_change_at(lambda b: static_determinant(b, *args, p.omega, p.T), r.B_c)
 
 
 def test_strong_tension_is_answered_by_the_exact_determinant():
@@ -285,9 +285,9 @@ def test_strong_tension_is_answered_by_the_exact_determinant():
     the planner hands it to the exact determinant, which meets the string limit with its corrections."""
     p = RodParameters(**(SET | {"T": 1e4}))
     r = solve_point(p, 1e-8)
-    assert r["status"] == STATUS_OK and "exact determinant" in r["model"] and r["stable"] is True
-    assert r["B_c"] == pytest.approx(string_limit_load(p, order=2), rel=1e-6)
-    assert abs(r["B_c"] / (2 * np.pi * p.T) - 1) > 5e-4  # the boundary-layer correction (6.7e-4) is really there
+    assert r.status == STATUS_OK and "exact determinant" in r.model and r.stable is True
+    assert r.B_c == pytest.approx(string_limit_load(p, order=2), rel=1e-6)
+    assert abs(r.B_c / (2 * np.pi * p.T) - 1) > 5e-4  # the boundary-layer correction (6.7e-4) is really there
 
 
 def test_long_and_short_lengths_in_one_sweep():

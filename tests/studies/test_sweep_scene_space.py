@@ -29,15 +29,15 @@ params = st.builds(
 @given(params)
 def test_every_damped_sweep_point_is_answered_or_says_why(p):
     r = solve_point(p, 1e-8)
-    json.dumps(r, allow_nan=False)
-    assert r["status"] in (STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE)
-    if r["status"] != STATUS_OK:
-        assert r["reason"] and r["stable"] is None
+    json.dumps(r.as_dict(), allow_nan=False)
+    assert r.status in (STATUS_OK, STATUS_FAILED, STATUS_OUTSIDE)
+    if r.status != STATUS_OK:
+        assert r.reason and r.stable is None
         return
-    assert r["model"]
-    for key in ("B_c", "omega_c", "omega_rest"):
-        assert r[key] is None or (r[key] >= 0 and (math.isfinite(r[key]) or r[key] == math.inf))
-    assert isinstance(r["stable"], bool)
-    if r["B_c"] is not None and math.isfinite(r["B_c"]) and r["B_c"] > 0:
+    assert r.model
+    for v in (r.B_c, r.omega_c, r.omega_rest):
+        assert v is None or (v >= 0 and (math.isfinite(v) or v == math.inf))
+    assert isinstance(r.stable, bool)
+    if r.B_c is not None and math.isfinite(r.B_c) and r.B_c > 0:
         # the operating point is stable exactly when it lies below the critical load at its spin
-        assert r["stable"] == (p.B < r["B_c"] and (r["omega_rest"] is None or p.omega < r["omega_rest"]))
+        assert r.stable == (p.B < r.B_c and (r.omega_rest is None or p.omega < r.omega_rest))

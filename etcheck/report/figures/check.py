@@ -122,8 +122,8 @@ def campbell_plot(results: dict) -> str:
     ax1.scatter(X[unstable], freq[unstable], s=9, color="#c0392b", marker="x", label="growing mode (Re λ > 0)")
     ax2.scatter(X[~unstable], grow[~unstable], s=6, color="#1f4e79")
     ax2.scatter(X[unstable], grow[unstable], s=9, color="#c0392b", marker="x")
-    _shade_unstable_spin(ax1, lin, rpm, "unstable spin range")
-    _shade_unstable_spin(ax2, lin, rpm)
+    shade_unstable_spin(ax1, lin, rpm, "unstable spin range")
+    shade_unstable_spin(ax2, lin, rpm)
     for ax in (ax1, ax2):
         ax.axvline(op, color="#27ae60", lw=2, label=f"operating spin {op:.3g} rpm" if ax is ax1 else None)
         if crit["rpm"] is not None and crit["kind"] in ("divergence", "flutter"):
@@ -155,7 +155,7 @@ def _stable_spin_ranges(lin) -> list[tuple[float, float]] | None:
     return None if crit["rpm"] is None else [(0.0, crit["rpm"])]
 
 
-def _shade_unstable_spin(ax, lin, rpm, label=None):
+def shade_unstable_spin(ax, lin, rpm, label=None):
     """Shade the spin ranges where the straight tether is unstable at the operating load (nothing where they
     are not known)."""
     stable = _stable_spin_ranges(lin)
@@ -187,7 +187,7 @@ def stability_map_plot(results: dict) -> str:
     fig, ax = plt.subplots(figsize=(6.6, 4.4))
     ax.set_facecolor("#f6d5d1")
     if sm["stable_rows"]:
-        b_row, rows_rpm, cols, w_col = _shade_rows(ax, sm["stable_rows"], load)
+        b_row, rows_rpm, cols, w_col = shade_rows(ax, sm["stable_rows"], load)
         boundary = Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (exact, cut at static points)")
     else:
         b_row, rows_rpm, cols, w_col = _shade_grid(ax, load, rpm, np.array(sm["max_growth"]), lin["threshold"])
@@ -229,7 +229,7 @@ def stability_map_plot(results: dict) -> str:
     return _image(fig)
 
 
-def _shade_rows(ax, rows, load):
+def shade_rows(ax, rows, load):
     """Damped map: exact stable intervals per spin row, drawn as bands (one collection of rectangles)."""
     import numpy as np
     from matplotlib.collections import PolyCollection

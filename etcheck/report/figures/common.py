@@ -93,7 +93,7 @@ def image(fig) -> FigureImage:
     inspect = _INSPECT.get()
     if inspect is not None:
         inspect(fig)
-    png = _cropped_png(fig)
+    png = cropped_png(fig)
     pyplot().close(fig)
     width, height = Image.open(io.BytesIO(png)).size
     out = FigureImage(f'<img src="data:image/png;base64,{base64.b64encode(png).decode()}" '
@@ -161,7 +161,7 @@ def draw(jobs: dict[str, Callable[[], dict[str, FigureImage]]]) -> dict[str, Fig
     return mine
 
 
-def _cropped_png(fig) -> bytes:
+def cropped_png(fig) -> bytes:
     import numpy as np
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image

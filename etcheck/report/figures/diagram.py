@@ -25,7 +25,7 @@ COLOURS = ["#1f4e79", "#c0392b", "#27ae60", "#8e44ad", "#d35400", "#16a085", "#7
 MARKERS = {"break": ("s", "secondary pitchfork"), "fold": ("^", "fold"), "bp": ("D", "branch point")}
 
 
-def _segments(x, y, stable, cuts=()):
+def segments(x, y, stable, cuts=()):
     """Split a polyline where the stability flag changes (flags None: unknown): at a special point located between
     the two states (``cuts``: the (x, y) of each), where stability changes (Kelvin-Tait-Chetaev), else at the first
     state with the new flag; the pieces share that point, so the curve is continuous."""
@@ -59,7 +59,7 @@ def branch_plot(d: dict, xkey: str, ykey: str, xlabel: str, ylabel: str, title: 
     for n, b in enumerate(d["branches"]):
         c = COLOURS[n % len(COLOURS)]
         labels.append(_draw_branch(ax, b, xkey, ykey, c))
-        seen |= _draw_special_points(ax, b, xkey, ykey, seen)
+        seen |= draw_special_points(ax, b, xkey, ykey, seen)
         if pitchfork_key and b.get(pitchfork_key) is not None:
             ax.plot([b[pitchfork_key]], [0.0], marker="o", color=c, ms=4, ls="none")
     _draw_marks(ax, mark, critical)
@@ -101,7 +101,7 @@ def _spread(ax, labels: list) -> None:
 SMOOTH = 12
 
 
-def _smooth(x: np.ndarray, y: np.ndarray, span: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+def smooth(x: np.ndarray, y: np.ndarray, span: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
     """(x, y) through the points in order, by the monotone cubic (PCHIP) of each coordinate in the chord length of
     the points scaled by ``span`` (the branch's ranges in x and y: the figure's proportions), SMOOTH points per
     step; repeated points are dropped, and fewer than three (or any not finite) are joined by straight lines."""
@@ -124,8 +124,8 @@ def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str):
     mirror = ykey == "measure2" and b.get("symmetry") is None  # connecting branches come in mirror pairs
     cuts = [(q[_SPECIAL_X[xkey]], q[ykey]) for q in b.get("special", ())
             if xkey in _SPECIAL_X and q.get(ykey) is not None]
-    for xs, ys, st in _segments(x, y, b.get("stable"), cuts):
-        xs, ys = _smooth(xs, ys, span)
+    for xs, ys, st in segments(x, y, b.get("stable"), cuts):
+        xs, ys = smooth(xs, ys, span)
         style = {"lw": 2.2, "ls": "-"} if st in (True, None) else {"lw": 0.9, "ls": "--"}
         ax.plot(xs, ys, color=colour, **style)
         if mirror:
@@ -138,7 +138,7 @@ def _draw_branch(ax, b: dict, xkey: str, ykey: str, colour: str):
 _SPECIAL_X = {"values": "B", "IB0_N_per_m": "IB0_N_per_m"}
 
 
-def _draw_special_points(ax, b: dict, xkey: str, ykey: str, seen: set[str]) -> set[str]:
+def draw_special_points(ax, b: dict, xkey: str, ykey: str, seen: set[str]) -> set[str]:
     """The branch's special points (pitchforks, folds, branch points) where they were located (results without
     the point's own ``ykey`` measure: on the nearest computed state); each kind labelled once over the figure
     (``seen``: kinds labelled before). Returns the kinds drawn."""

@@ -65,6 +65,11 @@ def install() -> None:
         sys.meta_path.insert(0, _HOOK)
 
 
+def installed() -> bool:
+    """Whether the hook waits in front of the import system."""
+    return _HOOK in sys.meta_path
+
+
 def uninstall() -> None:
     """Remove the hook (it removes itself when scipy's clone is imported)."""
     if _HOOK in sys.meta_path:
