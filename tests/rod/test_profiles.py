@@ -4,7 +4,9 @@ tests/independent_fe.py) and the physics of a circulatory load."""
 
 from __future__ import annotations
 
+import contextlib
 import math
+import signal
 
 import independent_fe as fe
 import numpy as np
@@ -13,6 +15,7 @@ import pytest
 from etcheck.numerics.eigen import sparse_qep_nearest
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
+from etcheck.rod.straight import circulatory
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.circulatory import critical
 from etcheck.rod.straight.exact import exact_critical
@@ -167,3 +170,66 @@ def test_uniform_rod_with_other_ends_reproduces_the_exact_determinant(ends):
     c = critical(Tether(p), mode=False)
     ref = exact_critical(p).critical_load
     assert c.value == pytest.approx(ref.value, rel=1e-9)
+
+
+@contextlib.contextmanager
+def _terminates_within(seconds: int):
+    """Fail (rather than hang) when the block runs past ``seconds``: a bound on termination, not a timing."""
+    def stop(signum, frame):
+        raise TimeoutError(f"still running after {seconds} s")
+    old = signal.signal(signal.SIGALRM, stop)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+@pytest.mark.parametrize("gamma", [0.04375, 0.0])
+def test_tape_without_tension_terminates_and_says_what_was_not_located(gamma):
+    """A bare tape without tension (R = 2.6e-6, T = 0) under a rising current: the modes the load reshapes up to
+    3 x its expected critical load are hundreds of soft weak-axis modes. The search ends at once, not located, and
+    says why; it never reports a spurious eigenvalue (an instability at B = 0 from an unconverged solve)."""
+    t = Tether(TAPE.with_(T=0.0, gamma=gamma), RISING)
+    with _terminates_within(30):
+        c = critical(t, mode=False)
+    assert c.kind == CriticalKind.NOT_LOCATED and not c.converged
+    assert "modes, more than rung 1v examines" in c.message
+
+
+@pytest.mark.parametrize("gamma", [0.04375, 0.0])
+def test_round_wire_without_tension_terminates_with_its_flutter(gamma):
+    """A round wire (R = 1) without tension under a rising current: flutter, damped at a load agreeing on two
+    meshes, undamped at any load."""
+    p = RodParameters(P=1e-3, R=1.0, Gamma=0.77, B=1.0, T=0.0, gamma=gamma)
+    with _terminates_within(30):
+        c = critical(Tether(p, RISING), mode=False)
+    assert c.kind == CriticalKind.FLUTTER and c.converged
+    if gamma:
+        assert c.value == pytest.approx(0.0871160446584, rel=1e-9) and c.error <= 1e-8 * c.value
+    else:
+        assert c.value == 0.0
+
+
+def test_an_eigenvalue_solve_that_does_not_converge_is_not_located(monkeypatch):
+    """A solve that returns fewer eigenvalues than asked (what ARPACK gives when its restarts run out): the point
+    is not located (a missing eigenvalue could be the unstable one), never read as stable."""
+    solve = circulatory.sparse_qep_nearest
+
+    def partial(*args, **kwargs):
+        return solve(*args, **kwargs)[:-1]
+    monkeypatch.setattr(circulatory, "sparse_qep_nearest", partial)
+    c = critical(Tether(TAPE.with_(gamma=0.0), RISING), mode=False)
+    assert c.kind == CriticalKind.NOT_LOCATED and "converged on" in c.message
+
+
+def test_a_far_end_of_the_line_does_not_change_the_crossing():
+    """The line searched in stages: a crossing near the expected load is found with the band of modes of the first
+    stage, whatever the end asked for (here 20 x the expected range, where hundreds of modes are reshaped)."""
+    t = Tether(TAPE.with_(gamma=0.0), RISING)
+    hi = 20 * circulatory.expected_end(t, "B")
+    assert len(circulatory.stages(t, "B", hi)) == 3
+    far = critical(t, hi=hi, mode=False)
+    assert far.kind == CriticalKind.FLUTTER
+    assert far.value / TAPE.B == pytest.approx(0.7222265, abs=1e-6)

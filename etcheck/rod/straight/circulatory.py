@@ -43,7 +43,9 @@ from etcheck.rod.straight.spectral import CriticalKind
 
 __all__ = [
     "LADDER",
+    "MAX_EIGENVALUES",
     "MODEL",
+    "NotLocated",
     "RELATIVE",
     "THRESHOLD",
     "Crossing",
@@ -51,7 +53,10 @@ __all__ = [
     "Band",
     "band",
     "critical",
+    "default_hi",
+    "expected_end",
     "growth",
+    "stages",
 ]
 
 MODEL = "rung 1v (graded collocation, profiles)"
@@ -74,6 +79,21 @@ NOISE = 10.0
 NARROW = 0.25
 #: A critical load below this fraction of the scanned range is a crossing at zero (flutter at any load).
 AT_ZERO = 1e-7
+#: A line is scanned in stages: the first up to this many times the expected first critical value
+#: (:func:`expected`), each next one this many times further, up to the end asked for.
+STAGE = 4.0
+#: Most eigenvalues one point of a line examines; a band of more modes (a tape without tension under a
+#: load thousands of times its critical one reshapes hundreds of its soft modes) is not located.
+MAX_EIGENVALUES = 240
+#: ARPACK restarts per eigenvalue solve (a converging solve takes 2-5); eigenvalues not converged by then are
+#: missing, and the point is not located.
+RESTARTS = 60
+#: Most spectra computed along one line on one mesh (a search takes 40-150).
+MAX_SPECTRA = 1500
+
+
+class NotLocated(Exception):
+    """A search that cannot be completed within its bounds; the message says why."""
 
 
 @dataclass(frozen=True)
@@ -146,8 +166,7 @@ def band(fam: TetherFamily, point: dict, nev: int) -> Band:
     scale = max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
     if gamma == 0:
         return Band((SIGMA * scale,), (nev,), scale)
-    lam = sparse_qep_nearest(*fam.operator(0.0, point["omega"], point["T"], damped=False), k=nev, sigma=SIGMA * scale,
-                             scale=scale, ordering=ORDER)
+    lam = _solve(fam.operator(0.0, point["omega"], point["T"], damped=False), nev, SIGMA * scale, scale, "zero load")
     freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
     if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # the cluster lies beyond the band: as without damping
         return Band((SIGMA * scale,), (nev,), scale)
@@ -176,6 +195,17 @@ ORDER = "NATURAL"
 SIGMA = 0.3
 
 
+def _solve(A, k: int, sigma, scale: float, where: str) -> np.ndarray:
+    """The k eigenvalues of the operator A nearest sigma, all of them: ARPACK bounded by :data:`RESTARTS`, and a
+    point where some did not converge is not located (a missing eigenvalue could be the unstable one)."""
+    k = min(k, A[0].shape[0] // 2)
+    lam = sparse_qep_nearest(*A, k=k, sigma=sigma, scale=scale, ordering=ORDER, maxiter=RESTARTS)
+    if lam.size < k:
+        raise NotLocated(f"the eigenvalue solver converged on {lam.size} of {k} eigenvalues near {sigma:.4g} at "
+                         f"{where}")
+    return lam
+
+
 class _Line:
     """Spectra along one axis on one mesh (memoised): the eigenvalues of the band at each point, the few near
     a given one, and the static points of the line."""
@@ -184,9 +214,13 @@ class _Line:
         self.tether, self.axis, self.N, self.hi, self.lo = tether, axis, N, hi, 0.0
         p = tether.params
         ends = tether.with_(**{axis: hi})
+        nev = _nev(tether, _mean_params(ends))
+        if nev > MAX_EIGENVALUES:
+            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {nev // 2} modes, more than rung 1v "
+                             f"examines ({MAX_EIGENVALUES // 2})")
         self.fam = family(ends, N)
         self.base = {"B": p.B, "omega": p.omega, "T": p.T}
-        self.band = band(self.fam, self.point(0.0), _nev(tether, _mean_params(ends)))
+        self.band = band(self.fam, self.point(0.0), nev)
         self.memo: dict[float, np.ndarray] = {}
         self._static: np.ndarray | None = None
         self.tracked: list[tuple[float, complex, np.ndarray]] = []
@@ -197,8 +231,10 @@ class _Line:
     def spectrum(self, x: float) -> np.ndarray:
         """The band's eigenvalues at x."""
         if x not in self.memo:
+            if len(self.memo) >= MAX_SPECTRA:
+                raise NotLocated(f"the search along {self.axis} took more than {MAX_SPECTRA} spectra (N = {self.N})")
             A = self.fam.operator(**self.point(x))
-            lam = [sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+            lam = [_solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
                    for sigma, k in zip(self.band.sigmas, self.band.ks)]
             self.memo[x] = np.concatenate(lam)
         return self.memo[x]
@@ -435,10 +471,39 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     ``tol`` (relative); the error is their distance plus the root finder's tolerance. ``near``: where a crossing
     is expected (a bracket, from a neighbouring tether): sought there first, and kept only where the tether is
     stable just below it; else the line is scanned from 0. ``check=False``: the first mesh alone (no error
-    estimate from a second one: a survey, such as the points of a damping map, not a verdict)."""
+    estimate from a second one: a survey, such as the points of a damping map, not a verdict).
+
+    The line is searched in stages (:func:`stages`), each from 0 to its end with the band of modes that end
+    reshapes, so that a crossing near the expected value is found without the modes of a far end. Every solve
+    and loop is bounded: a search that exceeds a bound is reported as not located, with the reason."""
     if axis not in ("B", "omega"):
         raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
     hi = default_hi(tether, axis) if hi is None else float(hi)
+    try:
+        for end in stages(tether, axis, hi):
+            c = _ladder(tether, axis, end, tol, ladder, mode, near, check)
+            if c.kind != CriticalKind.NONE_FOUND:
+                return c
+            near = None
+        return c
+    except NotLocated as err:
+        return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, 0.0, hi,
+                        ladder[0], ladder[0], f"not located: {err} ({MODEL})")
+
+
+def stages(tether: Tether, axis: str, hi: float) -> list[float]:
+    """The ends of the stages of a search up to ``hi``: :func:`expected_end`, then :data:`STAGE` times further
+    each, the last ``hi``."""
+    out, end = [], expected_end(tether, axis)
+    while end < hi / STAGE ** 0.5:
+        out.append(end)
+        end *= STAGE
+    return out + [hi]
+
+
+def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int, ...], mode: bool,
+            near: tuple[float, float] | None, check: bool) -> Crossing:
+    """:func:`critical` on [0, hi] (one stage)."""
     lo = 0.0
     rtol = min(tol, 1e-6) * 1e-2
     noise = None
@@ -550,11 +615,16 @@ def default_hi(tether: Tether, axis: str) -> float:
     """End of the line scanned when none is given: for the load, 3 x the expected first critical load of the
     tether under its mean tension with the uniform load of its mean current; for the spin, 2 x the expected
     critical spin (:func:`etcheck.rod.straight.exact.root_scale`), at least 1.1 x the operating value."""
+    return max(expected_end(tether, axis), 1.1 * (tether.params.B if axis == "B" else tether.params.omega))
+
+
+def expected_end(tether: Tether, axis: str) -> float:
+    """3 x the expected first critical load, 2 x the expected critical spin (:func:`default_hi`)."""
     from etcheck.rod.straight.exact import root_scale
 
     mean = _mean_params(tether)
     s = np.linspace(0.0, 1.0, 201)
     b = max(float(np.mean(np.abs(tether.current(s)))), 0.1)
     if axis == "B":
-        return max(3.0 * root_scale(mean.with_(B=0.0), "B", 1.0) / b, 1.1 * tether.params.B)
-    return max(2.0 * root_scale(mean.with_(omega=0.0), "omega", 1.0), 1.1 * tether.params.omega)
+        return 3.0 * root_scale(mean.with_(B=0.0), "B", 1.0) / b
+    return 2.0 * root_scale(mean.with_(omega=0.0), "omega", 1.0)
