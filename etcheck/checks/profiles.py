@@ -23,7 +23,14 @@ import math
 import numpy as np
 
 from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
-from etcheck.rod.straight.circulatory import THRESHOLD, Crossing, critical, critical_spin, crossing_mode
+from etcheck.rod.straight.circulatory import (
+    THRESHOLD,
+    Crossing,
+    critical,
+    critical_spin,
+    crossing_mode,
+    damping_survey,
+)
 from etcheck.rod.straight.profiles import Tether
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import RPM, Scaled
@@ -67,11 +74,9 @@ def _damping_map(t: Tether, gamma_max: float, tol: float, wc: float, load: float
     (undamped included), located again on two meshes for the verdict."""
     points: list[DampingPoint] = []
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
-    near, least = None, None
-    for frac in DAMPING_FRACTIONS:  # each from the last one's crossing (verified stable below, else scanned)
-        g = frac * gamma_max
-        c = critical(t.with_(gamma=g), tol=tol, near=near, mode=False, check=False)
-        near = (0.8 * c.value, 1.25 * c.value) if CriticalKind(c.kind).located and c.value > 0 else None
+    least = None
+    gammas = tuple(frac * gamma_max for frac in DAMPING_FRACTIONS)
+    for g, c in zip(gammas, damping_survey(t, gammas, tol)):  # each continued from the last one's crossing
         value = c.value if CriticalKind(c.kind).located else None
         points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
                        "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
@@ -111,19 +116,24 @@ def _samples(scaled: Scaled, current_A: float) -> tuple[dict | None, dict | None
     return current, tension
 
 
-def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float):
-    """(undamped crossing or None, damping map, the crossing the verdict uses, why)."""
+def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, draft: bool = False):
+    """(undamped crossing or None, damping map, the crossing the verdict uses, why). ``draft``: the undamped
+    threshold on one mesh unless the verdict uses it (then on two, as every crossing a verdict uses)."""
     p = t.params
     if not t.circulatory:  # conservative: the mission's damping, as for a uniform tether
         c = critical(t, tol=tol, mode=False)
         return None, [], c, ("the load is conservative (one current along the tether): the critical load at the "
                              f"mission's damping (gamma = {p.gamma:.4g})")
-    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
+    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
     if fixed or p.gamma == 0:
+        if p.gamma == 0 and draft:  # the verdict's: on two meshes (the first one's search reused)
+            undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
         c = critical(t, tol=tol, mode=False) if p.gamma > 0 else undamped
         return undamped, [], c, (f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the "
                                  "undamped threshold is reported beside it")
     points, worst = _damping_map(t, p.gamma, tol, wc, load, undamped)
+    if worst is undamped and draft:  # the verdict's: on two meshes (the first one's search reused)
+        worst = undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
     where = "undamped" if worst is undamped else f"at gamma = {worst_gamma(points, worst):.4g}"
     return undamped, points, worst, (
         "the mission does not fix the damping (no tether.damping_time): the circulatory load's threshold is "
@@ -145,7 +155,7 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
     sc = scaled.scales
     wc, load = sc.frequency, sc.load
     p = t.params
-    undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load)
+    undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load, draft)
     gamma = verdict_gamma(p.gamma, points, verdict, undamped)
     verdict = crossing_mode(t.with_(gamma=gamma), verdict)  # the mode of the crossing the verdict uses, only
     linear = _linear(scaled, t.with_(gamma=gamma), verdict, tol)

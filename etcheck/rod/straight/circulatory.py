@@ -53,6 +53,7 @@ __all__ = [
     "Band",
     "band",
     "critical",
+    "damping_survey",
     "default_hi",
     "expected_end",
     "growth",
@@ -437,19 +438,42 @@ def _kind(z: complex) -> str:
     return CriticalKind.FLUTTER if abs(z.imag) > 1e-6 * max(1.0, abs(z)) else CriticalKind.DIVERGENCE
 
 
+#: Most steps by which a bracket from another mesh is widened upwards until its end is unstable.
+WIDEN = 6
+
+
+def _widened(line: _Line, near: tuple[float, float], lo: float, hi: float) -> tuple[float, float] | None:
+    """The bracket ``near`` (from another mesh or a neighbouring tether) widened by its width either side, stable at
+    its start and unstable at its end on this mesh: its end moved up by a width growing 8 times a step while stable
+    there (a slow crossing, Re lambda of 1e-10 a little past it, is not yet counted as unstable), at most
+    :data:`WIDEN` steps, never past a static point (a band of the upper half-plane sees the real eigenvalue it
+    sends into Re lambda > 0 only just past it); None where it is unstable at its start or stays stable."""
+    a, b = near
+    width = max(b - a, 1e-6 * abs(b))
+    a2, b2 = max(lo, a - width), min(hi, b + width)
+    if line.unstable(a2):
+        return None
+    for _ in range(WIDEN):
+        if line.unstable(b2) or np.any((line.static_roots() > a2) & (line.static_roots() <= b2)):
+            return a2, b2  # a static point in it: the crossing, or unstable past it (_locate)
+        if b2 >= hi:
+            return None
+        width *= 8.0
+        a2, b2 = b2, min(hi, b2 + width)
+    return None
+
+
 def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
     """The first crossing on one mesh: (value, eigenvalue), (lo, eigenvalue) when unstable at lo, or
     (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
     found from it is kept only when the tether is stable just below it on this mesh."""
-    if near is not None:
-        a, b = near
-        width = max(b - a, 1e-6 * abs(b))
-        a2, b2 = max(lo, a - width), min(hi, b + width)
-        if not line.unstable(a2) and line.unstable(b2):
-            x, z = _locate(line, a2, b2, rtol)
-            below = x * (1 - 1e-6) if x > 0 else lo
-            if x <= a2 or not line.unstable(below) or below <= lo:
-                return x, z
+    bracket = None if near is None else _widened(line, near, lo, hi)
+    if bracket is not None:
+        a2, b2 = bracket
+        x, z = _locate(line, a2, b2, rtol)
+        below = x * (1 - 1e-6) if x > 0 else lo
+        if x <= a2 or not line.unstable(below) or below <= lo:
+            return x, z
     found = _scan(line, lo, hi, SCAN)
     if found is None:
         return None, None
@@ -457,6 +481,101 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
     if a == b:
         return a, _unstable_eigenvalue(line.spectrum(a))
     return _locate(line, a, b, rtol)
+
+
+#: The first crossing found on each mesh, by how it was sought (from a bracket, or scanned from 0): a search repeated on
+#: the same mesh (the verdict's crossing after the damping map's survey) reuses it. At most :data:`FOUND_SIZE`.
+_FOUND: dict = {}
+FOUND_SIZE = 64
+
+
+def _first_on(line: _Line, lo: float, hi: float, rtol: float, near):
+    """:func:`_first`, memoised in :data:`_FOUND` (a search from a bracket may reuse a scan's answer, the first
+    crossing; a scan only a scan's)."""
+    key = (line.tether, line.axis, line.N, lo, hi, rtol)
+    for scanned in (True,) if near is None else (True, False):
+        if key + (scanned,) in _FOUND:
+            return _FOUND[key + (scanned,)]
+    found = _first(line, lo, hi, rtol, near)
+    _remember(key + (near is None,), found)
+    return found
+
+
+def _remember(key: tuple, found) -> None:
+    if len(_FOUND) >= FOUND_SIZE:
+        _FOUND.pop(next(iter(_FOUND)))
+    _FOUND[key] = found
+
+
+#: Most secant steps of the continuation of a crossing to the next damping of a survey.
+SECANT_STEPS = 12
+
+
+def damping_survey(tether: Tether, gammas: tuple[float, ...], tol: float = 1e-8) -> list[Crossing]:
+    """The first crossing along the load at each Kelvin-Voigt damping ``gammas`` (rising), on one mesh (N =
+    LADDER[0]): a survey such as the damping map, as :func:`critical` with ``check=False`` at each. The first is
+    searched for; each next one is continued from the last: the crossing eigenpair tracked (nonlinear inverse
+    iteration) at the new damping and its real part brought to 0 by secant steps along the load, kept where the
+    tether is stable just below it on the mesh (as a search from a bracket); else searched from the last one's
+    bracket."""
+    hi = default_hi(tether, "B")
+    rtol = min(tol, 1e-6) * 1e-2
+    out: list[Crossing] = []
+    seed = None
+    for g in gammas:
+        t = tether.with_(gamma=g)
+        c, seed = (None, None) if seed is None else _continued(t, hi, rtol, tol, seed)
+        if c is None:
+            near = None if not out or not _positive(out[-1]) else (0.8 * out[-1].value, 1.25 * out[-1].value)
+            c = critical(t, tol=tol, near=near, mode=False, check=False)
+            seed = _seed(t, hi, c) if _positive(c) and c.kind == CriticalKind.FLUTTER else None
+        out.append(c)
+    return out
+
+
+def _positive(c: Crossing) -> bool:
+    return CriticalKind(c.kind).located and c.value > 0
+
+
+def _seed(t: Tether, hi: float, c: Crossing) -> tuple[float, complex, np.ndarray] | None:
+    """(x, lambda, y): the crossing eigenpair of ``c`` on the survey's mesh."""
+    try:
+        line = _Line(t, "B", LADDER[0], hi)
+        lam = line.track(c.value, c.eigenvalue)
+    except NotLocated:
+        return None
+    return line.tracked[-1] if abs(lam - c.eigenvalue) <= 1e-6 * (1 + abs(lam)) else None
+
+
+def _continued(t: Tether, hi: float, rtol: float, tol: float, seed) -> tuple[Crossing | None, tuple | None]:
+    """The crossing of ``t`` continued from ``seed`` (another damping's crossing eigenpair on the same mesh) and its
+    own eigenpair, or (None, None) where the secant steps do not converge, the eigenvalue does not cross into
+    Re lambda > 0 as the load grows, or the tether is unstable just below the crossing."""
+    line = _Line(t, "B", LADDER[0], hi)
+    x0 = seed[0]
+    line.tracked = [seed]
+    h0 = line.track(x0, seed[1]).real
+    x1 = x0 * (1 + 1e-4)
+    h1 = line.track(x1, seed[1]).real
+    if h1 <= h0:  # Re lambda does not grow with the load here: not this crossing
+        return None, None
+    for _ in range(SECANT_STEPS):
+        if h1 == h0:
+            return None, None
+        x0, h0, x1 = x1, h1, x1 - h1 * (x1 - x0) / (h1 - h0)
+        if not 0 < x1 <= hi:
+            return None, None
+        z = line.track(x1, complex(0.0, seed[1].imag))
+        h1 = z.real
+        if abs(x1 - x0) <= rtol * x1:
+            break
+    else:
+        return None, None
+    if _kind(z) != CriticalKind.FLUTTER or line.unstable(x1 * (1 - 1e-6)):
+        return None, None
+    z = complex(z.real, abs(z.imag))
+    _remember((t, "B", line.N, 0.0, hi, rtol, False), (x1, z))
+    return _crossing(line, "B", x1, x1, z, 0.0, hi, line.N, tol, rtol, False), line.tracked[-1]
 
 
 @single_blas_thread
@@ -510,12 +629,12 @@ def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int,
     for N in ladder:
         M = check_resolution(N)
         line = _Line(tether, axis, N, hi)
-        x1, z1 = _first(line, lo, hi, rtol, near)
+        x1, z1 = _first_on(line, lo, hi, rtol, near)
         if not check:
             M, x2, z2 = N, x1, z1
             break
         bracket = None if x1 is None else (x1 * (1 - 1e-3), x1 * (1 + 1e-3) + 1e-12 * hi)
-        x2, z2 = _first(_Line(tether, axis, M, hi), lo, hi, rtol, bracket)
+        x2, z2 = _first_on(_Line(tether, axis, M, hi), lo, hi, rtol, bracket)
         if x1 is None and x2 is None:
             return Crossing(axis, math.nan, CriticalKind.NONE_FOUND, complex(math.nan), math.nan, True, lo, hi, N, M,
                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL}, N = {N} and {M})")
