@@ -125,6 +125,10 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, 
         return None, [], c, ("the load is conservative (one current along the tether): the critical load at the "
                              f"mission's damping (gamma = {p.gamma:.4g})")
     undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+    if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:  # no damping can be less favourable
+        undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)  # the verdict's: on two meshes
+        return undamped, [], undamped, ("undamped the tether flutters at any load: no damping can give a lower "
+                                        "threshold (the damping map is not computed in a draft)")
     if fixed or p.gamma == 0:
         if p.gamma == 0 and draft:  # the verdict's: on two meshes (the first one's search reused)
             undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)

@@ -233,3 +233,18 @@ def test_a_far_end_of_the_line_does_not_change_the_crossing():
     far = critical(t, hi=hi, mode=False)
     assert far.kind == CriticalKind.FLUTTER
     assert far.value / TAPE.B == pytest.approx(0.7222265, abs=1e-6)
+
+
+def test_damping_survey_agrees_with_a_search_at_each_damping():
+    """The damping map's survey, continued in gamma from one crossing to the next, against a search of its own at
+    each damping (one mesh each), on a tape with a rising current and a 200 m tether with a kinked current and a
+    tension profile."""
+    small = RodParameters(P=1e-3, R=0.5526315789473685, Gamma=0.7692307692307692, B=0.0126, T=0.0404)
+    parabola = Profile.from_function(lambda s: 1.3 - 0.15 * (2 * s - 1) ** 2, degree=2)
+    for t in (Tether(TAPE.with_(T=1.2), RISING), Tether(small, KINKED, parabola)):
+        gammas = (4.375e-4, 4.375e-3, 0.04375)
+        survey = circulatory.damping_survey(t, gammas)
+        for g, c in zip(gammas, survey):
+            own = critical(t.with_(gamma=g), mode=False, check=False)
+            assert c.kind == own.kind == CriticalKind.FLUTTER
+            assert c.value == pytest.approx(own.value, rel=1e-8)

@@ -463,10 +463,15 @@ def _widened(line: _Line, near: tuple[float, float], lo: float, hi: float) -> tu
     return None
 
 
-def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
+def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None):
     """The first crossing on one mesh: (value, eigenvalue), (lo, eigenvalue) when unstable at lo, or
     (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
-    found from it is kept only when the tether is stable just below it on this mesh."""
+    found from it is kept only when the tether is stable just below it on this mesh. ``hint``: (x, lambda), that
+    crossing on the other mesh: a flutter eigenvalue crossing on its own is followed from it (:func:`_secant`)."""
+    if hint is not None and hint[0] > lo and not collides(line.tether) and _kind(hint[1]) == CriticalKind.FLUTTER:
+        found = _secant(line, hint[0], hint[1], hi, rtol)
+        if found is not None:
+            return found
     bracket = None if near is None else _widened(line, near, lo, hi)
     if bracket is not None:
         a2, b2 = bracket
@@ -489,14 +494,14 @@ _FOUND: dict = {}
 FOUND_SIZE = 64
 
 
-def _first_on(line: _Line, lo: float, hi: float, rtol: float, near):
+def _first_on(line: _Line, lo: float, hi: float, rtol: float, near, hint=None):
     """:func:`_first`, memoised in :data:`_FOUND` (a search from a bracket may reuse a scan's answer, the first
     crossing; a scan only a scan's)."""
     key = (line.tether, line.axis, line.N, lo, hi, rtol)
     for scanned in (True,) if near is None else (True, False):
         if key + (scanned,) in _FOUND:
             return _FOUND[key + (scanned,)]
-    found = _first(line, lo, hi, rtol, near)
+    found = _first(line, lo, hi, rtol, near, hint)
     _remember(key + (near is None,), found)
     return found
 
@@ -549,33 +554,42 @@ def _seed(t: Tether, hi: float, c: Crossing) -> tuple[float, complex, np.ndarray
 
 def _continued(t: Tether, hi: float, rtol: float, tol: float, seed) -> tuple[Crossing | None, tuple | None]:
     """The crossing of ``t`` continued from ``seed`` (another damping's crossing eigenpair on the same mesh) and its
-    own eigenpair, or (None, None) where the secant steps do not converge, the eigenvalue does not cross into
-    Re lambda > 0 as the load grows, or the tether is unstable just below the crossing."""
+    own eigenpair, or (None, None) where :func:`_secant` finds none."""
     line = _Line(t, "B", LADDER[0], hi)
-    x0 = seed[0]
     line.tracked = [seed]
-    h0 = line.track(x0, seed[1]).real
-    x1 = x0 * (1 + 1e-4)
-    h1 = line.track(x1, seed[1]).real
-    if h1 <= h0:  # Re lambda does not grow with the load here: not this crossing
+    found = _secant(line, seed[0], seed[1], hi, rtol)
+    if found is None:
         return None, None
+    _remember((t, "B", line.N, 0.0, hi, rtol, False), found)
+    x, z = found
+    return _crossing(line, "B", x, x, z, 0.0, hi, line.N, tol, rtol, False), line.tracked[-1]
+
+
+def _secant(line: _Line, x: float, z: complex, hi: float, rtol: float) -> tuple[float, complex] | None:
+    """The crossing near x of the eigenvalue near z (a flutter eigenvalue crossing from the left half-plane, from
+    another mesh or damping): tracked along the line (from ``line.tracked``, else found near z) and its real part
+    brought to 0 by secant steps, at most :data:`SECANT_STEPS`; None where they do not converge, where Re lambda does
+    not grow along the line, or where the tether is unstable just below the point found."""
+    x0, x1 = x, x * (1 + 1e-4)
+    h0 = line.track(x0, z).real
+    h1 = line.track(x1, z).real
+    if h1 <= h0:  # Re lambda does not grow along the line here: not this crossing
+        return None
     for _ in range(SECANT_STEPS):
         if h1 == h0:
-            return None, None
+            return None
         x0, h0, x1 = x1, h1, x1 - h1 * (x1 - x0) / (h1 - h0)
         if not 0 < x1 <= hi:
-            return None, None
-        z = line.track(x1, complex(0.0, seed[1].imag))
-        h1 = z.real
+            return None
+        lam = line.track(x1, complex(0.0, z.imag))
+        h1 = lam.real
         if abs(x1 - x0) <= rtol * x1:
             break
     else:
-        return None, None
-    if _kind(z) != CriticalKind.FLUTTER or line.unstable(x1 * (1 - 1e-6)):
-        return None, None
-    z = complex(z.real, abs(z.imag))
-    _remember((t, "B", line.N, 0.0, hi, rtol, False), (x1, z))
-    return _crossing(line, "B", x1, x1, z, 0.0, hi, line.N, tol, rtol, False), line.tracked[-1]
+        return None
+    if _kind(lam) != CriticalKind.FLUTTER or line.unstable(x1 * (1 - 1e-6)):
+        return None
+    return float(x1), complex(lam.real, abs(lam.imag))
 
 
 @single_blas_thread
@@ -634,7 +648,7 @@ def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int,
             M, x2, z2 = N, x1, z1
             break
         bracket = None if x1 is None else (x1 * (1 - 1e-3), x1 * (1 + 1e-3) + 1e-12 * hi)
-        x2, z2 = _first_on(_Line(tether, axis, M, hi), lo, hi, rtol, bracket)
+        x2, z2 = _first_on(_Line(tether, axis, M, hi), lo, hi, rtol, bracket, None if x1 is None else (x1, z1))
         if x1 is None and x2 is None:
             return Crossing(axis, math.nan, CriticalKind.NONE_FOUND, complex(math.nan), math.nan, True, lo, hi, N, M,
                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL}, N = {N} and {M})")
