@@ -67,6 +67,7 @@ def random_mission(rng: np.random.Generator, name: str) -> tuple[dict, str]:
     ratio = 10 ** rng.uniform(-4.0, 4.0)
     current = ratio * critical / (field_uT * 1e-6)
     operation["current"] = [f"{0.2 * current!r} A", f"{current!r} A"] if rng.random() < 0.3 else f"{current!r} A"
+    profile = _current_profile(rng, operation)
     check = data["check"]
     check["required_margin"] = round(float(rng.uniform(1.2, 3.0)), 2)
     if rng.random() < 0.3:
@@ -76,10 +77,26 @@ def random_mission(rng: np.random.Generator, name: str) -> tuple[dict, str]:
     if rng.random() < 0.15:
         data["uncertainty"] = {"bending_stiffness": {"distribution": "normal", "sigma": "10 %"},
                                "current": {"distribution": "uniform", "bounds": [f"{0.9 * current!r} A", f"{current!r} A"]}}
-    what = (f"L={L:.3g} m R={R:.2g} spin={spin_factor:g}x load={ratio:.2g}x{damping}{tension}"
+    what = (f"L={L:.3g} m R={R:.2g} spin={spin_factor:g}x load={ratio:.2g}x{damping}{tension}{profile}"
             f"{' orbit' if 'orbit' in data else ''}{' N=' + str(check['resolution']) if 'resolution' in check else ''}"
             f"{' [uncertainty]' if 'uncertainty' in data else ''}")
     return data, what
+
+
+def _current_profile(rng: np.random.Generator, operation: dict) -> str:
+    """A current along the tether (a bare tether's) for a quarter of the missions: rising or falling linearly,
+    or rising to a kink and flat past it; its words."""
+    if rng.random() >= 0.25:
+        return ""
+    shape = int(rng.integers(3))
+    if shape == 0:
+        operation["current_profile"] = {"at": [0.0, 1.0], "fraction": [0.0, 1.0]}
+    elif shape == 1:
+        operation["current_profile"] = {"at": [0.0, 1.0], "fraction": [1.0, round(float(rng.uniform(0.0, 0.5)), 3)]}
+    else:
+        kink = round(float(rng.uniform(0.2, 0.8)), 3)
+        operation["current_profile"] = {"at": [0.0, kink, 1.0], "fraction": [0.0, 1.0, 1.0]}
+    return f" current-profile({'rising falling kinked'.split()[shape]})"
 
 
 def _tether(rng: np.random.Generator, L: float, EI1: float, R: float, mass: float, wc: float) -> tuple[dict, str]:

@@ -249,9 +249,19 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
         "damping", "material damping (Kelvin-Voigt)", f"γ = {d['gamma']:.4g} ({d['damping_time_s']:.3g} s)",
         "tether.damping_time" if m.damping_time is not None else "not given: the least favourable up to the "
         "paper's estimate (Sec. VII B)", _flag(m, "tether.damping_time") if m.damping_time is not None else DEFAULT,
-        d["why"], None, "not an elasticity: with a circulatory load damping can lower the threshold (Ziegler)"
-        if profiles["circulatory"] else _RUNG_1V_COST, "no damping" if undamped is not None else None, undamped)
+        d["why"], *_damping_elasticity(profiles["circulatory"], d["gamma"]),
+        "no damping" if undamped is not None else None, undamped)
     return [current_row, tension_row, field_row, damping_row]
+
+
+def _damping_elasticity(circulatory: bool, gamma: float) -> tuple[float | None, str]:
+    """How the margin of rung 1v moves with the damping: not an elasticity under a circulatory load (damping can
+    lower its threshold: Ziegler), exactly 0 under a conservative one with damping (Kelvin-Tait-Chetaev)."""
+    if circulatory:
+        return None, "not an elasticity: with a circulatory load damping can lower the threshold (Ziegler)"
+    if gamma > 0:
+        return 0.0, "exact (Kelvin-Tait-Chetaev: a conservative load)"
+    return None, _RUNG_1V_COST
 
 
 def _profile_tension(inp: Inputs, bound: float | None, uniform: float | None) -> AssumptionRecord:

@@ -179,27 +179,22 @@ def design_limits(mission: Mission, base: Scene, options: WhirlOptions, rung_1v:
     else:
         limits = [_not_sought(inp, name, skip) for name in _LIMITS] if skip else \
             split_map(lambda name: _limit(inp, name), list(_LIMITS))
+    basis = ""
     if rung_1v:
-        limits = [_on_the_bound(lim) for lim in limits]
+        if mission.current_profile is None and any(lim["status"] != "not sought" for lim in limits):
+            basis = BOUND
         if along is not None and base.spin_rate == 0:
             limits[1] = _current_from_margin(inp, *along)
     return {"required": inp.required, "tolerance": LIMIT_TOLERANCE, "limits": limits,
-            "time_s": time.perf_counter() - started}
+            "time_s": time.perf_counter() - started, "basis": basis}
 
 
 #: why a limit is not sought for a tether with a current along it
 RUNG_1V = ("not sought with the current along the tether: each margin takes rung 1v (seconds an evaluation) and "
            "one current is no bound for a circulatory load; map it with etcheck sweep")
-#: what a limit of a tether with only its tension along it is
-BOUND = ("under the smallest tension held constant along the tether (a conservative bound: tension stabilises; "
+#: what the limits of a tether with only its tension along it are (but the largest current: rung 1v's own)
+BOUND = ("under the smallest tension held constant along the tether, a conservative bound (tension stabilises; "
          "rung 1v takes seconds a margin)")
-
-
-def _on_the_bound(limit: DesignLimit) -> DesignLimit:
-    """A limit located under the uniform smallest tension, said so (for a tether with its tension along it)."""
-    if limit["status"] == "not sought" and limit["note"] == RUNG_1V:
-        return limit
-    return limit | {"note": f"{limit['note']}; {BOUND}" if limit["note"] else BOUND}
 
 
 def _current_from_margin(inp: Inputs, margin: float, error: float) -> DesignLimit:

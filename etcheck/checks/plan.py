@@ -16,7 +16,7 @@ R_MIN_SPECTRAL = 1e-3
 
 SPECTRAL, EXACT, PROFILES = "spectral", "exact determinant", "profiles"
 EXACT_MODEL = "rung 1 (linear, exact characteristic determinant)"
-PROFILES_MODEL = "rung 1v (linear, current and tension along the tether; graded collocation)"
+PROFILES_MODEL = "rung 1v (linear, profiles along the tether)"
 
 RUNG_NAMES = {0: "rung 0 (analytic)", 1: "rung 1 (linear spectral)",
               3: "rungs 2-3 (post-buckling equilibria and their stability)"}

@@ -39,7 +39,7 @@ from etcheck.scaling import RPM, Scaled
 DAMPING_FRACTIONS = (1e-3, 1e-2, 1e-1, 0.3, 1.0)
 #: Tolerance of the uniform-tension bound (it is a bound, not the verdict).
 BOUND_TOLERANCE = 1e-6
-MODEL = "rung 1v (linear, current and tension along the tether; graded collocation)"
+MODEL = "rung 1v (linear, profiles along the tether)"
 
 
 def _record(c: Crossing, tol: float) -> CriticalPoint:

@@ -102,6 +102,7 @@ class DesignLimitsSection(TypedDict):
     tolerance: float
     limits: list[DesignLimit]
     time_s: float
+    basis: str  # the model of the limits where it is not the check's own (a bound); "" otherwise
 
 
 class FlightSection(TypedDict):

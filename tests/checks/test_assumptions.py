@@ -123,6 +123,8 @@ def test_pmg_flight_record():
     assert any("the bow under the lateral Lorentz load" in item and "4.29 %" in item for item in f["not_modelled"])
     assert any("end masses" in item and "marked as assumed" in item for item in f["not_modelled"])
     assert check(MISSIONS / "set.toml").results["flight"] is None
+    rows = _rows(r)  # one current, its tension along it (rung 1v): a conservative load
+    assert rows["damping"]["elasticity"] == 0.0 and rows["tension"]["alternative"].startswith("the smallest tension")
 
 
 def test_flight_agreement_within_the_model():

@@ -78,7 +78,7 @@ def test_tape_limits_on_the_exact_determinant_route():
     limits = _limits(r)
     tension = limits["end_tension"]
     assert tension["status"] == "located" and 0 < tension["limit"] < r["scene"]["tension_N"]
-    assert "smallest tension held constant" in tension["note"]
+    assert "smallest tension held constant" in r["design_limits"]["basis"]
     gg = mission.gravity_gradient
     k = tension["end_mass_factor"]
     scaled_gg = replace(gg, upper_mass=k * gg.upper_mass, lower_mass=k * gg.lower_mass)

@@ -135,8 +135,9 @@ def _assert_page_one_states_what_decides_the_verdict(results: dict, pages: list[
     """Page 1 of a check report: the verdict (with the reason where outside the model's validity), the
     assumptions, the model's validity and the design limits; nowhere a word that needs a screen."""
     first = pages[0]
+    tension = "tension along the tether" if results["profiles"] else "end tension"
     for words in ("Margins", "What decides the verdict", "end attachment", "current along the tether",
-                  "end tension", "field along the tether", "material damping", "the model assumes the tether is",
+                  tension, "field along the tether", "material damping", "the model assumes the tether is",
                   "straight under the lateral Lorentz load", "longest tether", "largest current", "smallest tension",
                   "largest spin rate"):
         assert words in first, (words, first[:300])

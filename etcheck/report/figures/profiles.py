@@ -4,7 +4,7 @@ from the JSON-able results alone."""
 
 from __future__ import annotations
 
-from etcheck.report.figures.common import image
+from etcheck.report.figures.common import image, legend_below
 from etcheck.report.figures.common import pyplot as _plt
 
 
@@ -26,10 +26,12 @@ def profiles_plot(results: dict) -> str:
             ax.axhline(low, color="#7d3c98", ls=":", lw=1, label=f"smallest, {low:.3g} N (the bound)")
             ax.set_ylabel("tension T(s) [N]")
             ax.set_title("Tension along the tether", fontsize=9)
-            ax.legend(fontsize=7, loc="lower center")
         ax.set_xlabel("height above the lower end [m]")
         ax.set_xlim(0, data["height_m"][-1])
     fig.tight_layout()
+    for ax, (key, _) in zip(axes[0], panels):
+        if key == "tension":
+            legend_below(ax, ncol=1)
     return image(fig)
 
 
@@ -54,8 +56,8 @@ def critical_mode_plot(results: dict) -> str:
     ax.set_xlabel("height above the lower end [m]")
     ax.set_ylabel("deflection / largest (–)")
     ax.set_xlim(0, L)
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.28), ncol=3, frameon=False)
     fig.tight_layout()
+    legend_below(ax, ncol=3)
     return image(fig)
 
 
@@ -82,8 +84,8 @@ def damping_map_plot(results: dict) -> str:
     ax.set_xlabel("Kelvin–Voigt damping time γ_v [s]")
     ax.set_ylabel("critical I·B₀ [N/m]")
     ax.set_title("Critical load against damping (circulatory load)", fontsize=9)
-    ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
+    legend_below(ax, ncol=2)
     return image(fig)
 
 
