@@ -198,6 +198,15 @@ def test_tape_without_tension_terminates_and_says_what_was_not_located(gamma):
     assert "modes, more than rung 1v examines" in c.message
 
 
+def test_a_band_the_mesh_cannot_resolve_is_not_located():
+    """The pinned tape without tension: within its first stage the load reshapes about 90 modes, which the mesh
+    (one subdomain of 25 points per field: no layers without tension) cannot resolve. Not located, and why."""
+    t = Tether(TAPE.with_(T=0.0, gamma=0.0, ends=("pinned", "pinned")), RISING)
+    with _terminates_within(30):
+        c = critical(t, mode=False, check=False)
+    assert c.kind == CriticalKind.NOT_LOCATED and "more than the mesh resolves" in c.message
+
+
 @pytest.mark.parametrize("gamma", [0.04375, 0.0])
 def test_round_wire_without_tension_terminates_with_its_flutter(gamma):
     """A round wire (R = 1) without tension under a rising current: flutter, damped at a load agreeing on two

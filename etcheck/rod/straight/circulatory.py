@@ -56,6 +56,7 @@ __all__ = [
     "damping_survey",
     "default_hi",
     "expected_end",
+    "forget",
     "growth",
     "stages",
 ]
@@ -220,6 +221,9 @@ class _Line:
             raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {nev // 2} modes, more than rung 1v "
                              f"examines ({MAX_EIGENVALUES // 2})")
         self.fam = family(ends, N)
+        if nev // 2 > self.fam.mesh.size:
+            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {nev // 2} modes, more than the mesh "
+                             f"resolves ({self.fam.mesh.size} points per field at N = {N})")
         self.base = {"B": p.B, "omega": p.omega, "T": p.T}
         self.band = band(self.fam, self.point(0.0), nev)
         self.memo: dict[float, np.ndarray] = {}
@@ -504,6 +508,11 @@ def _first_on(line: _Line, lo: float, hi: float, rtol: float, near, hint=None):
     found = _first(line, lo, hi, rtol, near, hint)
     _remember(key + (near is None,), found)
     return found
+
+
+def forget() -> None:
+    """Empty the memo of crossings found (:data:`_FOUND`): a benchmark's runs start from nothing."""
+    _FOUND.clear()
 
 
 def _remember(key: tuple, found) -> None:
