@@ -23,6 +23,7 @@ import math
 import numpy as np
 
 from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
+from etcheck.numerics.parallel import ahead
 from etcheck.rod.straight.circulatory import (
     THRESHOLD,
     Crossing,
@@ -68,15 +69,14 @@ def _mode(c: Crossing, wc: float) -> ProfileMode | None:
             "v_im": v.imag.tolist(), "kind": str(c.kind), "frequency_Hz": abs(c.eigenvalue.imag) * wc / (2 * math.pi)}
 
 
-def _damping_map(t: Tether, gamma_max: float, tol: float, wc: float, load: float,
+def _damping_map(t: Tether, gammas: tuple[float, ...], survey: list[Crossing], tol: float, wc: float, load: float,
                  undamped: Crossing) -> tuple[list[DampingPoint], Crossing]:
-    """The critical load at each damping of the map (one mesh: a survey), and the least favourable crossing
-    (undamped included), located again on two meshes for the verdict."""
+    """The map's points from the critical load at each damping ``gammas`` (``survey``: one mesh), and the least
+    favourable crossing (undamped included), located again on two meshes for the verdict."""
     points: list[DampingPoint] = []
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
     least = None
-    gammas = tuple(frac * gamma_max for frac in DAMPING_FRACTIONS)
-    for g, c in zip(gammas, damping_survey(t, gammas, tol)):  # each continued from the last one's crossing
+    for g, c in zip(gammas, survey):
         value = c.value if CriticalKind(c.kind).located else None
         points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
                        "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
@@ -91,6 +91,21 @@ def _damping_map(t: Tether, gamma_max: float, tol: float, wc: float, load: float
         if q["gamma"] == g and CriticalKind(worst.kind).located:
             q["B"], q["IB0_N_per_m"] = worst.value, worst.value * load
     return points, worst
+
+
+def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft: bool, wanted: bool
+                         ) -> tuple[Crossing, list[Crossing] | None]:
+    """The undamped crossing and, where the map is ``wanted`` and not a draft, the map's survey (each crossing
+    continued from the last one's, :func:`~etcheck.rod.straight.circulatory.damping_survey`), the undamped one
+    meanwhile on the other core where there is one. A draft leaves the survey to the caller (None): it is not
+    needed where the tether flutters undamped at any load."""
+    def undamped() -> Crossing:
+        return critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+    if draft or not wanted:
+        return undamped(), None
+    with ahead(undamped) as later:
+        survey = damping_survey(t, gammas, tol)
+        return later(), survey
 
 
 def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
@@ -124,7 +139,8 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, 
         c = critical(t, tol=tol, mode=False)
         return None, [], c, ("the load is conservative (one current along the tether): the critical load at the "
                              f"mission's damping (gamma = {p.gamma:.4g})")
-    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+    gammas = tuple(frac * p.gamma for frac in DAMPING_FRACTIONS)
+    undamped, survey = _undamped_and_survey(t, gammas, tol, draft, wanted=not fixed and p.gamma > 0)
     if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:  # no damping can be less favourable
         undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)  # the verdict's: on two meshes
         return undamped, [], undamped, ("undamped the tether flutters at any load: no damping can give a lower "
@@ -135,7 +151,8 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, 
         c = critical(t, tol=tol, mode=False) if p.gamma > 0 else undamped
         return undamped, [], c, (f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the "
                                  "undamped threshold is reported beside it")
-    points, worst = _damping_map(t, p.gamma, tol, wc, load, undamped)
+    survey = survey if survey is not None else damping_survey(t, gammas, tol)
+    points, worst = _damping_map(t, gammas, survey, tol, wc, load, undamped)
     if worst is undamped and draft:  # the verdict's: on two meshes (the first one's search reused)
         worst = undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
     where = "undamped" if worst is undamped else f"at gamma = {worst_gamma(points, worst):.4g}"
