@@ -82,11 +82,11 @@ def _damping_map(t: Tether, gammas: tuple[float, ...], survey: list[Crossing], t
                        "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
                        "destabilised": bool(value is not None and value < ref * (1 - 1e-6))})
         if value is not None and (least is None or value < least[0]):
-            least = (value, g)
+            least = (value, g, c.eigenvalue)
     if least is None or (CriticalKind(undamped.kind).located and undamped.value <= least[0]):
         return points, undamped
-    value, g = least
-    worst = critical(t.with_(gamma=g), tol=tol, near=(0.98 * value, 1.02 * value), mode=False)
+    value, g, z = least
+    worst = critical(t.with_(gamma=g), tol=tol, near=(0.98 * value, 1.02 * value), mode=False, hint=(value, z))
     for q in points:  # the map shows the verdict's value where it was located again
         if q["gamma"] == g and CriticalKind(worst.kind).located:
             q["B"], q["IB0_N_per_m"] = worst.value, worst.value * load
@@ -95,17 +95,18 @@ def _damping_map(t: Tether, gammas: tuple[float, ...], survey: list[Crossing], t
 
 def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft: bool, wanted: bool
                          ) -> tuple[Crossing, list[Crossing] | None]:
-    """The undamped crossing and, where the map is ``wanted`` and not a draft, the map's survey (each crossing
-    continued from the last one's, :func:`~etcheck.rod.straight.circulatory.damping_survey`), the undamped one
-    meanwhile on the other core where there is one. A draft leaves the survey to the caller (None): it is not
-    needed where the tether flutters undamped at any load."""
-    def undamped() -> Crossing:
-        return critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
-    if draft or not wanted:
-        return undamped(), None
-    with ahead(undamped) as later:
-        survey = damping_survey(t, gammas, tol)
-        return later(), survey
+    """The undamped crossing (in a draft on one mesh) and, where the map is ``wanted``, the map's survey (each
+    crossing continued from the last one's, :func:`~etcheck.rod.straight.circulatory.damping_survey`), meanwhile
+    on the other core where there is one; None where not wanted, or in a draft where the tether flutters undamped
+    at any load (no damping can be less favourable)."""
+    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft) if not wanted else None
+    if undamped is not None:
+        return undamped, None
+    with ahead(lambda: damping_survey(t, gammas, tol)) as survey:
+        undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+        if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:
+            return undamped, None
+        return undamped, survey()
 
 
 def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
@@ -151,7 +152,6 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, 
         c = critical(t, tol=tol, mode=False) if p.gamma > 0 else undamped
         return undamped, [], c, (f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the "
                                  "undamped threshold is reported beside it")
-    survey = survey if survey is not None else damping_survey(t, gammas, tol)
     points, worst = _damping_map(t, gammas, survey, tol, wc, load, undamped)
     if worst is undamped and draft:  # the verdict's: on two meshes (the first one's search reused)
         worst = undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)

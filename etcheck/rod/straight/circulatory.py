@@ -472,7 +472,8 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None)
     (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
     found from it is kept only when the tether is stable just below it on this mesh. ``hint``: (x, lambda), that
     crossing on the other mesh: a flutter eigenvalue crossing on its own is followed from it (:func:`_secant`)."""
-    if hint is not None and hint[0] > lo and not collides(line.tether) and _kind(hint[1]) == CriticalKind.FLUTTER:
+    if (hint is not None and near is not None and hint[0] > lo and not collides(line.tether)
+            and _kind(hint[1]) == CriticalKind.FLUTTER):
         found = _secant(line, hint[0], hint[1], hi, rtol)
         if found is not None:
             return found
@@ -604,7 +605,7 @@ def _secant(line: _Line, x: float, z: complex, hi: float, rtol: float) -> tuple[
 @single_blas_thread
 def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: float = 1e-8,
              ladder: tuple[int, ...] = LADDER, mode: bool = True, near: tuple[float, float] | None = None,
-             check: bool = True) -> Crossing:
+             check: bool = True, hint: tuple[float, complex] | None = None) -> Crossing:
     """The first loss of stability of the straight tether with profiles along ``axis`` ("B" or "omega"),
     from 0 to ``hi`` (default: :func:`default_hi`), the others fixed at ``tether.params``; dimensionless.
 
@@ -613,7 +614,9 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     ``tol`` (relative); the error is their distance plus the root finder's tolerance. ``near``: where a crossing
     is expected (a bracket, from a neighbouring tether): sought there first, and kept only where the tether is
     stable just below it; else the line is scanned from 0. ``check=False``: the first mesh alone (no error
-    estimate from a second one: a survey, such as the points of a damping map, not a verdict).
+    estimate from a second one: a survey, such as the points of a damping map, not a verdict). ``hint``: with
+    ``near``, the crossing (value, eigenvalue) found there on the first mesh (a survey's): a flutter eigenvalue
+    crossing on its own is followed from it first.
 
     The line is searched in stages (:func:`stages`), each from 0 to its end with the band of modes that end
     reshapes, so that a crossing near the expected value is found without the modes of a far end. Every solve
@@ -623,10 +626,10 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     hi = default_hi(tether, axis) if hi is None else float(hi)
     try:
         for end in stages(tether, axis, hi):
-            c = _ladder(tether, axis, end, tol, ladder, mode, near, check)
+            c = _ladder(tether, axis, end, tol, ladder, mode, near, check, hint)
             if c.kind != CriticalKind.NONE_FOUND:
                 return c
-            near = None
+            near = hint = None
         return c
     except NotLocated as err:
         return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, 0.0, hi,
@@ -644,7 +647,7 @@ def stages(tether: Tether, axis: str, hi: float) -> list[float]:
 
 
 def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int, ...], mode: bool,
-            near: tuple[float, float] | None, check: bool) -> Crossing:
+            near: tuple[float, float] | None, check: bool, hint: tuple[float, complex] | None = None) -> Crossing:
     """:func:`critical` on [0, hi] (one stage)."""
     lo = 0.0
     rtol = min(tol, 1e-6) * 1e-2
@@ -652,7 +655,7 @@ def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int,
     for N in ladder:
         M = check_resolution(N)
         line = _Line(tether, axis, N, hi)
-        x1, z1 = _first_on(line, lo, hi, rtol, near)
+        x1, z1 = _first_on(line, lo, hi, rtol, near, hint if N == ladder[0] else None)
         if not check:
             M, x2, z2 = N, x1, z1
             break
