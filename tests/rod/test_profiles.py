@@ -257,3 +257,17 @@ def test_damping_survey_agrees_with_a_search_at_each_damping():
             own = critical(t.with_(gamma=g), mode=False, check=False)
             assert c.kind == own.kind == CriticalKind.FLUTTER
             assert c.value == pytest.approx(own.value, rel=1e-8)
+
+
+def test_spinning_tether_without_tension_is_answered_not_raised():
+    """A spun SET-like tether without tension under a rising current (scenes where the root finder's tracked function
+    could give the ends of its bracket other signs on a second evaluation, or land exactly on an eigenvalue: both
+    raised before). Undamped it flutters from zero load on (two meshes agree); damped at 0.0412771033 and, at half
+    that load, along the spin at 0.5426578528 (the values the code found before where it did not raise)."""
+    p = RodParameters(P=1e-3, R=0.5526315789473685, Gamma=0.7692307692307692, B=0.0126, T=0.0, omega=0.25)
+    undamped = critical(Tether(p.with_(gamma=0.0), RISING), mode=False)
+    assert undamped.kind == CriticalKind.FLUTTER and undamped.value == 0.0
+    damped = critical(Tether(p.with_(gamma=0.04375), RISING), mode=False)
+    assert damped.kind == CriticalKind.FLUTTER and damped.value == pytest.approx(0.0412771033, rel=1e-9)
+    spin = circulatory.critical_spin(Tether(p.with_(gamma=0.04375, B=0.5 * damped.value), RISING))
+    assert spin.kind == CriticalKind.FLUTTER and spin.value == pytest.approx(0.5426578528, rel=1e-9)

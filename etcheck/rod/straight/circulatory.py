@@ -414,6 +414,18 @@ def _behind(h, a: float, ha: float, b: float, lo: float) -> tuple[float, float]:
     return a, ha
 
 
+def _memoised(h):
+    """h with its values remembered: a function that tracks an eigenvalue depends on where it was tracked from, and
+    the root finder evaluates the ends of its bracket again (a value of another sign there: no bracket)."""
+    seen: dict[float, float] = {}
+
+    def once(x: float) -> float:
+        if x not in seen:
+            seen[x] = h(x)
+        return seen[x]
+    return once
+
+
 def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
     """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
     a static point between points this close to it is the crossing (divergence)."""
@@ -425,7 +437,7 @@ def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, comple
     a, b = _single(line, a, b)
     if b <= AT_ZERO * line.hi:  # unstable at any value above 0
         return b, _unstable_eigenvalue(line.spectrum(b))
-    h = _crossing_function(line, a, b)
+    h = _memoised(_crossing_function(line, a, b))
     ha, hb = h(a), h(b)
     a, ha = _behind(h, a, ha, b, line.lo)
     if ha < 0 < hb:
