@@ -271,3 +271,13 @@ def test_spinning_tether_without_tension_is_answered_not_raised():
     assert damped.kind == CriticalKind.FLUTTER and damped.value == pytest.approx(0.0412771033, rel=1e-9)
     spin = circulatory.critical_spin(Tether(p.with_(gamma=0.04375, B=0.5 * damped.value), RISING))
     assert spin.kind == CriticalKind.FLUTTER and spin.value == pytest.approx(0.5426578528, rel=1e-9)
+
+
+def test_a_solver_that_fails_is_reported_not_located(monkeypatch):
+    """A sparse factorisation or ARPACK that raises (here: every eigenvalue solve) gives 'not located' with the
+    solver's message, never a traceback."""
+    def fails(*args, **kwargs):
+        raise RuntimeError("Factor is exactly singular")
+    monkeypatch.setattr(circulatory, "sparse_qep_nearest", fails)
+    c = critical(Tether(TAPE.with_(gamma=0.0, T=1.1), RISING), mode=False)
+    assert c.kind == CriticalKind.NOT_LOCATED and "a solver failed (RuntimeError: Factor is exactly singular" in c.message

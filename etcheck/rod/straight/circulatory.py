@@ -646,6 +646,9 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     except NotLocated as err:
         return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, 0.0, hi,
                         ladder[0], ladder[0], f"not located: {err} ({MODEL})")
+    except (RuntimeError, ValueError, ArithmeticError) as err:  # a solver that failed (SuperLU, ARPACK, Brent)
+        return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, 0.0, hi,
+                        ladder[0], ladder[0], f"not located: a solver failed ({type(err).__name__}: {err}; {MODEL})")
 
 
 def stages(tether: Tether, axis: str, hi: float) -> list[float]:
