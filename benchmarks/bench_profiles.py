@@ -10,10 +10,10 @@ a reference (uniform profiles: the exact determinant; profiles: the finest mesh)
 * a 200 m SET-like tether with a kinked current and its gravity-gradient tension, damped.
 
 Part 2: whole checks (sign-off and draft) of missions with profiles (PMG, the tape, ProSEDS) and of a uniform
-mission (SET; unchanged: it does not enter rung 1v), with the time of each part of rung 1v (the damping policy:
-undamped threshold, damping map, the verdict's crossing on two meshes; the uniform-tension bound; the mode; the other
-attachment of the ends). Also the tape and ProSEDS without end masses and without tension (end_tension = 0 N,
-their collected current kept): each must end in seconds, located or said not located. One core (BLAS pinned).
+mission (SET; unchanged: it does not enter rung 1v), with the time of each part of rung 1v (the damping policy: the undamped
+threshold beside the damping map's survey, on the other core where there is one, then the map's points and the
+verdict's crossing on two meshes; the uniform-tension bound; the mode; the other attachment of the ends). Also the tape and ProSEDS without end masses and without tension (end_tension = 0 N,
+their collected current kept): each must end in seconds, located or said not located. BLAS on one thread.
 
 Run:  python benchmarks/bench_profiles.py [--quick]
 """
@@ -70,8 +70,9 @@ def part1() -> None:
 
 
 #: The parts of rung 1v's check timed in part 2 (functions of etcheck.checks.profiles; nested: the damping policy
-#: holds the map, the check's total holds every part).
-PARTS = ("_damping_policy", "_damping_map", "_bound", "crossing_mode", "alternative_linear")
+#: holds the undamped threshold beside the map's survey (on the other core where there is one) and the map's points
+#: with the verdict's crossing on two meshes; the check's total holds every part).
+PARTS = ("_damping_policy", "_undamped_and_survey", "_damping_map", "_bound", "crossing_mode", "alternative_linear")
 
 
 def _timed_parts() -> dict[str, float]:
@@ -114,10 +115,10 @@ def part2(quick: bool) -> None:
     names = ["set.toml", "pmg.toml", "tape-tether.toml"] + ([] if quick else ["proseds.toml"])
     missions = [(n, load_mission(ROOT / "missions" / n)) for n in names]
     missions += [(f"{n} T = 0", _tension_free(n)) for n in ("tape-tether.toml", "proseds.toml")]
-    print("whole checks (one core); rung 1v's parts [s]: policy (undamped + map + verdict's crossing), map, bound, "
-          "mode, other ends")
-    print(f"{'mission':24s} {'fidelity':9s} {'time [s]':>9s} {'policy':>7s} {'map':>6s} {'bound':>6s} {'mode':>6s} "
-          f"{'ends':>6s} {'verdict':8s} margins")
+    print("whole checks; rung 1v's parts [s]: damping policy, of which the undamped threshold beside the map's survey "
+          "and the map's points with the verdict's crossing; bound, mode, other ends")
+    print(f"{'mission':24s} {'fidelity':9s} {'time [s]':>9s} {'policy':>7s} {'u|s':>6s} {'map':>6s} {'bound':>6s} "
+          f"{'mode':>6s} {'ends':>6s} {'verdict':8s} margins")
     for name, mission in missions:
         for fidelity in ("auto", "draft"):
             m = dataclasses.replace(mission, fidelity=fidelity)
