@@ -15,7 +15,7 @@ import pytest
 from etcheck.numerics.eigen import sparse_qep_nearest
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
-from etcheck.rod.straight import circulatory
+from etcheck.rod.straight import circulatory, line_band
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.circulatory import critical
 from etcheck.rod.straight.exact import exact_critical
@@ -224,11 +224,11 @@ def test_round_wire_without_tension_terminates_with_its_flutter(gamma):
 def test_an_eigenvalue_solve_that_does_not_converge_is_not_located(monkeypatch):
     """A solve that returns fewer eigenvalues than asked (what ARPACK gives when its restarts run out): the point
     is not located (a missing eigenvalue could be the unstable one), never read as stable."""
-    solve = circulatory.sparse_qep_nearest
+    solve = line_band.sparse_qep_nearest
 
     def partial(*args, **kwargs):
         return solve(*args, **kwargs)[:-1]
-    monkeypatch.setattr(circulatory, "sparse_qep_nearest", partial)
+    monkeypatch.setattr(line_band, "sparse_qep_nearest", partial)
     c = critical(Tether(TAPE.with_(gamma=0.0, T=1.3), RISING), mode=False)  # a tether no other test searched
     assert c.kind == CriticalKind.NOT_LOCATED and "converged on" in c.message
 
@@ -237,8 +237,8 @@ def test_a_far_end_of_the_line_does_not_change_the_crossing():
     """The line searched in stages: a crossing near the expected load is found with the band of modes of the first
     stage, whatever the end asked for (here 20 x the expected range, where hundreds of modes are reshaped)."""
     t = Tether(TAPE.with_(gamma=0.0), RISING)
-    hi = 20 * circulatory.expected_end(t, "B")
-    assert len(circulatory.stages(t, "B", hi)) == 3
+    hi = 20 * line_band.expected_end(t, "B")
+    assert len(line_band.stages(t, "B", hi)) == 3
     far = critical(t, hi=hi, mode=False)
     assert far.kind == CriticalKind.FLUTTER
     assert far.value / TAPE.B == pytest.approx(0.7222265, abs=1e-6)
@@ -278,6 +278,7 @@ def test_a_solver_that_fails_is_reported_not_located(monkeypatch):
     solver's message, never a traceback."""
     def fails(*args, **kwargs):
         raise RuntimeError("Factor is exactly singular")
+    monkeypatch.setattr(line_band, "sparse_qep_nearest", fails)
     monkeypatch.setattr(circulatory, "sparse_qep_nearest", fails)
     c = critical(Tether(TAPE.with_(gamma=0.0, T=1.1), RISING), mode=False)
     assert c.kind == CriticalKind.NOT_LOCATED and "a solver failed (RuntimeError: Factor is exactly singular" in c.message

@@ -37,28 +37,34 @@ import numpy as np
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.eigen import qep_newton, sparse_pencil_nearest, sparse_qep_nearest
 from etcheck.numerics.optimize import brentq
-from etcheck.rod.straight.mode_band import band_modes
-from etcheck.rod.straight.profiles import Tether, TetherFamily, check_resolution, family
+from etcheck.rod.straight.line_band import (
+    MAX_EIGENVALUES,
+    ORDER,
+    RESTARTS,
+    NotLocated,
+    band,
+    default_hi,
+    eigenvalue_count,
+    mean_params,
+    solve,
+    stages,
+)
+from etcheck.rod.straight.profiles import Tether, check_resolution, family
 from etcheck.rod.straight.spectral import CriticalKind
 
 __all__ = [
     "LADDER",
-    "MAX_EIGENVALUES",
     "MODEL",
-    "NotLocated",
     "RELATIVE",
     "THRESHOLD",
     "Crossing",
     "collides",
-    "Band",
-    "band",
     "critical",
+    "critical_spin",
+    "crossing_mode",
     "damping_survey",
-    "default_hi",
-    "expected_end",
     "forget",
     "growth",
-    "stages",
 ]
 
 MODEL = "rung 1v (graded collocation, profiles)"
@@ -69,8 +75,8 @@ RELATIVE = 1e-8
 LADDER = (24, 32, 48, 64, 96)
 #: Evenly spaced points of the scan along a line.
 SCAN = 24
-#: Least pairs of eigenvalues examined at each point.
-K_MODES = 12
+#: Most spectra computed along one line on one mesh (a search takes 40-150).
+MAX_SPECTRA = 1500
 #: An eigenvalue tracked by inverse iteration may move at most this much (relative to its size plus one) per unit
 #: relative step along the line; a larger jump is another eigenvalue, and ARPACK decides.
 TRACK_STEP = 10.0
@@ -81,21 +87,6 @@ NOISE = 10.0
 NARROW = 0.25
 #: A critical load below this fraction of the scanned range is a crossing at zero (flutter at any load).
 AT_ZERO = 1e-7
-#: A line is scanned in stages: the first up to this many times the expected first critical value
-#: (:func:`expected`), each next one this many times further, up to the end asked for.
-STAGE = 4.0
-#: Most eigenvalues one point of a line examines; a band of more modes (a tape without tension under a
-#: load thousands of times its critical one reshapes hundreds of its soft modes) is not located.
-MAX_EIGENVALUES = 240
-#: ARPACK restarts per eigenvalue solve (a converging solve takes 2-5); eigenvalues not converged by then are
-#: missing, and the point is not located.
-RESTARTS = 60
-#: Most spectra computed along one line on one mesh (a search takes 40-150).
-MAX_SPECTRA = 1500
-
-
-class NotLocated(Exception):
-    """A search that cannot be completed within its bounds; the message says why."""
 
 
 @dataclass(frozen=True)
@@ -123,12 +114,6 @@ class Crossing:
     mode: tuple | None = None
 
 
-def _nev(tether: Tether, hi_params) -> int:
-    """How many eigenvalues each point examines: the k least pairs and every mode the load and spin reshape
-    (:func:`~etcheck.rod.straight.mode_band.band_modes` at the end of the line)."""
-    return max(2 * K_MODES + 4, 2 * band_modes(hi_params) + 4)
-
-
 def _threshold(lam: np.ndarray) -> np.ndarray:
     return np.maximum(THRESHOLD, RELATIVE * np.abs(lam))
 
@@ -136,76 +121,6 @@ def _threshold(lam: np.ndarray) -> np.ndarray:
 def growth(lam: np.ndarray) -> float:
     """max (Re lambda - threshold): positive when some eigenvalue counts as unstable."""
     return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
-
-
-@dataclass(frozen=True)
-class Band:
-    """Where a line's eigenvalues are sought on one mesh: the k[i] nearest each shift sigmas[i], with lambda
-    scaled by ``scale`` (the size of the lowest frequency). Without damping one shift next to 0 (the lowest
-    modes, both members of each pair); with damping the Kelvin-Voigt cluster at -1/gamma, hundreds of
-    eigenvalues on which ARPACK converges slowly, must stay out of reach: the same shift where the modes lie
-    well below 1/gamma, else shifts i Omega along the band of modes, a few modes each (their
-    members with Im > 0; a real eigenvalue reaches Re lambda > 0 only through 0, where the operator is
-    singular: :meth:`_Line.static_roots`)."""
-
-    sigmas: tuple[complex, ...]
-    ks: tuple[int, ...]
-    scale: float
-
-    @property
-    def upper(self) -> bool:
-        return isinstance(self.sigmas[0], complex)
-
-
-#: Largest ratio of the frequencies sought around one shift along the band of a damped line whose modes reach the
-#: Kelvin-Voigt cluster (radius 0.4 of the middle).
-CHUNK = 7.0 / 3.0
-
-
-def band(fam: TetherFamily, point: dict, nev: int) -> Band:
-    """The :class:`Band` of a line on ``fam`` (``point``: its values of B, omega, T at the start)."""
-    gamma = fam.tether.params.gamma
-    scale = max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
-    if gamma == 0:
-        return Band((SIGMA * scale,), (nev,), scale)
-    lam = _solve(fam.operator(0.0, point["omega"], point["T"], damped=False), nev, SIGMA * scale, scale, "zero load")
-    freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
-    if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # the cluster lies beyond the band: as without damping
-        return Band((SIGMA * scale,), (nev,), scale)
-    chunks = _chunks(freq)
-    return Band(tuple(complex(0.0, 0.5 * float(c[0] + c[-1])) for c in chunks), tuple(c.size for c in chunks), scale)
-
-
-def _chunks(freq: np.ndarray) -> list[np.ndarray]:
-    """The band's frequencies (sorted) in chunks each sought around its middle i Omega_c: a chunk spans at most a
-    factor :data:`CHUNK` (its radius at most 0.4 Omega_c), so the next frequencies and the Kelvin-Voigt cluster,
-    at least Omega_c away, lie at least 2.5 radii from the shift and ARPACK converges fast; a frequency within 1e-6
-    of the chunk's last (the double pairs of R = 1) joins it."""
-    out, start = [], 0
-    for i in range(1, freq.size + 1):
-        if i == freq.size or (freq[i] > CHUNK * freq[start] and freq[i] > freq[i - 1] * (1 + 1e-6)):
-            out.append(freq[start:i])
-            start = i
-    return out
-
-
-#: SuperLU's ordering of the collocation matrices: their own (block-banded along the tether).
-ORDER = "NATURAL"
-#: Real shift of an undamped band, as a fraction of the lowest frequency's scale: next to 0, where a real eigenvalue
-#: crosses, but not at it (the operator is singular there at static points, and next to them its LU then spreads
-#: round-off of 1e-7 into every eigenvalue: R = 1 just below its double static point with a shift of 0.012).
-SIGMA = 0.3
-
-
-def _solve(A, k: int, sigma, scale: float, where: str) -> np.ndarray:
-    """The k eigenvalues of the operator A nearest sigma, all of them: ARPACK bounded by :data:`RESTARTS`, and a
-    point where some did not converge is not located (a missing eigenvalue could be the unstable one)."""
-    k = min(k, A[0].shape[0] // 2)
-    lam = sparse_qep_nearest(*A, k=k, sigma=sigma, scale=scale, ordering=ORDER, maxiter=RESTARTS)
-    if lam.size < k:
-        raise NotLocated(f"the eigenvalue solver converged on {lam.size} of {k} eigenvalues near {sigma:.4g} at "
-                         f"{where}")
-    return lam
 
 
 class _Line:
@@ -216,7 +131,7 @@ class _Line:
         self.tether, self.axis, self.N, self.hi, self.lo = tether, axis, N, hi, 0.0
         p = tether.params
         ends = tether.with_(**{axis: hi})
-        nev = _nev(tether, _mean_params(ends))
+        nev = eigenvalue_count(tether, mean_params(ends))
         if nev > MAX_EIGENVALUES:
             raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {nev // 2} modes, more than rung 1v "
                              f"examines ({MAX_EIGENVALUES // 2})")
@@ -239,7 +154,7 @@ class _Line:
             if len(self.memo) >= MAX_SPECTRA:
                 raise NotLocated(f"the search along {self.axis} took more than {MAX_SPECTRA} spectra (N = {self.N})")
             A = self.fam.operator(**self.point(x))
-            lam = [_solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
+            lam = [solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
                    for sigma, k in zip(self.band.sigmas, self.band.ks)]
             self.memo[x] = np.concatenate(lam)
         return self.memo[x]
@@ -265,7 +180,7 @@ class _Line:
         A = self.fam.operator(**self.point(x))
         off = 1e-3 * (1.0 + abs(z))
         sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
-        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER, maxiter=RESTARTS)
 
     def track(self, x: float, z: complex) -> complex:
         """The eigenvalue at x that continues the one near z: nonlinear inverse iteration from the tracked
@@ -280,7 +195,7 @@ class _Line:
                 return lam
         off = 1e-3 * (1.0 + abs(z))
         lam, Y = sparse_qep_nearest(*A, k=2, sigma=complex(z.real + off, z.imag), scale=self.band.scale,
-                                    ordering=ORDER, vectors=True)
+                                    ordering=ORDER, vectors=True, maxiter=RESTARTS)
         i = int(np.argmin(np.abs(lam - z)))
         self.tracked.append((x, complex(lam[i]), Y[:, i]))
         return complex(lam[i])
@@ -302,13 +217,6 @@ class _Line:
 STATIC_ROOTS = 16
 #: Relative offset of the scan points either side of a static point.
 PAST = 1e-6
-
-
-def _mean_params(tether: Tether):
-    """The tether's parameters with its mean tension and mean |load| (for mode counts)."""
-    s = np.linspace(0.0, 1.0, 201)
-    p = tether.params
-    return p.with_(T=p.T * float(np.mean(tether.tension(s))), B=p.B * float(np.mean(np.abs(tether.current(s)))))
 
 
 def _scan(line: _Line, lo: float, hi: float, n: int) -> tuple[float, float] | None:
@@ -651,16 +559,6 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
                         ladder[0], ladder[0], f"not located: a solver failed ({type(err).__name__}: {err}; {MODEL})")
 
 
-def stages(tether: Tether, axis: str, hi: float) -> list[float]:
-    """The ends of the stages of a search up to ``hi``: :func:`expected_end`, then :data:`STAGE` times further
-    each, the last ``hi``."""
-    out, end = [], expected_end(tether, axis)
-    while end < hi / STAGE ** 0.5:
-        out.append(end)
-        end *= STAGE
-    return out + [hi]
-
-
 def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int, ...], mode: bool,
             near: tuple[float, float] | None, check: bool, hint: tuple[float, complex] | None = None) -> Crossing:
     """:func:`critical` on [0, hi] (one stage)."""
@@ -751,12 +649,14 @@ def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) ->
 
 def crossing_mode(tether: Tether, c: Crossing) -> Crossing:
     """The crossing with its mode (:attr:`Crossing.mode`), on the finer of its two meshes, where it was located
-    without one."""
+    without one (none where the solvers could not give it)."""
     if c.mode is not None or not CriticalKind(c.kind).located:
         return c
-    line = _Line(tether, c.axis, c.N_check, c.hi)
     x = c.value * (1 + 1e-8) if c.value > 0 else AT_ZERO * c.hi
-    return replace(c, mode=_mode(line, x, c.eigenvalue))
+    try:
+        return replace(c, mode=_mode(_Line(tether, c.axis, c.N_check, c.hi), x, c.eigenvalue))
+    except (NotLocated, RuntimeError, ValueError, ArithmeticError):
+        return c
 
 
 def _mode(line: _Line, x: float, z: complex):
@@ -764,27 +664,10 @@ def _mode(line: _Line, x: float, z: complex):
     larger of |u|, |v| peaks at 1 with zero phase there."""
     A = line.fam.operator(**line.point(x))
     lam, Y = sparse_qep_nearest(*A, k=2, sigma=z + 1e-7 * (1 + abs(z)), vectors=True, scale=line.band.scale,
-                                ordering=ORDER)
+                                ordering=ORDER, maxiter=RESTARTS)
+    if lam.size == 0:  # the solver did not converge: no mode to draw
+        return None
     s, u, v = line.fam.field_values(Y[:, int(np.argmin(np.abs(lam - z)))], 201)
     k = int(np.argmax(np.maximum(np.abs(u), np.abs(v))))
     peak = u[k] if abs(u[k]) >= abs(v[k]) else v[k]
     return s, u / peak, v / peak
-
-
-def default_hi(tether: Tether, axis: str) -> float:
-    """End of the line scanned when none is given: for the load, 3 x the expected first critical load of the
-    tether under its mean tension with the uniform load of its mean current; for the spin, 2 x the expected
-    critical spin (:func:`etcheck.rod.straight.exact.root_scale`), at least 1.1 x the operating value."""
-    return max(expected_end(tether, axis), 1.1 * (tether.params.B if axis == "B" else tether.params.omega))
-
-
-def expected_end(tether: Tether, axis: str) -> float:
-    """3 x the expected first critical load, 2 x the expected critical spin (:func:`default_hi`)."""
-    from etcheck.rod.straight.exact import root_scale
-
-    mean = _mean_params(tether)
-    s = np.linspace(0.0, 1.0, 201)
-    b = max(float(np.mean(np.abs(tether.current(s)))), 0.1)
-    if axis == "B":
-        return 3.0 * root_scale(mean.with_(B=0.0), "B", 1.0) / b
-    return 2.0 * root_scale(mean.with_(omega=0.0), "omega", 1.0)
