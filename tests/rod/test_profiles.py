@@ -108,6 +108,7 @@ def test_pinned_ends_give_the_analytic_frequencies():
 
 
 SCENES = [  # (params, current, tension shape): held-out kinds of tether, each against finite elements
+    (RodParameters(P=1e-3, R=1.0, Gamma=0.77, T=0.0, gamma=0.04375), RISING, Profile.uniform()),  # no tension
     (RodParameters(P=1e-6, R=1e-3, Gamma=0.7, T=2.0), KINKED, Profile.uniform()),
     (RodParameters(P=1e-4, R=0.2, Gamma=0.7, T=0.5), Profile.piecewise_linear([0, 1], [0.2, 1]),
      Profile.from_function(lambda s: 1 + 3 * s * (1 - s), degree=2)),
