@@ -133,11 +133,11 @@ class _Line:
         ends = tether.with_(**{axis: hi})
         nev = eigenvalue_count(tether, mean_params(ends))
         if nev > MAX_EIGENVALUES:
-            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {nev // 2} modes, more than rung 1v "
-                             f"examines ({MAX_EIGENVALUES // 2})")
+            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {(nev - 4) // 2} modes, more than rung 1v "
+                             f"examines ({MAX_EIGENVALUES} eigenvalues a point)")
         self.fam = family(ends, N)
-        if nev // 2 > self.fam.mesh.size:
-            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {nev // 2} modes, more than the mesh "
+        if (nev - 4) // 2 > self.fam.mesh.size:
+            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {(nev - 4) // 2} modes, more than the mesh "
                              f"resolves ({self.fam.mesh.size} points per field at N = {N})")
         self.base = {"B": p.B, "omega": p.omega, "T": p.T}
         self.band = band(self.fam, self.point(0.0), nev)
