@@ -9,8 +9,11 @@ a reference (uniform profiles: the exact determinant; profiles: the finest mesh)
   Ziegler's slow flutter);
 * a 200 m SET-like tether with a kinked current and its gravity-gradient tension, damped.
 
-Part 2: whole checks (sign-off and draft) of missions with profiles (PMG, the tape, ProSEDS, the 200 m tether)
-and of uniform missions (SET; unchanged: they do not enter rung 1v). One core (BLAS pinned).
+Part 2: whole checks (sign-off and draft) of missions with profiles (PMG, the tape, ProSEDS) and of a uniform
+mission (SET; unchanged: it does not enter rung 1v), with the time of each part of rung 1v (the damping policy: the undamped
+threshold beside the damping map's survey, on the other core where there is one, then the map's points and the
+verdict's crossing on two meshes; the uniform-tension bound; the mode; the other attachment of the ends). Also the tape and ProSEDS without end masses and without tension (end_tension = 0 N,
+their collected current kept): each must end in seconds, located or said not located. BLAS on one thread.
 
 Run:  python benchmarks/bench_profiles.py [--quick]
 """
@@ -26,7 +29,7 @@ from threadpoolctl import threadpool_limits
 
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
-from etcheck.rod.straight.circulatory import critical
+from etcheck.rod.straight.circulatory import critical, forget
 from etcheck.rod.straight.exact import exact_critical
 from etcheck.rod.straight.profiles import Tether, mesh
 
@@ -48,6 +51,7 @@ LADDER = (16, 24, 32, 48, 64)
 
 
 def one_mesh(t: Tether, N: int) -> tuple[float, float]:
+    forget()
     t0 = time.perf_counter()
     c = critical(t, ladder=(N,), mode=False, check=False)
     return c.value, time.perf_counter() - t0
@@ -65,21 +69,68 @@ def part1() -> None:
         print()
 
 
+#: The parts of rung 1v's check timed in part 2 (functions of etcheck.checks.profiles; nested: the damping policy
+#: holds the undamped threshold beside the map's survey (on the other core where there is one) and the map's points
+#: with the verdict's crossing on two meshes; the check's total holds every part).
+PARTS = ("_damping_policy", "_undamped_and_survey", "_damping_map", "_bound", "crossing_mode", "alternative_linear")
+
+
+def _timed_parts() -> dict[str, float]:
+    """Wrap the parts of etcheck.checks.profiles so that each call adds its time to the returned dict."""
+    import etcheck.checks.profiles as checks_profiles
+
+    spent: dict[str, float] = {}
+    for name in PARTS:
+        fn = getattr(checks_profiles, name)
+
+        def timed(*args, _fn=fn, _name=name, **kwargs):
+            t0 = time.perf_counter()
+            try:
+                return _fn(*args, **kwargs)
+            finally:
+                spent[_name] = spent.get(_name, 0.0) + time.perf_counter() - t0
+        setattr(checks_profiles, name, timed)
+    return spent
+
+
+def _tension_free(name: str):
+    """The shipped mission without end masses and without tension (its collected current kept)."""
+    import tomllib
+
+    from etcheck.input.mission import mission_from_dict
+
+    d = tomllib.loads((ROOT / "missions" / name).read_text())
+    d["tether"].pop("end_masses", None)
+    d["operation"].pop("orbit_altitude", None)
+    d["operation"]["end_tension"] = "0 N"
+    d["mission"]["assumed"] = [a for a in d["mission"].get("assumed", []) if a != "tether.end_masses"]
+    return mission_from_dict(d, source=f"{name} without tension")
+
+
 def part2(quick: bool) -> None:
     from etcheck.checks.pipeline import check
     from etcheck.input.mission import load_mission
 
-    missions = ["set.toml", "pmg.toml", "tape-tether.toml"] + ([] if quick else ["proseds.toml"])
-    print("whole checks (one core)")
-    print(f"{'mission':20s} {'fidelity':9s} {'time [s]':>9s} {'verdict':8s} margins")
-    for name in missions:
+    spent = _timed_parts()
+    names = ["set.toml", "pmg.toml", "tape-tether.toml"] + ([] if quick else ["proseds.toml"])
+    missions = [(n, load_mission(ROOT / "missions" / n)) for n in names]
+    missions += [(f"{n} T = 0", _tension_free(n)) for n in ("tape-tether.toml", "proseds.toml")]
+    print("whole checks; rung 1v's parts [s]: damping policy, of which the undamped threshold beside the map's survey "
+          "and the map's points with the verdict's crossing; bound, mode, other ends")
+    print(f"{'mission':24s} {'fidelity':9s} {'time [s]':>9s} {'policy':>7s} {'u|s':>6s} {'map':>6s} {'bound':>6s} "
+          f"{'mode':>6s} {'ends':>6s} {'verdict':8s} margins")
+    for name, mission in missions:
         for fidelity in ("auto", "draft"):
-            m = dataclasses.replace(load_mission(ROOT / "missions" / name), fidelity=fidelity)
+            m = dataclasses.replace(mission, fidelity=fidelity)
+            spent.clear()
+            forget()  # each check from nothing (the memo of crossings would carry the sign-off's to the draft)
             t0 = time.perf_counter()
             r = check(m).results
             dt = time.perf_counter() - t0
-            margins = ", ".join(f"{g['value']:.4g}" if g["value"] is not None else "-" for g in r["margins"])
-            print(f"{name:20s} {fidelity:9s} {dt:9.2f} {r['verdict']:8s} {margins}")
+            margins = ", ".join(f"{g['value']:.10g}" if g["value"] is not None else f"- ({g['why'][:60]})"
+                                for g in r["margins"])
+            parts = " ".join(f"{spent.get(p, 0.0):6.2f}" for p in PARTS)
+            print(f"{name:24s} {fidelity:9s} {dt:9.2f} {parts} {r['verdict']:8s} {margins}")
 
 
 if __name__ == "__main__":

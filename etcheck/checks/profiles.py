@@ -23,7 +23,15 @@ import math
 import numpy as np
 
 from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
-from etcheck.rod.straight.circulatory import THRESHOLD, Crossing, critical, critical_spin, crossing_mode
+from etcheck.numerics.parallel import ahead
+from etcheck.rod.straight.circulatory import (
+    THRESHOLD,
+    Crossing,
+    critical,
+    critical_spin,
+    crossing_mode,
+    damping_survey,
+)
 from etcheck.rod.straight.profiles import Tether
 from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import RPM, Scaled
@@ -61,31 +69,44 @@ def _mode(c: Crossing, wc: float) -> ProfileMode | None:
             "v_im": v.imag.tolist(), "kind": str(c.kind), "frequency_Hz": abs(c.eigenvalue.imag) * wc / (2 * math.pi)}
 
 
-def _damping_map(t: Tether, gamma_max: float, tol: float, wc: float, load: float,
+def _damping_map(t: Tether, gammas: tuple[float, ...], survey: list[Crossing], tol: float, wc: float, load: float,
                  undamped: Crossing) -> tuple[list[DampingPoint], Crossing]:
-    """The critical load at each damping of the map (one mesh: a survey), and the least favourable crossing
-    (undamped included), located again on two meshes for the verdict."""
+    """The map's points from the critical load at each damping ``gammas`` (``survey``: one mesh), and the least
+    favourable crossing (undamped included), located again on two meshes for the verdict."""
     points: list[DampingPoint] = []
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
-    near, least = None, None
-    for frac in DAMPING_FRACTIONS:  # each from the last one's crossing (verified stable below, else scanned)
-        g = frac * gamma_max
-        c = critical(t.with_(gamma=g), tol=tol, near=near, mode=False, check=False)
-        near = (0.8 * c.value, 1.25 * c.value) if CriticalKind(c.kind).located and c.value > 0 else None
+    least = None
+    for g, c in zip(gammas, survey):
         value = c.value if CriticalKind(c.kind).located else None
         points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
                        "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
                        "destabilised": bool(value is not None and value < ref * (1 - 1e-6))})
         if value is not None and (least is None or value < least[0]):
-            least = (value, g)
+            least = (value, g, c.eigenvalue)
     if least is None or (CriticalKind(undamped.kind).located and undamped.value <= least[0]):
         return points, undamped
-    value, g = least
-    worst = critical(t.with_(gamma=g), tol=tol, near=(0.98 * value, 1.02 * value), mode=False)
+    value, g, z = least
+    worst = critical(t.with_(gamma=g), tol=tol, near=(0.98 * value, 1.02 * value), mode=False, hint=(value, z))
     for q in points:  # the map shows the verdict's value where it was located again
         if q["gamma"] == g and CriticalKind(worst.kind).located:
             q["B"], q["IB0_N_per_m"] = worst.value, worst.value * load
     return points, worst
+
+
+def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft: bool, wanted: bool
+                         ) -> tuple[Crossing, list[Crossing] | None]:
+    """The undamped crossing (in a draft on one mesh) and, where the map is ``wanted``, the map's survey (each
+    crossing continued from the last one's, :func:`~etcheck.rod.straight.circulatory.damping_survey`), meanwhile
+    on the other core where there is one; None where not wanted, or in a draft where the tether flutters undamped
+    at any load (no damping can be less favourable)."""
+    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft) if not wanted else None
+    if undamped is not None:
+        return undamped, None
+    with ahead(lambda: damping_survey(t, gammas, tol)) as survey:
+        undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+        if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:
+            return undamped, None
+        return undamped, survey()
 
 
 def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
@@ -111,19 +132,29 @@ def _samples(scaled: Scaled, current_A: float) -> tuple[dict | None, dict | None
     return current, tension
 
 
-def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float):
-    """(undamped crossing or None, damping map, the crossing the verdict uses, why)."""
+def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, draft: bool = False):
+    """(undamped crossing or None, damping map, the crossing the verdict uses, why). ``draft``: the undamped
+    threshold on one mesh unless the verdict uses it (then on two, as every crossing a verdict uses)."""
     p = t.params
     if not t.circulatory:  # conservative: the mission's damping, as for a uniform tether
         c = critical(t, tol=tol, mode=False)
         return None, [], c, ("the load is conservative (one current along the tether): the critical load at the "
                              f"mission's damping (gamma = {p.gamma:.4g})")
-    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
+    gammas = tuple(frac * p.gamma for frac in DAMPING_FRACTIONS)
+    undamped, survey = _undamped_and_survey(t, gammas, tol, draft, wanted=not fixed and p.gamma > 0)
+    if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:  # no damping can be less favourable
+        undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)  # the verdict's: on two meshes
+        return undamped, [], undamped, ("undamped the tether flutters at any load: no damping can give a lower "
+                                        "threshold (the damping map is not computed in a draft)")
     if fixed or p.gamma == 0:
+        if p.gamma == 0 and draft:  # the verdict's: on two meshes (the first one's search reused)
+            undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
         c = critical(t, tol=tol, mode=False) if p.gamma > 0 else undamped
         return undamped, [], c, (f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the "
                                  "undamped threshold is reported beside it")
-    points, worst = _damping_map(t, p.gamma, tol, wc, load, undamped)
+    points, worst = _damping_map(t, gammas, survey, tol, wc, load, undamped)
+    if worst is undamped and draft:  # the verdict's: on two meshes (the first one's search reused)
+        worst = undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
     where = "undamped" if worst is undamped else f"at gamma = {worst_gamma(points, worst):.4g}"
     return undamped, points, worst, (
         "the mission does not fix the damping (no tether.damping_time): the circulatory load's threshold is "
@@ -145,7 +176,7 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
     sc = scaled.scales
     wc, load = sc.frequency, sc.load
     p = t.params
-    undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load)
+    undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load, draft)
     gamma = verdict_gamma(p.gamma, points, verdict, undamped)
     verdict = crossing_mode(t.with_(gamma=gamma), verdict)  # the mode of the crossing the verdict uses, only
     linear = _linear(scaled, t.with_(gamma=gamma), verdict, tol)

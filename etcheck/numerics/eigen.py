@@ -346,7 +346,11 @@ def sparse_qep_nearest(A0, A1, A2, k: int, sigma: complex = 0.0, vectors: bool =
     n = A0.shape[0]
     cplx = np.iscomplexobj(sigma) and complex(sigma).imag != 0.0
     sigma = complex(sigma) if cplx else float(np.real(sigma))
-    lu = splu(csc_matrix(A0 + sigma * A1 + (sigma * sigma) * A2), permc_spec=ordering)
+    try:
+        lu = splu(csc_matrix(A0 + sigma * A1 + (sigma * sigma) * A2), permc_spec=ordering)
+    except RuntimeError:  # the shift is an eigenvalue to the last bit: one next to it
+        sigma = sigma + 1e-10 * (1.0 + abs(sigma))
+        lu = splu(csc_matrix(A0 + sigma * A1 + (sigma * sigma) * A2), permc_spec=ordering)
     S = (A1 + sigma * A2).tocsr()
     M2 = A2.tocsr()
     dtype = complex if cplx else float
@@ -406,7 +410,10 @@ def qep_newton(A0, A1, A2, lam: complex, y: np.ndarray, tol: float = 1e-13, maxi
     lam = complex(lam)
     last = math.inf
     for _ in range(maxit):
-        lu = splu(csc_matrix(A0 + lam * A1 + (lam * lam) * A2, dtype=complex), permc_spec=ordering)
+        try:
+            lu = splu(csc_matrix(A0 + lam * A1 + (lam * lam) * A2, dtype=complex), permc_spec=ordering)
+        except RuntimeError:  # exactly singular: lambda is an eigenvalue to the last bit
+            return lam, y, True
         w = lu.solve(np.asarray((A1 + (2 * lam) * A2) @ y, dtype=complex))
         cw = np.dot(c, w)
         if cw == 0 or not np.isfinite(cw):

@@ -6,6 +6,7 @@ profiles and recompute the gravity-gradient tension at every length."""
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 
 import pytest
@@ -133,3 +134,15 @@ def test_an_undamped_round_wire_with_a_tension_profile_is_stable_at_every_spin_b
     assert spin["kind"] == "never" and "every spin" in spin["message"]
     margin = next(g for g in results["margins"] if g["name"].startswith("spin"))
     assert margin["verdict"] == "pass" and margin["value"] is None
+
+
+def test_a_draft_of_a_tether_that_flutters_at_any_load_undamped_skips_the_map():
+    """Undamped, a round wire with a varying current flutters at any load: no damping can be less favourable, so a
+    draft computes no damping map; the verdict (0, on two meshes) is the sign-off's."""
+    wire = _mission(tether={"bending_stiffness": "38 N m2"})
+    draft = check(dataclasses.replace(wire, fidelity="draft")).results
+    signoff = check(wire).results
+    assert draft["profiles"]["damping"]["map"] == [] and "not computed in a draft" in draft["profiles"]["damping"]["why"]
+    assert len(signoff["profiles"]["damping"]["map"]) == 5
+    for r in (draft, signoff):
+        assert r["linear"]["critical_load"]["value"] == 0.0 and r["verdict"] == "fail"

@@ -65,3 +65,21 @@ def test_factor_static_reduces_like_an_explicit_q():
     for got, ref in zip((el.B0, el.B1, el.B2), factor.reduce(A0, A1, A2)):
         np.testing.assert_array_equal(got, ref)
     assert not np.any(factor.reduce(sparse)[0][:, [0, 2, 3]])  # columns it does not reach stay exactly zero
+
+
+def test_sparse_solvers_started_on_an_exact_eigenvalue_do_not_raise():
+    """A tracked eigenvalue that lands on an eigenvalue to the last bit makes Q(lambda) exactly singular (SuperLU
+    raises): inverse iteration has converged there; a shift on an eigenvalue is moved next to it."""
+    import scipy.sparse as sp
+
+    from etcheck.numerics.eigen import qep_newton, sparse_qep_nearest
+
+    A0 = sp.diags([1.0, 4.0, 9.0, 16.0]).tocsc()
+    A1 = sp.csc_matrix((4, 4))
+    A2 = sp.identity(4, format="csc")
+    lam, y, ok = qep_newton(A0, A1, A2, 1j, np.array([1.0, 0.1, 0.0, 0.0], dtype=complex))
+    assert ok and lam == 1j
+    near = sparse_qep_nearest(A0, A1, A2, k=2, sigma=-1.0)  # Q(-1) = A0 + A2 is regular
+    assert np.allclose(np.sort(np.abs(near)), [1.0, 1.0])
+    on = sparse_qep_nearest(A0, A1, A2, k=1, sigma=2j)  # Q(2i) = A0 - 4 A2 is exactly singular
+    assert np.allclose(on, [2j])

@@ -4,7 +4,9 @@ tests/independent_fe.py) and the physics of a circulatory load."""
 
 from __future__ import annotations
 
+import contextlib
 import math
+import signal
 
 import independent_fe as fe
 import numpy as np
@@ -13,6 +15,7 @@ import pytest
 from etcheck.numerics.eigen import sparse_qep_nearest
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
+from etcheck.rod.straight import circulatory, line_band
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.circulatory import critical
 from etcheck.rod.straight.exact import exact_critical
@@ -105,6 +108,7 @@ def test_pinned_ends_give_the_analytic_frequencies():
 
 
 SCENES = [  # (params, current, tension shape): held-out kinds of tether, each against finite elements
+    (RodParameters(P=1e-3, R=1.0, Gamma=0.77, T=0.0, gamma=0.04375), RISING, Profile.uniform()),  # no tension
     (RodParameters(P=1e-6, R=1e-3, Gamma=0.7, T=2.0), KINKED, Profile.uniform()),
     (RodParameters(P=1e-4, R=0.2, Gamma=0.7, T=0.5), Profile.piecewise_linear([0, 1], [0.2, 1]),
      Profile.from_function(lambda s: 1 + 3 * s * (1 - s), degree=2)),
@@ -167,3 +171,115 @@ def test_uniform_rod_with_other_ends_reproduces_the_exact_determinant(ends):
     c = critical(Tether(p), mode=False)
     ref = exact_critical(p).critical_load
     assert c.value == pytest.approx(ref.value, rel=1e-9)
+
+
+@contextlib.contextmanager
+def _terminates_within(seconds: int):
+    """Fail (rather than hang) when the block runs past ``seconds``: a bound on termination, not a timing."""
+    def stop(signum, frame):
+        raise TimeoutError(f"still running after {seconds} s")
+    old = signal.signal(signal.SIGALRM, stop)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+@pytest.mark.parametrize("gamma", [0.04375, 0.0])
+def test_tape_without_tension_terminates_and_says_what_was_not_located(gamma):
+    """A bare tape without tension (R = 2.6e-6, T = 0) under a rising current: the modes the load reshapes up to
+    3 x its expected critical load are hundreds of soft weak-axis modes. The search ends at once, not located, and
+    says why; it never reports a spurious eigenvalue (an instability at B = 0 from an unconverged solve)."""
+    t = Tether(TAPE.with_(T=0.0, gamma=gamma), RISING)
+    with _terminates_within(30):
+        c = critical(t, mode=False)
+    assert c.kind == CriticalKind.NOT_LOCATED and not c.converged
+    assert "modes, more than rung 1v examines" in c.message
+
+
+def test_a_band_the_mesh_cannot_resolve_is_not_located():
+    """The pinned tape without tension: within its first stage the load reshapes about 90 modes, which the mesh
+    (one subdomain of 25 points per field: no layers without tension) cannot resolve. Not located, and why."""
+    t = Tether(TAPE.with_(T=0.0, gamma=0.0, ends=("pinned", "pinned")), RISING)
+    with _terminates_within(30):
+        c = critical(t, mode=False, check=False)
+    assert c.kind == CriticalKind.NOT_LOCATED and "more than the mesh resolves" in c.message
+
+
+@pytest.mark.parametrize("gamma", [0.04375, 0.0])
+def test_round_wire_without_tension_terminates_with_its_flutter(gamma):
+    """A round wire (R = 1) without tension under a rising current: flutter, damped at a load agreeing on two
+    meshes, undamped at any load."""
+    p = RodParameters(P=1e-3, R=1.0, Gamma=0.77, B=1.0, T=0.0, gamma=gamma)
+    with _terminates_within(30):
+        c = critical(Tether(p, RISING), mode=False)
+    assert c.kind == CriticalKind.FLUTTER and c.converged
+    if gamma:
+        assert c.value == pytest.approx(0.0871160446584, rel=1e-9) and c.error <= 1e-8 * c.value
+    else:
+        assert c.value == 0.0
+
+
+def test_an_eigenvalue_solve_that_does_not_converge_is_not_located(monkeypatch):
+    """A solve that returns fewer eigenvalues than asked (what ARPACK gives when its restarts run out): the point
+    is not located (a missing eigenvalue could be the unstable one), never read as stable."""
+    solve = line_band.sparse_qep_nearest
+
+    def partial(*args, **kwargs):
+        return solve(*args, **kwargs)[:-1]
+    monkeypatch.setattr(line_band, "sparse_qep_nearest", partial)
+    c = critical(Tether(TAPE.with_(gamma=0.0, T=1.3), RISING), mode=False)  # a tether no other test searched
+    assert c.kind == CriticalKind.NOT_LOCATED and "converged on" in c.message
+
+
+def test_a_far_end_of_the_line_does_not_change_the_crossing():
+    """The line searched in stages: a crossing near the expected load is found with the band of modes of the first
+    stage, whatever the end asked for (here 20 x the expected range, where hundreds of modes are reshaped)."""
+    t = Tether(TAPE.with_(gamma=0.0), RISING)
+    hi = 20 * line_band.expected_end(t, "B")
+    assert len(line_band.stages(t, "B", hi)) == 3
+    far = critical(t, hi=hi, mode=False)
+    assert far.kind == CriticalKind.FLUTTER
+    assert far.value / TAPE.B == pytest.approx(0.7222265, abs=1e-6)
+
+
+def test_damping_survey_agrees_with_a_search_at_each_damping():
+    """The damping map's survey, continued in gamma from one crossing to the next, against a search of its own at
+    each damping (one mesh each), on a tape with a rising current and a 200 m tether with a kinked current and a
+    tension profile."""
+    small = RodParameters(P=1e-3, R=0.5526315789473685, Gamma=0.7692307692307692, B=0.0126, T=0.0404)
+    parabola = Profile.from_function(lambda s: 1.3 - 0.15 * (2 * s - 1) ** 2, degree=2)
+    for t in (Tether(TAPE.with_(T=1.2), RISING), Tether(small, KINKED, parabola)):
+        gammas = (4.375e-4, 4.375e-3, 0.04375)
+        survey = circulatory.damping_survey(t, gammas)
+        for g, c in zip(gammas, survey):
+            own = critical(t.with_(gamma=g), mode=False, check=False)
+            assert c.kind == own.kind == CriticalKind.FLUTTER
+            assert c.value == pytest.approx(own.value, rel=1e-8)
+
+
+def test_spinning_tether_without_tension_is_answered_not_raised():
+    """A spun SET-like tether without tension under a rising current (scenes where the root finder's tracked function
+    could give the ends of its bracket other signs on a second evaluation, or land exactly on an eigenvalue: both
+    raised before). Undamped it flutters from zero load on (two meshes agree); damped at 0.0412771033 and, at half
+    that load, along the spin at 0.5426578528 (the values the code found before where it did not raise)."""
+    p = RodParameters(P=1e-3, R=0.5526315789473685, Gamma=0.7692307692307692, B=0.0126, T=0.0, omega=0.25)
+    undamped = critical(Tether(p.with_(gamma=0.0), RISING), mode=False)
+    assert undamped.kind == CriticalKind.FLUTTER and undamped.value == 0.0
+    damped = critical(Tether(p.with_(gamma=0.04375), RISING), mode=False)
+    assert damped.kind == CriticalKind.FLUTTER and damped.value == pytest.approx(0.0412771033, rel=1e-9)
+    spin = circulatory.critical_spin(Tether(p.with_(gamma=0.04375, B=0.5 * damped.value), RISING))
+    assert spin.kind == CriticalKind.FLUTTER and spin.value == pytest.approx(0.5426578528, rel=1e-9)
+
+
+def test_a_solver_that_fails_is_reported_not_located(monkeypatch):
+    """A sparse factorisation or ARPACK that raises (here: every eigenvalue solve) gives 'not located' with the
+    solver's message, never a traceback."""
+    def fails(*args, **kwargs):
+        raise RuntimeError("Factor is exactly singular")
+    monkeypatch.setattr(line_band, "sparse_qep_nearest", fails)
+    monkeypatch.setattr(circulatory, "sparse_qep_nearest", fails)
+    c = critical(Tether(TAPE.with_(gamma=0.0, T=1.1), RISING), mode=False)
+    assert c.kind == CriticalKind.NOT_LOCATED and "a solver failed (RuntimeError: Factor is exactly singular" in c.message

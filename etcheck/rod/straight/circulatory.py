@@ -37,8 +37,19 @@ import numpy as np
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.eigen import qep_newton, sparse_pencil_nearest, sparse_qep_nearest
 from etcheck.numerics.optimize import brentq
-from etcheck.rod.straight.mode_band import band_modes
-from etcheck.rod.straight.profiles import Tether, TetherFamily, check_resolution, family
+from etcheck.rod.straight.line_band import (
+    MAX_EIGENVALUES,
+    ORDER,
+    RESTARTS,
+    NotLocated,
+    band,
+    default_hi,
+    eigenvalue_count,
+    mean_params,
+    solve,
+    stages,
+)
+from etcheck.rod.straight.profiles import Tether, check_resolution, family
 from etcheck.rod.straight.spectral import CriticalKind
 
 __all__ = [
@@ -48,9 +59,11 @@ __all__ = [
     "THRESHOLD",
     "Crossing",
     "collides",
-    "Band",
-    "band",
     "critical",
+    "critical_spin",
+    "crossing_mode",
+    "damping_survey",
+    "forget",
     "growth",
 ]
 
@@ -62,8 +75,8 @@ RELATIVE = 1e-8
 LADDER = (24, 32, 48, 64, 96)
 #: Evenly spaced points of the scan along a line.
 SCAN = 24
-#: Least pairs of eigenvalues examined at each point.
-K_MODES = 12
+#: Most spectra computed along one line on one mesh (a search takes 40-150).
+MAX_SPECTRA = 1500
 #: An eigenvalue tracked by inverse iteration may move at most this much (relative to its size plus one) per unit
 #: relative step along the line; a larger jump is another eigenvalue, and ARPACK decides.
 TRACK_STEP = 10.0
@@ -101,12 +114,6 @@ class Crossing:
     mode: tuple | None = None
 
 
-def _nev(tether: Tether, hi_params) -> int:
-    """How many eigenvalues each point examines: the k least pairs and every mode the load and spin reshape
-    (:func:`~etcheck.rod.straight.mode_band.band_modes` at the end of the line)."""
-    return max(2 * K_MODES + 4, 2 * band_modes(hi_params) + 4)
-
-
 def _threshold(lam: np.ndarray) -> np.ndarray:
     return np.maximum(THRESHOLD, RELATIVE * np.abs(lam))
 
@@ -114,66 +121,6 @@ def _threshold(lam: np.ndarray) -> np.ndarray:
 def growth(lam: np.ndarray) -> float:
     """max (Re lambda - threshold): positive when some eigenvalue counts as unstable."""
     return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
-
-
-@dataclass(frozen=True)
-class Band:
-    """Where a line's eigenvalues are sought on one mesh: the k[i] nearest each shift sigmas[i], with lambda
-    scaled by ``scale`` (the size of the lowest frequency). Without damping one shift next to 0 (the lowest
-    modes, both members of each pair); with damping the Kelvin-Voigt cluster at -1/gamma, hundreds of
-    eigenvalues on which ARPACK converges slowly, must stay out of reach: the same shift where the modes lie
-    well below 1/gamma, else shifts i Omega along the band of modes, a few modes each (their
-    members with Im > 0; a real eigenvalue reaches Re lambda > 0 only through 0, where the operator is
-    singular: :meth:`_Line.static_roots`)."""
-
-    sigmas: tuple[complex, ...]
-    ks: tuple[int, ...]
-    scale: float
-
-    @property
-    def upper(self) -> bool:
-        return isinstance(self.sigmas[0], complex)
-
-
-#: Largest ratio of the frequencies sought around one shift along the band of a damped line whose modes reach the
-#: Kelvin-Voigt cluster (radius 0.4 of the middle).
-CHUNK = 7.0 / 3.0
-
-
-def band(fam: TetherFamily, point: dict, nev: int) -> Band:
-    """The :class:`Band` of a line on ``fam`` (``point``: its values of B, omega, T at the start)."""
-    gamma = fam.tether.params.gamma
-    scale = max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
-    if gamma == 0:
-        return Band((SIGMA * scale,), (nev,), scale)
-    lam = sparse_qep_nearest(*fam.operator(0.0, point["omega"], point["T"], damped=False), k=nev, sigma=SIGMA * scale,
-                             scale=scale, ordering=ORDER)
-    freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
-    if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # the cluster lies beyond the band: as without damping
-        return Band((SIGMA * scale,), (nev,), scale)
-    chunks = _chunks(freq)
-    return Band(tuple(complex(0.0, 0.5 * float(c[0] + c[-1])) for c in chunks), tuple(c.size for c in chunks), scale)
-
-
-def _chunks(freq: np.ndarray) -> list[np.ndarray]:
-    """The band's frequencies (sorted) in chunks each sought around its middle i Omega_c: a chunk spans at most a
-    factor :data:`CHUNK` (its radius at most 0.4 Omega_c), so the next frequencies and the Kelvin-Voigt cluster,
-    at least Omega_c away, lie at least 2.5 radii from the shift and ARPACK converges fast; a frequency within 1e-6
-    of the chunk's last (the double pairs of R = 1) joins it."""
-    out, start = [], 0
-    for i in range(1, freq.size + 1):
-        if i == freq.size or (freq[i] > CHUNK * freq[start] and freq[i] > freq[i - 1] * (1 + 1e-6)):
-            out.append(freq[start:i])
-            start = i
-    return out
-
-
-#: SuperLU's ordering of the collocation matrices: their own (block-banded along the tether).
-ORDER = "NATURAL"
-#: Real shift of an undamped band, as a fraction of the lowest frequency's scale: next to 0, where a real eigenvalue
-#: crosses, but not at it (the operator is singular there at static points, and next to them its LU then spreads
-#: round-off of 1e-7 into every eigenvalue: R = 1 just below its double static point with a shift of 0.012).
-SIGMA = 0.3
 
 
 class _Line:
@@ -184,9 +131,16 @@ class _Line:
         self.tether, self.axis, self.N, self.hi, self.lo = tether, axis, N, hi, 0.0
         p = tether.params
         ends = tether.with_(**{axis: hi})
+        nev = eigenvalue_count(tether, mean_params(ends))
+        if nev > MAX_EIGENVALUES:
+            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {(nev - 4) // 2} modes, more than rung 1v "
+                             f"examines ({MAX_EIGENVALUES} eigenvalues a point)")
         self.fam = family(ends, N)
+        if (nev - 4) // 2 > self.fam.mesh.size:
+            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {(nev - 4) // 2} modes, more than the mesh "
+                             f"resolves ({self.fam.mesh.size} points per field at N = {N})")
         self.base = {"B": p.B, "omega": p.omega, "T": p.T}
-        self.band = band(self.fam, self.point(0.0), _nev(tether, _mean_params(ends)))
+        self.band = band(self.fam, self.point(0.0), nev)
         self.memo: dict[float, np.ndarray] = {}
         self._static: np.ndarray | None = None
         self.tracked: list[tuple[float, complex, np.ndarray]] = []
@@ -197,8 +151,10 @@ class _Line:
     def spectrum(self, x: float) -> np.ndarray:
         """The band's eigenvalues at x."""
         if x not in self.memo:
+            if len(self.memo) >= MAX_SPECTRA:
+                raise NotLocated(f"the search along {self.axis} took more than {MAX_SPECTRA} spectra (N = {self.N})")
             A = self.fam.operator(**self.point(x))
-            lam = [sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+            lam = [solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
                    for sigma, k in zip(self.band.sigmas, self.band.ks)]
             self.memo[x] = np.concatenate(lam)
         return self.memo[x]
@@ -224,7 +180,7 @@ class _Line:
         A = self.fam.operator(**self.point(x))
         off = 1e-3 * (1.0 + abs(z))
         sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
-        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER)
+        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER, maxiter=RESTARTS)
 
     def track(self, x: float, z: complex) -> complex:
         """The eigenvalue at x that continues the one near z: nonlinear inverse iteration from the tracked
@@ -239,7 +195,7 @@ class _Line:
                 return lam
         off = 1e-3 * (1.0 + abs(z))
         lam, Y = sparse_qep_nearest(*A, k=2, sigma=complex(z.real + off, z.imag), scale=self.band.scale,
-                                    ordering=ORDER, vectors=True)
+                                    ordering=ORDER, vectors=True, maxiter=RESTARTS)
         i = int(np.argmin(np.abs(lam - z)))
         self.tracked.append((x, complex(lam[i]), Y[:, i]))
         return complex(lam[i])
@@ -261,13 +217,6 @@ class _Line:
 STATIC_ROOTS = 16
 #: Relative offset of the scan points either side of a static point.
 PAST = 1e-6
-
-
-def _mean_params(tether: Tether):
-    """The tether's parameters with its mean tension and mean |load| (for mode counts)."""
-    s = np.linspace(0.0, 1.0, 201)
-    p = tether.params
-    return p.with_(T=p.T * float(np.mean(tether.tension(s))), B=p.B * float(np.mean(np.abs(tether.current(s)))))
 
 
 def _scan(line: _Line, lo: float, hi: float, n: int) -> tuple[float, float] | None:
@@ -373,6 +322,18 @@ def _behind(h, a: float, ha: float, b: float, lo: float) -> tuple[float, float]:
     return a, ha
 
 
+def _memoised(h):
+    """h with its values remembered: a function that tracks an eigenvalue depends on where it was tracked from, and
+    the root finder evaluates the ends of its bracket again (a value of another sign there: no bracket)."""
+    seen: dict[float, float] = {}
+
+    def once(x: float) -> float:
+        if x not in seen:
+            seen[x] = h(x)
+        return seen[x]
+    return once
+
+
 def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
     """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
     a static point between points this close to it is the crossing (divergence)."""
@@ -384,7 +345,7 @@ def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, comple
     a, b = _single(line, a, b)
     if b <= AT_ZERO * line.hi:  # unstable at any value above 0
         return b, _unstable_eigenvalue(line.spectrum(b))
-    h = _crossing_function(line, a, b)
+    h = _memoised(_crossing_function(line, a, b))
     ha, hb = h(a), h(b)
     a, ha = _behind(h, a, ha, b, line.lo)
     if ha < 0 < hb:
@@ -401,19 +362,48 @@ def _kind(z: complex) -> str:
     return CriticalKind.FLUTTER if abs(z.imag) > 1e-6 * max(1.0, abs(z)) else CriticalKind.DIVERGENCE
 
 
-def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
+#: Most steps by which a bracket from another mesh is widened upwards until its end is unstable.
+WIDEN = 6
+
+
+def _widened(line: _Line, near: tuple[float, float], lo: float, hi: float) -> tuple[float, float] | None:
+    """The bracket ``near`` (from another mesh or a neighbouring tether) widened by its width either side, stable at
+    its start and unstable at its end on this mesh: its end moved up by a width growing 8 times a step while stable
+    there (a slow crossing, Re lambda of 1e-10 a little past it, is not yet counted as unstable), at most
+    :data:`WIDEN` steps, never past a static point (a band of the upper half-plane sees the real eigenvalue it
+    sends into Re lambda > 0 only just past it); None where it is unstable at its start or stays stable."""
+    a, b = near
+    width = max(b - a, 1e-6 * abs(b))
+    a2, b2 = max(lo, a - width), min(hi, b + width)
+    if line.unstable(a2):
+        return None
+    for _ in range(WIDEN):
+        if line.unstable(b2) or np.any((line.static_roots() > a2) & (line.static_roots() <= b2)):
+            return a2, b2  # a static point in it: the crossing, or unstable past it (_locate)
+        if b2 >= hi:
+            return None
+        width *= 8.0
+        a2, b2 = b2, min(hi, b2 + width)
+    return None
+
+
+def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None):
     """The first crossing on one mesh: (value, eigenvalue), (lo, eigenvalue) when unstable at lo, or
     (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
-    found from it is kept only when the tether is stable just below it on this mesh."""
-    if near is not None:
-        a, b = near
-        width = max(b - a, 1e-6 * abs(b))
-        a2, b2 = max(lo, a - width), min(hi, b + width)
-        if not line.unstable(a2) and line.unstable(b2):
-            x, z = _locate(line, a2, b2, rtol)
-            below = x * (1 - 1e-6) if x > 0 else lo
-            if x <= a2 or not line.unstable(below) or below <= lo:
-                return x, z
+    found from it is kept only when the tether is stable just below it on this mesh. ``hint``: (x, lambda), that
+    crossing on the other mesh: a flutter eigenvalue crossing on its own is followed from it (:func:`_secant`)."""
+    if (hint is not None and near is not None and hint[0] > lo and not collides(line.tether)
+            and _kind(hint[1]) == CriticalKind.FLUTTER):
+        found = _secant(line, hint[0], hint[1], hi, rtol)
+        if found is not None:
+            return found
+    bracket = None if near is None else _widened(line, near, lo, hi)
+    if bracket is not None:
+        a2, b2 = bracket
+        x, z = _locate(line, a2, b2, rtol)
+        below = x * (1 - 1e-6) if x > 0 else lo
+        if x <= a2 or not line.unstable(below) or below <= lo:
+            return x, z
     found = _scan(line, lo, hi, SCAN)
     if found is None:
         return None, None
@@ -423,10 +413,119 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None):
     return _locate(line, a, b, rtol)
 
 
+#: The first crossing found on each mesh, by how it was sought (from a bracket, or scanned from 0): a search repeated on
+#: the same mesh (the verdict's crossing after the damping map's survey) reuses it. At most :data:`FOUND_SIZE`.
+_FOUND: dict = {}
+FOUND_SIZE = 64
+
+
+def _first_on(line: _Line, lo: float, hi: float, rtol: float, near, hint=None):
+    """:func:`_first`, memoised in :data:`_FOUND` (a search from a bracket may reuse a scan's answer, the first
+    crossing; a scan only a scan's)."""
+    key = (line.tether, line.axis, line.N, lo, hi, rtol)
+    for scanned in (True,) if near is None else (True, False):
+        if key + (scanned,) in _FOUND:
+            return _FOUND[key + (scanned,)]
+    found = _first(line, lo, hi, rtol, near, hint)
+    _remember(key + (near is None,), found)
+    return found
+
+
+def forget() -> None:
+    """Empty the memo of crossings found (:data:`_FOUND`): a benchmark's runs start from nothing."""
+    _FOUND.clear()
+
+
+def _remember(key: tuple, found) -> None:
+    if len(_FOUND) >= FOUND_SIZE:
+        _FOUND.pop(next(iter(_FOUND)))
+    _FOUND[key] = found
+
+
+#: Most secant steps of the continuation of a crossing to the next damping of a survey.
+SECANT_STEPS = 12
+
+
+def damping_survey(tether: Tether, gammas: tuple[float, ...], tol: float = 1e-8) -> list[Crossing]:
+    """The first crossing along the load at each Kelvin-Voigt damping ``gammas`` (rising), on one mesh (N =
+    LADDER[0]): a survey such as the damping map, as :func:`critical` with ``check=False`` at each. The first is
+    searched for; each next one is continued from the last: the crossing eigenpair tracked (nonlinear inverse
+    iteration) at the new damping and its real part brought to 0 by secant steps along the load, kept where the
+    tether is stable just below it on the mesh (as a search from a bracket); else searched from the last one's
+    bracket."""
+    hi = default_hi(tether, "B")
+    rtol = min(tol, 1e-6) * 1e-2
+    out: list[Crossing] = []
+    seed = None
+    for g in gammas:
+        t = tether.with_(gamma=g)
+        c, seed = (None, None) if seed is None else _continued(t, hi, rtol, tol, seed)
+        if c is None:
+            near = None if not out or not _positive(out[-1]) else (0.8 * out[-1].value, 1.25 * out[-1].value)
+            c = critical(t, tol=tol, near=near, mode=False, check=False)
+            seed = _seed(t, hi, c) if _positive(c) and c.kind == CriticalKind.FLUTTER else None
+        out.append(c)
+    return out
+
+
+def _positive(c: Crossing) -> bool:
+    return CriticalKind(c.kind).located and c.value > 0
+
+
+def _seed(t: Tether, hi: float, c: Crossing) -> tuple[float, complex, np.ndarray] | None:
+    """(x, lambda, y): the crossing eigenpair of ``c`` on the survey's mesh."""
+    try:
+        line = _Line(t, "B", LADDER[0], hi)
+        lam = line.track(c.value, c.eigenvalue)
+    except NotLocated:
+        return None
+    return line.tracked[-1] if abs(lam - c.eigenvalue) <= 1e-6 * (1 + abs(lam)) else None
+
+
+def _continued(t: Tether, hi: float, rtol: float, tol: float, seed) -> tuple[Crossing | None, tuple | None]:
+    """The crossing of ``t`` continued from ``seed`` (another damping's crossing eigenpair on the same mesh) and its
+    own eigenpair, or (None, None) where :func:`_secant` finds none."""
+    line = _Line(t, "B", LADDER[0], hi)
+    line.tracked = [seed]
+    found = _secant(line, seed[0], seed[1], hi, rtol)
+    if found is None:
+        return None, None
+    _remember((t, "B", line.N, 0.0, hi, rtol, False), found)
+    x, z = found
+    return _crossing(line, "B", x, x, z, 0.0, hi, line.N, tol, rtol, False), line.tracked[-1]
+
+
+def _secant(line: _Line, x: float, z: complex, hi: float, rtol: float) -> tuple[float, complex] | None:
+    """The crossing near x of the eigenvalue near z (a flutter eigenvalue crossing from the left half-plane, from
+    another mesh or damping): tracked along the line (from ``line.tracked``, else found near z) and its real part
+    brought to 0 by secant steps, at most :data:`SECANT_STEPS`; None where they do not converge, where Re lambda does
+    not grow along the line, or where the tether is unstable just below the point found."""
+    x0, x1 = x, x * (1 + 1e-4)
+    h0 = line.track(x0, z).real
+    h1 = line.track(x1, z).real
+    if h1 <= h0:  # Re lambda does not grow along the line here: not this crossing
+        return None
+    for _ in range(SECANT_STEPS):
+        if h1 == h0:
+            return None
+        x0, h0, x1 = x1, h1, x1 - h1 * (x1 - x0) / (h1 - h0)
+        if not 0 < x1 <= hi:
+            return None
+        lam = line.track(x1, complex(0.0, z.imag))
+        h1 = lam.real
+        if abs(x1 - x0) <= rtol * x1:
+            break
+    else:
+        return None
+    if _kind(lam) != CriticalKind.FLUTTER or line.unstable(x1 * (1 - 1e-6)):
+        return None
+    return float(x1), complex(lam.real, abs(lam.imag))
+
+
 @single_blas_thread
 def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: float = 1e-8,
              ladder: tuple[int, ...] = LADDER, mode: bool = True, near: tuple[float, float] | None = None,
-             check: bool = True) -> Crossing:
+             check: bool = True, hint: tuple[float, complex] | None = None) -> Crossing:
     """The first loss of stability of the straight tether with profiles along ``axis`` ("B" or "omega"),
     from 0 to ``hi`` (default: :func:`default_hi`), the others fixed at ``tether.params``; dimensionless.
 
@@ -435,22 +534,46 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     ``tol`` (relative); the error is their distance plus the root finder's tolerance. ``near``: where a crossing
     is expected (a bracket, from a neighbouring tether): sought there first, and kept only where the tether is
     stable just below it; else the line is scanned from 0. ``check=False``: the first mesh alone (no error
-    estimate from a second one: a survey, such as the points of a damping map, not a verdict)."""
+    estimate from a second one: a survey, such as the points of a damping map, not a verdict). ``hint``: with
+    ``near``, the crossing (value, eigenvalue) found there on the first mesh (a survey's): a flutter eigenvalue
+    crossing on its own is followed from it first.
+
+    The line is searched in stages (:func:`stages`), each from 0 to its end with the band of modes that end
+    reshapes, so that a crossing near the expected value is found without the modes of a far end. Every solve
+    and loop is bounded: a search that exceeds a bound is reported as not located, with the reason."""
     if axis not in ("B", "omega"):
         raise ValueError(f"axis must be 'B' or 'omega', got {axis!r}")
     hi = default_hi(tether, axis) if hi is None else float(hi)
+    try:
+        for end in stages(tether, axis, hi):
+            c = _ladder(tether, axis, end, tol, ladder, mode, near, check, hint)
+            if c.kind != CriticalKind.NONE_FOUND:
+                return c
+            near = hint = None
+        return c
+    except NotLocated as err:
+        return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, 0.0, hi,
+                        ladder[0], ladder[0], f"not located: {err} ({MODEL})")
+    except (RuntimeError, ValueError, ArithmeticError) as err:  # a solver that failed (SuperLU, ARPACK, Brent)
+        return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, 0.0, hi,
+                        ladder[0], ladder[0], f"not located: a solver failed ({type(err).__name__}: {err}; {MODEL})")
+
+
+def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int, ...], mode: bool,
+            near: tuple[float, float] | None, check: bool, hint: tuple[float, complex] | None = None) -> Crossing:
+    """:func:`critical` on [0, hi] (one stage)."""
     lo = 0.0
     rtol = min(tol, 1e-6) * 1e-2
     noise = None
     for N in ladder:
         M = check_resolution(N)
         line = _Line(tether, axis, N, hi)
-        x1, z1 = _first(line, lo, hi, rtol, near)
+        x1, z1 = _first_on(line, lo, hi, rtol, near, hint if N == ladder[0] else None)
         if not check:
             M, x2, z2 = N, x1, z1
             break
         bracket = None if x1 is None else (x1 * (1 - 1e-3), x1 * (1 + 1e-3) + 1e-12 * hi)
-        x2, z2 = _first(_Line(tether, axis, M, hi), lo, hi, rtol, bracket)
+        x2, z2 = _first_on(_Line(tether, axis, M, hi), lo, hi, rtol, bracket, None if x1 is None else (x1, z1))
         if x1 is None and x2 is None:
             return Crossing(axis, math.nan, CriticalKind.NONE_FOUND, complex(math.nan), math.nan, True, lo, hi, N, M,
                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL}, N = {N} and {M})")
@@ -526,12 +649,14 @@ def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) ->
 
 def crossing_mode(tether: Tether, c: Crossing) -> Crossing:
     """The crossing with its mode (:attr:`Crossing.mode`), on the finer of its two meshes, where it was located
-    without one."""
+    without one (none where the solvers could not give it)."""
     if c.mode is not None or not CriticalKind(c.kind).located:
         return c
-    line = _Line(tether, c.axis, c.N_check, c.hi)
     x = c.value * (1 + 1e-8) if c.value > 0 else AT_ZERO * c.hi
-    return replace(c, mode=_mode(line, x, c.eigenvalue))
+    try:
+        return replace(c, mode=_mode(_Line(tether, c.axis, c.N_check, c.hi), x, c.eigenvalue))
+    except (NotLocated, RuntimeError, ValueError, ArithmeticError):
+        return c
 
 
 def _mode(line: _Line, x: float, z: complex):
@@ -539,22 +664,10 @@ def _mode(line: _Line, x: float, z: complex):
     larger of |u|, |v| peaks at 1 with zero phase there."""
     A = line.fam.operator(**line.point(x))
     lam, Y = sparse_qep_nearest(*A, k=2, sigma=z + 1e-7 * (1 + abs(z)), vectors=True, scale=line.band.scale,
-                                ordering=ORDER)
+                                ordering=ORDER, maxiter=RESTARTS)
+    if lam.size == 0:  # the solver did not converge: no mode to draw
+        return None
     s, u, v = line.fam.field_values(Y[:, int(np.argmin(np.abs(lam - z)))], 201)
     k = int(np.argmax(np.maximum(np.abs(u), np.abs(v))))
     peak = u[k] if abs(u[k]) >= abs(v[k]) else v[k]
     return s, u / peak, v / peak
-
-
-def default_hi(tether: Tether, axis: str) -> float:
-    """End of the line scanned when none is given: for the load, 3 x the expected first critical load of the
-    tether under its mean tension with the uniform load of its mean current; for the spin, 2 x the expected
-    critical spin (:func:`etcheck.rod.straight.exact.root_scale`), at least 1.1 x the operating value."""
-    from etcheck.rod.straight.exact import root_scale
-
-    mean = _mean_params(tether)
-    s = np.linspace(0.0, 1.0, 201)
-    b = max(float(np.mean(np.abs(tether.current(s)))), 0.1)
-    if axis == "B":
-        return max(3.0 * root_scale(mean.with_(B=0.0), "B", 1.0) / b, 1.1 * tether.params.B)
-    return max(2.0 * root_scale(mean.with_(omega=0.0), "omega", 1.0), 1.1 * tether.params.omega)
