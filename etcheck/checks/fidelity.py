@@ -25,7 +25,8 @@ TIME_BUDGET = 5.0
 LEFT_OUT = ("stability map", "Campbell diagram", "eigenvalues at the operating point (damped tethers)",
             "stable spin windows and, without spin, the critical spin (undamped tethers)",
             "accuracy table", "post-buckling analysis (rungs 2-3)",
-            "how far the margin moves with each assumption", "design limits")
+            "how far the margin moves with each assumption", "design limits",
+            "with a current or a tension along the tether: the margins under the other attachments of the ends")
 
 
 @dataclass(frozen=True)

@@ -108,7 +108,9 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     margins = straight_margins(mission, sc, scaled, chosen, static, linear,
                                profiles["damping"]["why"] if profiles else "")
     # the same margins under the other attachments of the ends (with profiles: at the damping the verdict uses)
-    alts = alternatives(mission, sc, scaled, options, profiles["damping"]["gamma"] if profiles else None)
+    # (rung 1v's take a second: not in a draft, which says so in fidelity.left_out)
+    alts = () if profiles and fid.draft else \
+        alternatives(mission, sc, scaled, options, profiles["damping"]["gamma"] if profiles else None)
     margins = with_alternatives(margins, alts)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
     if post and post.get("computed"):
