@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 from etcheck.checks.margins import Margin, overall_verdict, straight_margins
-from etcheck.checks.plan import PROFILES, Plan, plan, varies_along
+from etcheck.checks.plan import PROFILES, Plan, modelled_along, plan
 from etcheck.checks.sections import AlternativeMargin, AttachmentSection
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import WhirlOptions, linear_stability
@@ -71,7 +71,7 @@ def alternatives(mission: Mission, sc: Scene, scaled: Scaled, options: WhirlOpti
     for ends in alternative_ends(scaled.params.ends):
         tether = None if scaled.tether is None else scaled.tether.with_(ends=ends)
         alt = Scaled(params=scaled.params.with_(ends=ends), scales=scaled.scales, tether=tether)
-        chosen = plan(alt.params, mission.fidelity, varies_along(sc))
+        chosen = plan(alt.params, mission.fidelity, modelled_along(sc, mission.fidelity))
         rung0 = static_buckling(alt)
         static = {**rung0, "limits": static_limits(rung0, mission, sc)}
         if chosen.route == PROFILES and chosen.complete:

@@ -33,7 +33,18 @@ from etcheck.checks.margins import (
 )
 from etcheck.checks.orbit_field import with_orbit_field
 from etcheck.checks.orbit_load import orbit_results
-from etcheck.checks.plan import EXACT, LAYER_MIN, PROFILES, R_MIN_SPECTRAL, Plan, boundary_layer, plan, varies_along
+from etcheck.checks.plan import (
+    DRAFT_BOUND,
+    EXACT,
+    LAYER_MIN,
+    PROFILES,
+    R_MIN_SPECTRAL,
+    Plan,
+    boundary_layer,
+    modelled_along,
+    plan,
+    varies_along,
+)
 from etcheck.checks.results import results_header
 from etcheck.checks.sections import (
     AssumptionsSection,
@@ -95,7 +106,10 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     mission = with_orbit_field(mission)
     sc = scene(mission)
     scaled = scale(sc)
-    chosen = plan(scaled.params, mission.fidelity, varies_along(sc))
+    along = modelled_along(sc, mission.fidelity)
+    chosen = plan(scaled.params, mission.fidelity, along)
+    if along != varies_along(sc):
+        chosen = replace(chosen, reason=f"{chosen.reason}; {DRAFT_BOUND}")
     fid = fidelity_of(mission.fidelity, mission.tolerance)
     rung0 = static_buckling(scaled)
     static: StraightRodSection = {**rung0, "limits": static_limits(rung0, mission, sc)}
@@ -108,7 +122,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     margins = straight_margins(mission, sc, scaled, chosen, static, linear,
                                profiles["damping"]["why"] if profiles else "")
     # the same margins under the other attachments of the ends (with profiles: at the damping the verdict uses)
-    # (rung 1v's take a second: not in a draft, which says so in fidelity.left_out)
+    # (rung 1v's take half a second: not in a draft, which says so in fidelity.left_out)
     alts = () if profiles and fid.draft else \
         alternatives(mission, sc, scaled, options, profiles["damping"]["gamma"] if profiles else None)
     margins = with_alternatives(margins, alts)

@@ -88,6 +88,21 @@ def varies_along(sc) -> str:
     return " and ".join(parts)
 
 
+#: what a draft of a tether with only its tension along it answers (the plan's reason says it)
+DRAFT_BOUND = ("a draft takes the gravity-gradient tension at its smallest value along the whole tether (a "
+               "conservative bound: tension stabilises the straight tether under one current); a sign-off uses "
+               "the profile (rung 1v)")
+
+
+def modelled_along(sc, fidelity: str) -> str:
+    """What varies along the tether that a check of ``fidelity`` models (:func:`varies_along`): a draft takes a
+    tension profile under one current at its smallest value (:data:`DRAFT_BOUND`), a current along the tether
+    never (one current is no bound for a circulatory load)."""
+    if fidelity == "draft" and sc.current_profile is None:
+        return ""
+    return varies_along(sc)
+
+
 def plan(params: RodParameters, fidelity: str = "auto", profiles: str = "") -> Plan:
     """Pick the cheapest rung that answers the straight-tether question exactly.
 

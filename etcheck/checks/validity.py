@@ -275,8 +275,11 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: PostbucklingS
         items.append(
             f"Tension from the gravity gradient (tether.end_masses, {gg.rate_source}): the tension varies along "
             f"the tether from {gg.minimum:.4g} N at the {gg.minimum_at} to {gg.maximum:.4g} N at the centre of mass, "
-            "and the check uses that profile (rung 1v); the smallest tension held constant along the tether is "
-            "reported beside it as a bound (tension stabilises). The axial pull of the gradient is taken along the "
+            + ("and the check uses that profile (rung 1v); the smallest tension held constant along the tether is "
+               "reported beside it as a bound (tension stabilises). " if chosen.route == PROFILES else
+               "and this draft holds the smallest constant along the tether, a conservative bound (tension "
+               "stabilises; a sign-off uses the profile). ")
+            + "The axial pull of the gradient is taken along the "
             "undeformed tether; the lateral forces of the orbital frame on a displaced element (Hill's equations) "
             "are left out. Tether on the local vertical of a circular orbit, no libration (at the extremes of a "
             "libration swing the tension is lower, by about cos² of the angle)."

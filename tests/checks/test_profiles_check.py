@@ -146,3 +146,25 @@ def test_a_draft_of_a_tether_that_flutters_at_any_load_undamped_skips_the_map():
     assert len(signoff["profiles"]["damping"]["map"]) == 5
     for r in (draft, signoff):
         assert r["linear"]["critical_load"]["value"] == 0.0 and r["verdict"] == "fail"
+
+
+def test_a_draft_takes_a_tension_profile_under_one_current_at_its_smallest_value():
+    """PMG (one current, its gravity-gradient tension along it): a draft answers on the uniform routes under the
+    smallest tension held constant, the conservative bound the sign-off reports beside its profile's margin (the
+    committed example's, located there by rung 1v); a current along the tether is never taken so (the tape's draft
+    stays on rung 1v)."""
+    import json
+    from pathlib import Path
+
+    from etcheck.checks.plan import DRAFT_BOUND, PROFILES
+    from etcheck.input.mission import load_mission
+
+    root = Path(__file__).resolve().parents[2]
+    signed = json.loads((root / "reports" / "pmg" / "results.json").read_text())
+    bound = signed["profiles"]["uniform_tension_bound"]["value"] / signed["scaled"]["B"]
+    draft = check(dataclasses.replace(load_mission(root / "missions" / "pmg.toml"), fidelity="draft")).results
+    assert draft["plan"]["route"] != PROFILES and DRAFT_BOUND in draft["plan"]["reason"]
+    assert draft["margins"][0]["value"] == pytest.approx(bound, rel=1e-6)
+    assert draft["margins"][0]["value"] < signed["margins"][0]["value"]  # conservative
+    tape = check(dataclasses.replace(load_mission(root / "missions" / "tape-tether.toml"), fidelity="draft")).results
+    assert tape["plan"]["route"] == PROFILES
