@@ -222,3 +222,18 @@ def test_the_layout_check_can_fail():
     fig.canvas.draw()
     assert _legend_problems(fig) and _label_problems(fig)
     plt.close(fig)
+
+
+def test_a_damping_map_without_a_positive_critical_load_is_not_drawn():
+    """A tether unstable at any load over its damping map (critical loads 0 or not located, the undamped one 0):
+    no log-log figure of it (it raised 'Data cannot be log-scaled' and ended the check with an internal error);
+    one positive point is drawn."""
+    from etcheck.report.figures.profiles import profile_figures
+
+    point = {"gamma": 0.01, "damping_time_s": 2.0, "IB0_N_per_m": None, "destabilised": False}
+    results = {"scene": {"load_N_per_m": 1e-4, "length_m": 100.0},
+               "profiles": {"damping": {"map": [point, point | {"IB0_N_per_m": 0.0}]},
+                            "undamped": {"IB0_N_per_m": 0.0, "kind": "flutter"}}}
+    assert "damping_map" not in profile_figures(results)
+    results["profiles"]["damping"]["map"].append(point | {"IB0_N_per_m": 3e-5})
+    assert profile_figures(results)["damping_map"]

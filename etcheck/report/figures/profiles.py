@@ -66,7 +66,7 @@ def damping_map_plot(results: dict) -> str:
     threshold, the operating load and the points where damping lowered the threshold."""
     plt = _plt()
     pr = results["profiles"]
-    points = [q for q in pr["damping"]["map"] if q["IB0_N_per_m"] is not None]
+    points = _drawable(pr["damping"]["map"])
     fig, ax = plt.subplots(figsize=(6.2, 2.8))
     t = [q["damping_time_s"] for q in points]
     load = [q["IB0_N_per_m"] for q in points]
@@ -75,7 +75,7 @@ def damping_map_plot(results: dict) -> str:
     if low:
         ax.plot(*zip(*low), "v", color="#c0392b", ms=7, label="below the undamped one (destabilised by damping)")
     und = pr.get("undamped") or {}
-    if und.get("IB0_N_per_m") is not None:
+    if (und.get("IB0_N_per_m") or 0.0) > 0:
         ax.axhline(und["IB0_N_per_m"], color="#27ae60", ls="--", lw=1.2,
                    label=f"undamped, {und['IB0_N_per_m']:.3g} N/m ({und['kind']})")
     ax.axhline(results["scene"]["load_N_per_m"], color="k", lw=1, ls=":", label="operating load")
@@ -96,6 +96,12 @@ def profile_figures(results: dict) -> dict[str, str]:
         out["profiles"] = profiles_plot(results)
     if pr.get("mode"):
         out["profile_mode"] = critical_mode_plot(results)
-    if pr["damping"]["map"]:
+    if _drawable(pr["damping"]["map"]):
         out["damping_map"] = damping_map_plot(results)
     return out
+
+
+def _drawable(points: list[dict]) -> list[dict]:
+    """The damping map's points a log-log plot can show: a located critical load above zero at a damping time above
+    zero (a tether unstable at any load has none; the report's table lists every point)."""
+    return [q for q in points if (q["IB0_N_per_m"] or 0.0) > 0 and q["damping_time_s"] > 0]
