@@ -214,8 +214,12 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
     m = inp.mission
     p = scale(inp.base).params
     load_governs = name == LOAD_AT_SPIN or name == LOAD_AT_REST
-    exact = (-1.0, "exact: the load margin is critical load / (|I| B0), the shape of the profile fixed") \
-        if load_governs else (None, _RUNG_1V_COST)
+    if value is None or not 0 < value < math.inf:
+        exact = (None, "the margin is zero or without limit: no elasticity")
+    elif load_governs:
+        exact = (-1.0, "exact: the load margin is critical load / (|I| B0), the shape of the profile fixed")
+    else:
+        exact = (None, _RUNG_1V_COST)
     uniform = _margin_or_none(inp, "current", inp.current)  # the uniform check's: one current, smallest tension
 
     def ratio(point) -> float | None:
@@ -242,7 +246,7 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
             "one current along the whole tether (the uniform check, smallest tension held constant)", uniform)
     tension_row = _profile_tension(inp, ratio(profiles["uniform_tension_bound"]),
                                    uniform if cp is None else None)
-    field_row = _field(inp) if load_governs else {**_field(inp), "elasticity": None, "elasticity_method": _RUNG_1V_COST}
+    field_row = {**_field(inp), "elasticity": exact[0], "elasticity_method": exact[1]}
     d = profiles["damping"]
     undamped = ratio(profiles["undamped"]) if d["gamma"] > 0 else None
     damping_row = _record(

@@ -135,3 +135,15 @@ def test_flight_agreement_within_the_model():
     assert check(raw).results["flight"]["agreement"] == "disagrees"
     raw["operation"]["current"] = "100 A"
     assert check(raw).results["flight"]["agreement"] == "agrees"
+
+
+def test_a_margin_of_zero_has_no_elasticity():
+    """ProSEDS (a round wire with its collected current: flutter at any load, margin 0): ln 0 has no derivative, so
+    neither the current nor the field gets an elasticity, and no largest current is given."""
+    r = check(MISSIONS / "proseds.toml").results
+    assert r["margins"][0]["value"] == 0.0
+    rows = _rows(r)
+    assert rows["current"]["elasticity"] is None and rows["field"]["elasticity"] is None
+    assert "zero" in rows["current"]["elasticity_method"]
+    (current,) = [lim for lim in r["design_limits"]["limits"] if lim["input"] == "current"]
+    assert current["limit"] is None
