@@ -22,7 +22,10 @@ themselves, as they cross into Re lambda > 0:
 
 A tether whose unloaded spectrum has double frequencies (R = 1) under a current that varies
 flutters at any load: the circulatory part splits the double pair off the axis in proportion to B.
-Such a crossing is located at B -> 0 and reported as a critical load of 0.
+So does an undamped spinning tether with a current that varies, at any load above 0 and (loaded) at
+any spin above 0: Re lambda grows in proportion to the load or the spin from 0. Such a crossing is
+located at 0 (the crossing eigenvalue's real part positive all the way back to the start of the line)
+and reported as a critical value of 0.
 
 Dimensionless and pure; numpy/scipy only.
 """
@@ -65,6 +68,7 @@ __all__ = [
     "damping_survey",
     "forget",
     "growth",
+    "mirrored",
 ]
 
 MODEL = "rung 1v (graded collocation, profiles)"
@@ -123,6 +127,21 @@ def growth(lam: np.ndarray) -> float:
     return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
 
 
+def mirrored(lam: np.ndarray) -> np.ndarray:
+    """The eigenvalues of a tether whose spectrum is symmetric under lambda -> -conj(lambda) (:func:`collides`), an
+    eigenvalue in Re lambda > 0 without its mirror image there (within its own real part) put on the imaginary axis:
+    such an eigenvalue leaves the axis only together with its mirror (a collision, or a pair through 0), so a lone
+    one's real part is round-off (up to 1e-7 of |lambda| at the top of a band on a fine mesh, above
+    :data:`RELATIVE`)."""
+    out = lam.copy()
+    for i in np.flatnonzero(lam.real > 0):
+        d = np.abs(lam + np.conj(lam[i]))
+        d[i] = math.inf
+        if not np.any(d <= lam[i].real):
+            out[i] = complex(0.0, lam[i].imag)
+    return out
+
+
 class _Line:
     """Spectra along one axis on one mesh (memoised): the eigenvalues of the band at each point, the few near
     a given one, and the static points of the line."""
@@ -156,7 +175,8 @@ class _Line:
             A = self.fam.operator(**self.point(x))
             lam = [solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
                    for sigma, k in zip(self.band.sigmas, self.band.ks)]
-            self.memo[x] = np.concatenate(lam)
+            lam = np.concatenate(lam)
+            self.memo[x] = mirrored(lam) if collides(self.tether) else lam
         return self.memo[x]
 
     def growth(self, x: float) -> float:
@@ -336,7 +356,12 @@ def _memoised(h):
 
 def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
     """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
-    a static point between points this close to it is the crossing (divergence)."""
+    a static point between points this close to it is the crossing (divergence). Where the crossing eigenvalue's
+    real part is not negative anywhere back to the start of the line (where the scan found the tether stable: Re
+    lambda within the threshold of 0 there), it leaves the axis at the start: an undamped spinning tether with a
+    circulatory load, Re lambda growing in proportion to the load or the spin from 0 (docs/model.md, section 10),
+    is unstable at any value above 0. The point where Re lambda passes the threshold is no crossing (it moves
+    with the round-off of each mesh, and the meshes never agree on it)."""
     for r in (r for r in line.static_roots() if a < r <= b):
         if b - a <= 3 * PAST * r or not line.unstable(r * (1 - PAST)):
             return float(r), 0j  # a real eigenvalue through 0
@@ -348,6 +373,8 @@ def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, comple
     h = _memoised(_crossing_function(line, a, b))
     ha, hb = h(a), h(b)
     a, ha = _behind(h, a, ha, b, line.lo)
+    if ha >= 0 and a <= line.lo:  # off the axis all the way back to the start: it leaves the axis there
+        return min(b, AT_ZERO * line.hi), _unstable_eigenvalue(line.spectrum(b))
     if ha < 0 < hb:
         x = brentq(h, a, b, xtol=0.25 * rtol * abs(b), rtol=4 * np.finfo(float).eps, maxiter=100)
     else:  # no clean sign change of the smooth function: the stability predicate, bisected
@@ -637,8 +664,9 @@ def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) ->
                         f"already unstable at {axis} = {lo:g} ({MODEL})")
     at = f" at frequency Im lambda = {abs(z2.imag):.9g}" if kind == CriticalKind.FLUTTER else ""
     if zero:
-        msg = (f"unstable at any {axis} > 0: {kind}{at} from {axis} = 0 on, the circulatory load splitting a double "
-               f"frequency of the unloaded tether off the imaginary axis ({MODEL})")
+        what = "a double frequency" if axis == "B" and line.tether.params.omega == 0 else "a frequency of the spinning tether"
+        msg = (f"unstable at any {axis} > 0: {kind}{at} from {axis} = 0 on, the circulatory load moving {what} off the "
+               f"imaginary axis in proportion to {axis} ({MODEL})")
     else:
         how = f"meshes N = {N} and {M}" if M != N else f"one mesh, N = {N}: round-off only, no second mesh"
         msg = f"first instability at {axis} = {x2:.12g} ({kind}{at}; {MODEL}); error estimate {err:.2e} ({how})"
