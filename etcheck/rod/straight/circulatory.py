@@ -374,11 +374,13 @@ def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, comple
     ha, hb = h(a), h(b)
     a, ha = _behind(h, a, ha, b, line.lo)
     if ha >= 0 and a <= line.lo:  # off the axis all the way back to the start: it leaves the axis there
-        return min(b, AT_ZERO * line.hi), _unstable_eigenvalue(line.spectrum(b))
-    if ha < 0 < hb:
+        x = line.lo
+    elif ha < 0 < hb:
         x = brentq(h, a, b, xtol=0.25 * rtol * abs(b), rtol=4 * np.finfo(float).eps, maxiter=100)
     else:  # no clean sign change of the smooth function: the stability predicate, bisected
         x = _bisect(line, a, b, rtol)
+    if x <= AT_ZERO * line.hi:  # at the start: unstable at any value above it
+        return min(b, AT_ZERO * line.hi), _unstable_eigenvalue(line.spectrum(b))
     past = min(x * (1 + 4 * rtol), b) if x > 0 else b
     lam = line.spectrum(past)
     z = _unstable_eigenvalue(lam) if line.growth(past) > 0 else complex(_nearest(lam, 0j, 1)[0])
