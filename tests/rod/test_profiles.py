@@ -316,3 +316,17 @@ def test_a_lone_eigenvalue_of_a_hamiltonian_tether_off_the_axis_is_round_off():
     found = [critical(t, "omega", tol=1e-10, ladder=(N,), check=False, mode=False) for N in (24, 96)]
     assert [c.kind for c in found] == [CriticalKind.DIVERGENCE] * 2
     assert found[1].value == pytest.approx(found[0].value, rel=1e-7) and found[0].value == pytest.approx(577.45, rel=1e-4)
+
+
+def test_an_isotropic_tether_at_rest_under_one_current_only_diverges():
+    """Undamped, at rest, under one current the problem is self-adjoint (M lambda^2 + K, both symmetric): lambda^2
+    is real and no flutter exists. R = 1 has every frequency double, which round-off splits into a pair either side
+    of the axis, like a collision: on one mesh the benchmark's mission #26 at rest (R = 1, a gravity-gradient
+    tension) read as flutter at B = 6e-4 before, against its divergence at 271615.35."""
+    p = RodParameters(P=1.5e-5, R=1.0, Gamma=0.8, B=1.56e-4, omega=0.0, T=85550.4, gamma=0.0)
+    t = Tether(p, tension=Profile((0.0, 1.0), ((0.6025, 0.1911, -0.3856),)))
+    assert circulatory.mirrored(np.array([1e-9 + 5j, -1e-9 + 5j, 2.0 + 1e-12j]), real_square=True).tolist() == [
+        5j, 5j, 2.0]
+    found = [critical(t, tol=1e-6, ladder=(N,), check=False, mode=False) for N in (24, 36)]
+    assert [c.kind for c in found] == [CriticalKind.DIVERGENCE] * 2, [c.message for c in found]
+    assert found[1].value == pytest.approx(found[0].value, rel=1e-7)

@@ -127,12 +127,16 @@ def growth(lam: np.ndarray) -> float:
     return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
 
 
-def mirrored(lam: np.ndarray) -> np.ndarray:
+def mirrored(lam: np.ndarray, real_square: bool = False) -> np.ndarray:
     """The eigenvalues of a tether whose spectrum is symmetric under lambda -> -conj(lambda) (:func:`collides`), an
     eigenvalue in Re lambda > 0 without its mirror image there (within its own real part) put on the imaginary axis:
     such an eigenvalue leaves the axis only together with its mirror (a collision, or a pair through 0), so a lone
     one's real part is round-off (up to 1e-7 of |lambda| at the top of a band on a fine mesh, above
-    :data:`RELATIVE`)."""
+    :data:`RELATIVE`). ``real_square``: lambda^2 is real (a self-adjoint problem: no flutter), each eigenvalue
+    put on the nearer of the two axes (a double frequency of R = 1, split by round-off into a pair either side
+    of the axis, is no collision)."""
+    if real_square:
+        return np.where(np.abs(lam.real) >= np.abs(lam.imag), lam.real + 0j, 1j * lam.imag)
     out = lam.copy()
     for i in np.flatnonzero(lam.real > 0):
         d = np.abs(lam + np.conj(lam[i]))
@@ -176,8 +180,14 @@ class _Line:
             lam = [solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
                    for sigma, k in zip(self.band.sigmas, self.band.ks)]
             lam = np.concatenate(lam)
-            self.memo[x] = mirrored(lam) if collides(self.tether) else lam
+            self.memo[x] = mirrored(lam, self.self_adjoint(x)) if collides(self.tether) else lam
         return self.memo[x]
+
+    def self_adjoint(self, x: float) -> bool:
+        """Whether the tether at x is undamped, at rest and under a conservative load: M lambda^2 + K with M and K
+        symmetric (docs/model.md section 10), lambda^2 real."""
+        p = self.tether.params
+        return p.gamma == 0 and self.point(x)["omega"] == 0 and not self.tether.circulatory
 
     def growth(self, x: float) -> float:
         return growth(self.spectrum(x))
