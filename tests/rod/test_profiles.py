@@ -309,7 +309,7 @@ def test_a_lone_eigenvalue_of_a_hamiltonian_tether_off_the_axis_is_round_off():
     round-off: read as flutter it gave the spin line of the benchmark's mission #23 (pinned ends, a gravity-gradient
     tension) a crossing at omega = 22.5 on N = 96 against the divergence at 577.45 on N = 24."""
     lam = np.array([1e-4 + 5000j, 0.2 + 3j, -0.2 + 3j, 1e-9 + 7j, -1e-9 + 7j])
-    assert np.array_equal(circulatory.mirrored(lam), [5000j, 0.2 + 3j, -0.2 + 3j, 1e-9 + 7j, -1e-9 + 7j])
+    assert np.array_equal(line_band.mirrored(lam), [5000j, 0.2 + 3j, -0.2 + 3j, 1e-9 + 7j, -1e-9 + 7j])
     p = RodParameters(P=1.3e-7, R=0.55, Gamma=0.7, B=43.4, omega=0.37, T=145635.0, gamma=0.0,
                       ends=("pinned", "pinned"))
     t = Tether(p, tension=Profile((0.0, 1.0), ((0.522, 0.043, -0.4775),)))
@@ -325,7 +325,7 @@ def test_an_isotropic_tether_at_rest_under_one_current_only_diverges():
     tension) read as flutter at B = 6e-4 before, against its divergence at 271615.35."""
     p = RodParameters(P=1.5e-5, R=1.0, Gamma=0.8, B=1.56e-4, omega=0.0, T=85550.4, gamma=0.0)
     t = Tether(p, tension=Profile((0.0, 1.0), ((0.6025, 0.1911, -0.3856),)))
-    assert circulatory.mirrored(np.array([1e-9 + 5j, -1e-9 + 5j, 2.0 + 1e-12j]), real_square=True).tolist() == [
+    assert line_band.mirrored(np.array([1e-9 + 5j, -1e-9 + 5j, 2.0 + 1e-12j]), real_square=True).tolist() == [
         5j, 5j, 2.0]
     found = [critical(t, tol=1e-6, ladder=(N,), check=False, mode=False) for N in (24, 36)]
     assert [c.kind for c in found] == [CriticalKind.DIVERGENCE] * 2, [c.message for c in found]

@@ -49,6 +49,7 @@ from etcheck.rod.straight.line_band import (
     default_hi,
     eigenvalue_count,
     mean_params,
+    mirrored,
     solve,
     stages,
 )
@@ -68,7 +69,6 @@ __all__ = [
     "damping_survey",
     "forget",
     "growth",
-    "mirrored",
 ]
 
 MODEL = "rung 1v (graded collocation, profiles)"
@@ -125,25 +125,6 @@ def _threshold(lam: np.ndarray) -> np.ndarray:
 def growth(lam: np.ndarray) -> float:
     """max (Re lambda - threshold): positive when some eigenvalue counts as unstable."""
     return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
-
-
-def mirrored(lam: np.ndarray, real_square: bool = False) -> np.ndarray:
-    """The eigenvalues of a tether whose spectrum is symmetric under lambda -> -conj(lambda) (:func:`collides`), an
-    eigenvalue in Re lambda > 0 without its mirror image there (within its own real part) put on the imaginary axis:
-    such an eigenvalue leaves the axis only together with its mirror (a collision, or a pair through 0), so a lone
-    one's real part is round-off (up to 1e-7 of |lambda| at the top of a band on a fine mesh, above
-    :data:`RELATIVE`). ``real_square``: lambda^2 is real (a self-adjoint problem: no flutter), each eigenvalue
-    put on the nearer of the two axes (a double frequency of R = 1, split by round-off into a pair either side
-    of the axis, is no collision)."""
-    if real_square:
-        return np.where(np.abs(lam.real) >= np.abs(lam.imag), lam.real + 0j, 1j * lam.imag)
-    out = lam.copy()
-    for i in np.flatnonzero(lam.real > 0):
-        d = np.abs(lam + np.conj(lam[i]))
-        d[i] = math.inf
-        if not np.any(d <= lam[i].real):
-            out[i] = complex(0.0, lam[i].imag)
-    return out
 
 
 class _Line:
