@@ -283,3 +283,50 @@ def test_a_solver_that_fails_is_reported_not_located(monkeypatch):
     monkeypatch.setattr(circulatory, "sparse_qep_nearest", fails)
     c = critical(Tether(TAPE.with_(gamma=0.0, T=1.1), RISING), mode=False)
     assert c.kind == CriticalKind.NOT_LOCATED and "a solver failed (RuntimeError: Factor is exactly singular" in c.message
+
+
+def test_an_undamped_spinning_tether_with_a_varying_current_is_unstable_at_any_load_and_any_spin():
+    """docs/model.md section 10: spun, undamped, with a current rising along it (the scene-space benchmark's
+    mission #28, rounded), the circulatory load moves a frequency off the imaginary axis in proportion to the load
+    (and, loaded, to the spin): the crossing is at 0 on both lines, on two meshes. Where Re lambda passes the
+    threshold (B ~ 2.3e-5) is no crossing: it moved with each mesh's round-off, and the ladder climbed to N = 144."""
+    p = RodParameters(P=2.04e-9, R=1.32e-6, Gamma=0.826, B=7.2e-4, omega=1.15e-3, T=0.3, gamma=0.0)
+    t = Tether(p, RISING)
+    fam = family(t.with_(B=1e-4), 24)
+    re = [np.max(line_band.solve(fam.operator(B, p.omega, p.T), 28, 0.3 * 1.7, 1.7, "test").real)
+          for B in (1e-5, 2e-5)]
+    assert re[0] > 0 and re[1] / re[0] == pytest.approx(2.0, rel=0.05)  # Re lambda in proportion to B
+    for axis in ("B", "omega"):
+        c = critical(t, axis, mode=False)
+        assert (c.value, c.kind, c.converged) == (0.0, CriticalKind.FLUTTER, True), c.message
+        assert c.N_check > c.N and c.N <= 36  # two meshes agree at once: no ladder
+        assert "unstable at any" in c.message
+
+
+def test_a_lone_eigenvalue_of_a_hamiltonian_tether_off_the_axis_is_round_off():
+    """Undamped under one current (gyroscopic and conservative), an eigenvalue leaves the imaginary axis only with
+    its mirror image -conj(lambda). The top of the band of a fine mesh carries Re lambda of 1e-8..1e-7 |lambda| of
+    round-off: read as flutter it gave the spin line of the benchmark's mission #23 (pinned ends, a gravity-gradient
+    tension) a crossing at omega = 22.5 on N = 96 against the divergence at 577.45 on N = 24."""
+    lam = np.array([1e-4 + 5000j, 0.2 + 3j, -0.2 + 3j, 1e-9 + 7j, -1e-9 + 7j])
+    assert np.array_equal(line_band.mirrored(lam), [5000j, 0.2 + 3j, -0.2 + 3j, 1e-9 + 7j, -1e-9 + 7j])
+    p = RodParameters(P=1.3e-7, R=0.55, Gamma=0.7, B=43.4, omega=0.37, T=145635.0, gamma=0.0,
+                      ends=("pinned", "pinned"))
+    t = Tether(p, tension=Profile((0.0, 1.0), ((0.522, 0.043, -0.4775),)))
+    found = [critical(t, "omega", tol=1e-10, ladder=(N,), check=False, mode=False) for N in (24, 96)]
+    assert [c.kind for c in found] == [CriticalKind.DIVERGENCE] * 2
+    assert found[1].value == pytest.approx(found[0].value, rel=1e-7) and found[0].value == pytest.approx(577.45, rel=1e-4)
+
+
+def test_an_isotropic_tether_at_rest_under_one_current_only_diverges():
+    """Undamped, at rest, under one current the problem is self-adjoint (M lambda^2 + K, both symmetric): lambda^2
+    is real and no flutter exists. R = 1 has every frequency double, which round-off splits into a pair either side
+    of the axis, like a collision: on one mesh the benchmark's mission #26 at rest (R = 1, a gravity-gradient
+    tension) read as flutter at B = 6e-4 before, against its divergence at 271615.35."""
+    p = RodParameters(P=1.5e-5, R=1.0, Gamma=0.8, B=1.56e-4, omega=0.0, T=85550.4, gamma=0.0)
+    t = Tether(p, tension=Profile((0.0, 1.0), ((0.6025, 0.1911, -0.3856),)))
+    assert line_band.mirrored(np.array([1e-9 + 5j, -1e-9 + 5j, 2.0 + 1e-12j]), real_square=True).tolist() == [
+        5j, 5j, 2.0]
+    found = [critical(t, tol=1e-6, ladder=(N,), check=False, mode=False) for N in (24, 36)]
+    assert [c.kind for c in found] == [CriticalKind.DIVERGENCE] * 2, [c.message for c in found]
+    assert found[1].value == pytest.approx(found[0].value, rel=1e-7)

@@ -22,7 +22,10 @@ themselves, as they cross into Re lambda > 0:
 
 A tether whose unloaded spectrum has double frequencies (R = 1) under a current that varies
 flutters at any load: the circulatory part splits the double pair off the axis in proportion to B.
-Such a crossing is located at B -> 0 and reported as a critical load of 0.
+So does an undamped spinning tether with a current that varies, at any load above 0 and (loaded) at
+any spin above 0: Re lambda grows in proportion to the load or the spin from 0. Such a crossing is
+located at 0 (the crossing eigenvalue's real part positive all the way back to the start of the line)
+and reported as a critical value of 0.
 
 Dimensionless and pure; numpy/scipy only.
 """
@@ -46,6 +49,7 @@ from etcheck.rod.straight.line_band import (
     default_hi,
     eigenvalue_count,
     mean_params,
+    mirrored,
     solve,
     stages,
 )
@@ -156,8 +160,15 @@ class _Line:
             A = self.fam.operator(**self.point(x))
             lam = [solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
                    for sigma, k in zip(self.band.sigmas, self.band.ks)]
-            self.memo[x] = np.concatenate(lam)
+            lam = np.concatenate(lam)
+            self.memo[x] = mirrored(lam, self.self_adjoint(x)) if collides(self.tether) else lam
         return self.memo[x]
+
+    def self_adjoint(self, x: float) -> bool:
+        """Whether the tether at x is undamped, at rest and under a conservative load: M lambda^2 + K with M and K
+        symmetric (docs/model.md section 10), lambda^2 real."""
+        p = self.tether.params
+        return p.gamma == 0 and self.point(x)["omega"] == 0 and not self.tether.circulatory
 
     def growth(self, x: float) -> float:
         return growth(self.spectrum(x))
@@ -336,7 +347,12 @@ def _memoised(h):
 
 def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
     """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
-    a static point between points this close to it is the crossing (divergence)."""
+    a static point between points this close to it is the crossing (divergence). Where the crossing eigenvalue's
+    real part is not negative anywhere back to the start of the line (where the scan found the tether stable: Re
+    lambda within the threshold of 0 there), it leaves the axis at the start: an undamped spinning tether with a
+    circulatory load, Re lambda growing in proportion to the load or the spin from 0 (docs/model.md, section 10),
+    is unstable at any value above 0. The point where Re lambda passes the threshold is no crossing (it moves
+    with the round-off of each mesh, and the meshes never agree on it)."""
     for r in (r for r in line.static_roots() if a < r <= b):
         if b - a <= 3 * PAST * r or not line.unstable(r * (1 - PAST)):
             return float(r), 0j  # a real eigenvalue through 0
@@ -348,10 +364,14 @@ def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, comple
     h = _memoised(_crossing_function(line, a, b))
     ha, hb = h(a), h(b)
     a, ha = _behind(h, a, ha, b, line.lo)
-    if ha < 0 < hb:
+    if ha >= 0 and a <= line.lo:  # off the axis all the way back to the start: it leaves the axis there
+        x = line.lo
+    elif ha < 0 < hb:
         x = brentq(h, a, b, xtol=0.25 * rtol * abs(b), rtol=4 * np.finfo(float).eps, maxiter=100)
     else:  # no clean sign change of the smooth function: the stability predicate, bisected
         x = _bisect(line, a, b, rtol)
+    if x <= AT_ZERO * line.hi:  # at the start: unstable at any value above it
+        return min(b, AT_ZERO * line.hi), _unstable_eigenvalue(line.spectrum(b))
     past = min(x * (1 + 4 * rtol), b) if x > 0 else b
     lam = line.spectrum(past)
     z = _unstable_eigenvalue(lam) if line.growth(past) > 0 else complex(_nearest(lam, 0j, 1)[0])
@@ -637,8 +657,9 @@ def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) ->
                         f"already unstable at {axis} = {lo:g} ({MODEL})")
     at = f" at frequency Im lambda = {abs(z2.imag):.9g}" if kind == CriticalKind.FLUTTER else ""
     if zero:
-        msg = (f"unstable at any {axis} > 0: {kind}{at} from {axis} = 0 on, the circulatory load splitting a double "
-               f"frequency of the unloaded tether off the imaginary axis ({MODEL})")
+        what = "a double frequency" if axis == "B" and line.tether.params.omega == 0 else "a frequency of the spinning tether"
+        msg = (f"unstable at any {axis} > 0: {kind}{at} from {axis} = 0 on, the circulatory load moving {what} off the "
+               f"imaginary axis in proportion to {axis} ({MODEL})")
     else:
         how = f"meshes N = {N} and {M}" if M != N else f"one mesh, N = {N}: round-off only, no second mesh"
         msg = f"first instability at {axis} = {x2:.12g} ({kind}{at}; {MODEL}); error estimate {err:.2e} ({how})"

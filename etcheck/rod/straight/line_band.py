@@ -1,6 +1,7 @@
 """Rung 1v: where and how the eigenvalues along a line are sought (dimensionless): the range of the search (the
 expected first critical value and the stages up to the end asked for), the band of eigenvalues each point examines
-(how many, around which shifts), and the eigenvalue solve with its bounds, past which a search is not located.
+(how many, around which shifts), the eigenvalue solve with its bounds, past which a search is not located, and
+the eigenvalues as the structure of the spectrum allows them (round-off off the axis put on it).
 
 Used by :mod:`etcheck.rod.straight.circulatory`. Dimensionless and pure; numpy/scipy only.
 """
@@ -31,6 +32,7 @@ __all__ = [
     "eigenvalue_count",
     "expected_end",
     "mean_params",
+    "mirrored",
     "solve",
     "stages",
 ]
@@ -127,6 +129,26 @@ def solve(A, k: int, sigma, scale: float, where: str) -> np.ndarray:
         raise NotLocated(f"the eigenvalue solver converged on {lam.size} of {k} eigenvalues near {sigma:.4g} at "
                          f"{where}")
     return lam
+
+
+def mirrored(lam: np.ndarray, real_square: bool = False) -> np.ndarray:
+    """The eigenvalues of a tether whose spectrum is symmetric under lambda -> -conj(lambda) (undamped, at rest or
+    under one current: :func:`~etcheck.rod.straight.circulatory.collides`), an eigenvalue in Re lambda > 0 without
+    its mirror image there (within its own real part) put on the imaginary axis: such an eigenvalue leaves the
+    axis only together with its mirror (a collision, or a pair through 0), so a lone one's real part is round-off
+    (up to 1e-7 of |lambda| at the top of a band on a fine mesh, above the relative threshold of instability).
+    ``real_square``: lambda^2 is real (a self-adjoint problem: no flutter), each eigenvalue put on the nearer of
+    the two axes (a double frequency of R = 1, split by round-off into a pair either side of the axis, is no
+    collision). Dimensionless."""
+    if real_square:
+        return np.where(np.abs(lam.real) >= np.abs(lam.imag), lam.real + 0j, 1j * lam.imag)
+    out = lam.copy()
+    for i in np.flatnonzero(lam.real > 0):
+        d = np.abs(lam + np.conj(lam[i]))
+        d[i] = math.inf
+        if not np.any(d <= lam[i].real):
+            out[i] = complex(0.0, lam[i].imag)
+    return out
 
 
 def mean_params(tether: Tether):
