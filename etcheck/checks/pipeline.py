@@ -129,6 +129,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
     if post and post.get("computed"):
         margins += buckled_margins(post, sc, scaled, mission.required_margin)
+    margins_s = time.perf_counter() - started
     study = None
     if mission.uncertainty is not None and profiles is not None:
         skipped.append({"part": "uncertainty study", "why": "not computed with the current or tension along the "
@@ -172,7 +173,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "orbit": orbit_results(mission, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
         "resources": {"memory_budget_bytes": memory.budget(), "time_budget_s": options.time_budget,
-                      "skipped": skipped},
+                      "skipped": skipped, "margins_s": margins_s},
     }
     if study is not None:
         results["uncertainty"] = study

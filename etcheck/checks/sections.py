@@ -370,6 +370,7 @@ class ResourcesSection(TypedDict):
     memory_budget_bytes: int
     time_budget_s: float | None
     skipped: list[SkippedPart]
+    margins_s: float  # seconds from the start of the check until every margin was answered (never budgeted)
 
 
 # --------------------------------------------------------------------------- margins and verdict

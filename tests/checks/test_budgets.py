@@ -115,3 +115,19 @@ def test_an_undamped_sign_off_past_its_budget_has_the_same_margins_without_its_s
     assert [(m["value"], m["verdict"]) for m in cut["margins"]] == [(m["value"], m["verdict"]) for m in full["margins"]]
     assert "stable spin windows" in {s["part"] for s in cut["resources"]["skipped"]}
     assert full["linear"]["spin_windows_scanned_to_rpm"] > cut["linear"]["spin_windows_scanned_to_rpm"]
+
+
+def test_a_slow_sign_off_says_where_its_time_went_and_offers_the_draft(full):
+    """The margins' own time is in the results (never budgeted, at most the whole check's); a sign-off past the
+    target says how long, how much of it the margins took on which model, and offers --draft; a quick one and a
+    draft say nothing."""
+    from etcheck.cli.check import SIGN_OFF_SECONDS, slow_sign_off
+
+    res = full["resources"]
+    assert 0 < res["margins_s"] <= full["elapsed_s"]
+    assert slow_sign_off(full) == ""
+    slow = {**full, "elapsed_s": SIGN_OFF_SECONDS + 2.5, "resources": {**res, "margins_s": 11.0}}
+    line = slow_sign_off(slow)
+    assert "12.5 s" in line and "11.0 s of it the margins" in line and "--draft" in line
+    assert full["margins"][0]["model"] in line
+    assert slow_sign_off({**slow, "fidelity": {**full["fidelity"], "name": "draft"}}) == ""
