@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import copy
 import re
 from pathlib import Path
 
@@ -48,11 +49,10 @@ def tape(current_profile: bool = True, end_masses: bool = True) -> dict:
     from etcheck.input.mission import mission_from_dict
 
     data = tomllib.loads((Path(__file__).resolve().parents[1] / "missions" / "tape-tether.toml").read_text())
+    minimum = mission_from_dict(copy.deepcopy(data)).gravity_gradient.minimum
     if not current_profile:
         del data["operation"]["current_profile"], data["operation"]["collection"]
     if not end_masses:
-        minimum = mission_from_dict(tomllib.loads(
-            (Path(__file__).resolve().parents[1] / "missions" / "tape-tether.toml").read_text())).gravity_gradient.minimum
         del data["tether"]["end_masses"]
         data["operation"]["end_tension"] = f"{minimum!r} N"
         data["mission"]["assumed"] = [a for a in data["mission"]["assumed"] if a != "tether.end_masses"]

@@ -99,8 +99,9 @@ def _current(inp: Inputs) -> AssumptionRecord:
                    "operation.current_profile", el, how)
 
 
-def _tension(inp: Inputs) -> AssumptionRecord:
-    """The tension record of a tether with one tension along it (end masses make a profile: rung 1v's records)."""
+def _tension(inp: Inputs, uniform_routes: bool = True) -> AssumptionRecord:
+    """The tension record of a tether with one tension along it (end masses make a profile: rung 1v's records);
+    ``uniform_routes`` False: its margins come from rung 1v, so no elasticity or alternative is computed here."""
     m, T = inp.mission, inp.base.tension
     if T != 0:
         source, flag = "operation.end_tension", _flag(m, "operation.end_tension")
@@ -112,6 +113,9 @@ def _tension(inp: Inputs) -> AssumptionRecord:
     if T == 0:
         return _record("tension", "end tension", value, source, flag,
                        "tension stabilises the straight tether; without it the tether is held by bending alone")
+    if not uniform_routes:
+        return _record("tension", "end tension", value, source, flag, "tension stabilises the straight tether",
+                       None, _RUNG_1V_COST if T > 0 else "")
     el, how = _difference(inp, "end_tension", T) if T > 0 else (None, "")
     alt = _margin_or_none(inp, "end_tension", 0.0)
     return _record("tension", "end tension", value, source, flag, "tension stabilises the straight tether",
@@ -123,7 +127,8 @@ def _rate_source(text: str) -> str:
     return text.split(", at apogee")[0].split(": 3 Omega")[0].split(", mean motion")[0]
 
 
-def _field(inp: Inputs) -> AssumptionRecord:
+def _field(inp: Inputs, elasticity: tuple[float | None, str] | None = None) -> AssumptionRecord:
+    """The field record; ``elasticity`` (value, how) where the caller has it, else from the uniform routes."""
     m = inp.mission
     value = f"{inp.field * 1e6:.4g} µT"
     if m.orbit_envelope is not None:
@@ -134,7 +139,7 @@ def _field(inp: Inputs) -> AssumptionRecord:
         lo, hi = (float(x.to_value("uT")) for x in m.axial_field)
         source = "operation.axial_field" + (f" (worst of {lo:.4g} … {hi:.4g} µT)" if lo != hi else "")
         flag = _flag(m, "operation.axial_field")
-    el, how = _load_elasticity(inp)
+    el, how = _load_elasticity(inp) if elasticity is None else elasticity
     return _record("field", "field along the tether", value, source, flag,
                    "uniform along the undeformed tether (the model's assumption)", el, how)
 
@@ -220,7 +225,10 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
         exact = (-1.0, "exact: the load margin is critical load / (|I| B0), the shape of the profile fixed")
     else:
         exact = (None, _RUNG_1V_COST)
-    uniform = _margin_or_none(inp, "current", inp.current)  # the uniform check's: one current, smallest tension
+    cp = m.current_profile
+    # the uniform check's margin (one current, the smallest tension), where an alternative below shows it
+    uniform = _margin_or_none(inp, "current", inp.current) \
+        if cp is not None or profiles["uniform_tension_bound"] is None else None
 
     def ratio(point) -> float | None:
         """The load margin at another critical load (dimensionless), where the load margin governs."""
@@ -228,7 +236,6 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
             return None
         return point["value"] / p.B
 
-    cp = m.current_profile
     lo, hi = (float(x.to_value("A")) for x in m.current)
     current = f"largest {inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
     if cp is None:
@@ -246,7 +253,7 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
             "one current along the whole tether (the uniform check, smallest tension held constant)", uniform)
     tension_row = _profile_tension(inp, ratio(profiles["uniform_tension_bound"]),
                                    uniform if cp is None else None)
-    field_row = {**_field(inp), "elasticity": exact[0], "elasticity_method": exact[1]}
+    field_row = _field(inp, exact)
     d = profiles["damping"]
     undamped = ratio(profiles["undamped"]) if d["gamma"] > 0 else None
     damping_row = _record(
@@ -272,12 +279,10 @@ def _profile_tension(inp: Inputs, bound: float | None, uniform: float | None) ->
     """The tension record with a profile of current or of tension: under the gravity gradient the profile is used
     and the smallest tension held constant is the alternative (``bound``, computed by the check); with one tension
     along the tether the uniform check's margin is the one under its tension."""
-    m, T = inp.mission, inp.base.tension
+    m = inp.mission
     gg = m.gravity_gradient
     if gg is None:
-        row = _tension(inp)
-        return {**row, "elasticity": None, "elasticity_method": _RUNG_1V_COST if T > 0 else "",
-                "alternative": None, "margin_alternative": None}
+        return _tension(inp, uniform_routes=False)
     source = (f"gravity gradient: end masses {gg.upper_mass:.4g} kg, {gg.lower_mass:.4g} kg (tether.end_masses), "
               f"Ω = {gg.orbit_rate:.4g} rad/s ({_rate_source(gg.rate_source)})")
     value = f"the profile along the tether: {gg.minimum:.4g} N ({gg.minimum_at}) … {gg.maximum:.4g} N (centre)"

@@ -173,18 +173,13 @@ def design_limits(mission: Mission, base: Scene, options: WhirlOptions, rung_1v:
     (:data:`RUNG_1V`)."""
     started = time.perf_counter()
     inp = inputs_of(mission, base, options)
-    skip = not_sought(base)
-    if rung_1v and mission.current_profile is not None:  # circulatory: the uniform routes are no bound
-        limits = [_not_sought(inp, name, RUNG_1V) for name in _LIMITS]
-    else:
-        limits = [_not_sought(inp, name, skip) for name in _LIMITS] if skip else \
-            split_map(lambda name: _limit(inp, name), list(_LIMITS))
-    basis = ""
-    if rung_1v:
-        if mission.current_profile is None and any(lim["status"] != "not sought" for lim in limits):
-            basis = BOUND
-        if along is not None and base.spin_rate == 0:
-            limits[1] = _current_from_margin(inp, *along)
+    exact = {"current": _current_from_margin(inp, *along)} if rung_1v and along is not None and \
+        base.spin_rate == 0 else {}
+    skip = RUNG_1V if rung_1v and mission.current_profile is not None else not_sought(base)  # circulatory: no bound
+    sought = [name for name in _LIMITS if name not in exact and not skip]
+    found = dict(zip(sought, split_map(lambda name: _limit(inp, name), sought)))
+    limits = [exact.get(name) or found.get(name) or _not_sought(inp, name, skip) for name in _LIMITS]
+    basis = BOUND if rung_1v and found else ""
     return {"required": inp.required, "tolerance": LIMIT_TOLERANCE, "limits": limits,
             "time_s": time.perf_counter() - started, "basis": basis}
 

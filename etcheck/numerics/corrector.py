@@ -137,6 +137,22 @@ def _settled(step: float, last: float, tol: float) -> bool:
     return math.isfinite(last) and step < QUADRATIC * math.sqrt(tol) and step < last and step**3 / last**2 < 0.1 * tol
 
 
+def _exit(problem, u, p: float, it: int, step: float, last: float, tol: float,
+          small: bool) -> tuple[float, int, bool] | None:
+    """(residual norm, iterations, converged) where Newton stops after iteration ``it`` (an update of size
+    ``step`` after one of ``last``), else None: on the plain test (``small``), the residual at the result decides;
+    on the quadratic exit (:func:`_settled`), only a residual below ``tol`` stops it, and the count returned is
+    the one the plain test would have reached, one more (the step control, next_step, reads the same numbers)."""
+    if small:
+        rn = float(np.max(np.abs(problem.residual(u, p))))
+        return rn, it, rn < tol
+    if _settled(step, last, tol):
+        rn = float(np.max(np.abs(problem.residual(u, p))))
+        if rn < tol:
+            return rn, it + 1, True
+    return None
+
+
 def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, tol: float, max_newton: int,
             curvature: np.ndarray | None = None):
     """Predictor-corrector step of arclength ds from (u0, p0) along tau0 (and, given the branch's ``curvature``
@@ -169,15 +185,9 @@ def correct(problem, u0, p0: float, tau0: np.ndarray, ds: float, W: np.ndarray, 
         p = p + float(d[m])
         step = float(np.max(np.abs(d)))
         rn = float(np.max(np.abs(r)))
-        if step < tol and rn < 1e2 * tol:
-            rn = float(np.max(np.abs(problem.residual(u, p))))
-            return u, p, rn, it, rn < tol
-        if _settled(step, last, tol):
-            # the residual at the result decides; the count returned is the one the plain test (update < tol)
-            # would have reached, one more: the step control (next_step) reads the same numbers as before
-            rn = float(np.max(np.abs(problem.residual(u, p))))
-            if rn < tol:
-                return u, p, rn, it + 1, True
+        done = _exit(problem, u, p, it, step, last, tol, step < tol and rn < 1e2 * tol)
+        if done:
+            return (u, p, *done)
         last = step
         if it >= 3 and rn > 1e3:
             break
@@ -201,13 +211,9 @@ def correct_at(problem, u, p: float, tol: float, max_newton: int):
             return u, p, math.inf, it, False
         u = problem.retract(u, d)
         step = float(np.max(np.abs(d)))
-        if step < tol:
-            rn = float(np.max(np.abs(problem.residual(u, p))))
-            return u, p, rn, it, rn < tol
-        if _settled(step, last, tol):
-            rn = float(np.max(np.abs(problem.residual(u, p))))
-            if rn < tol:
-                return u, p, rn, it + 1, True
+        done = _exit(problem, u, p, it, step, last, tol, step < tol)
+        if done:
+            return (u, p, *done)
         last = step
     rn = float(np.max(np.abs(problem.residual(u, p))))
     return u, p, rn, max_newton, rn < tol
