@@ -8,13 +8,14 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from contextlib import nullcontext
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 from typing import cast
 
 from etcheck.checks.assumptions import assumptions
-from etcheck.checks.attachment import alternatives, attachment_section, with_alternatives
+from etcheck.checks.attachment import Alternative, alternatives, attachment_section, with_alternatives
 from etcheck.checks.design_limits import design_limits
 from etcheck.checks.fidelity import fidelity_of
 from etcheck.checks.flight import flight
@@ -118,13 +119,17 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=(), time_budget=None)
     # the report's extras not computed by then are skipped (the margins never are)
     deadline = None if options.time_budget is None else started + options.time_budget
-    linear, profiles, accuracy_rows, skipped = _straight_answers(mission, scaled, chosen, options, deadline)
+    # the same margins under the other attachments of the ends (with profiles: at the damping the verdict uses,
+    # computed by rung 1v beside its own parts; they take half a second: not in a draft, which says so in
+    # fidelity.left_out)
+    def other_ends(damping: float | None = None) -> tuple[Alternative, ...]:
+        return alternatives(mission, sc, scaled, options, damping)
+
+    linear, profiles, accuracy_rows, skipped, alts = _straight_answers(mission, scaled, chosen, options, deadline,
+                                                                       None if fid.draft else other_ends)
     margins = straight_margins(mission, sc, scaled, chosen, static, linear,
                                profiles["damping"]["why"] if profiles else "")
-    # the same margins under the other attachments of the ends (with profiles: at the damping the verdict uses)
-    # (rung 1v's take half a second: not in a draft, which says so in fidelity.left_out)
-    alts = () if profiles and fid.draft else \
-        alternatives(mission, sc, scaled, options, profiles["damping"]["gamma"] if profiles else None)
+    alts = other_ends() if alts is None else alts
     margins = with_alternatives(margins, alts)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
     if post and post.get("computed"):
@@ -180,23 +185,28 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     return CheckResult(results=results)
 
 
-def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: WhirlOptions, deadline: float | None
-                      ) -> tuple[LinearSection | None, ProfilesSection | None, list | None, list[SkippedPart]]:
+def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: WhirlOptions, deadline: float | None,
+                      other_ends: Callable[[float], tuple[Alternative, ...]] | None = None
+                      ) -> tuple[LinearSection | None, ProfilesSection | None, list | None, list[SkippedPart],
+                                 tuple[Alternative, ...] | None]:
     """The straight tether's answers past rung 0: rung 1v with profiles along the tether, else rung 1 and its
-    accuracy table (None each where the plan stops before them), and the extras skipped for the time budget."""
+    accuracy table (None each where the plan stops before them), the extras skipped for the time budget, and,
+    with profiles, ``other_ends(gamma)`` at the damping the verdict uses (computed beside rung 1v's parts; none
+    without ``other_ends``), else None (not computed here)."""
     skipped: list[SkippedPart] = []
     if not chosen.complete:
-        return None, None, None, skipped
+        return None, None, None, skipped, None
     if chosen.route == PROFILES:
         # imported here on purpose: rung 1v (scipy.sparse) loads only for a mission with profiles
         from etcheck.checks.profiles import profile_stability
 
-        linear, profiles = profile_stability(scaled, mission.damping_time is not None,
-                                             float(mission.worst_current.to_value("A")),
-                                             tol=max(options.tol, options.eig_tol), draft=options.draft)
-        return linear, profiles, None, skipped
+        linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None,
+                                                   float(mission.worst_current.to_value("A")),
+                                                   tol=max(options.tol, options.eig_tol), draft=options.draft,
+                                                   beside=other_ends)
+        return linear, profiles, None, skipped, () if alts is None else alts  # none in a draft
     if chosen.rung != 1:
-        return None, None, None, skipped
+        return None, None, None, skipped, None
 
     # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
     # nothing from the rest: where a core is free a helper computes it meanwhile
@@ -209,7 +219,8 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         later = ahead(table) if options.accuracy_beside else nullcontext(table)
     with later as accuracy_later:
         linear, skipped = linear_answers(scaled, options, chosen.route, deadline)
-        return linear, None, Extras(skipped, deadline, options.time_budget)("accuracy table", accuracy_later), skipped
+        return (linear, None, Extras(skipped, deadline, options.time_budget)("accuracy table", accuracy_later), skipped,
+                None)
 
 
 def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bool, options: WhirlOptions,

@@ -19,11 +19,13 @@ ask and converts the answers to SI:
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
 from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
-from etcheck.numerics.parallel import ahead
+from etcheck.numerics.parallel import ahead, can_split, split_map
 from etcheck.rod.straight.circulatory import (
     THRESHOLD,
     Crossing,
@@ -69,44 +71,77 @@ def _mode(c: Crossing, wc: float) -> ProfileMode | None:
             "v_im": v.imag.tolist(), "kind": str(c.kind), "frequency_Hz": abs(c.eigenvalue.imag) * wc / (2 * math.pi)}
 
 
-def _damping_map(t: Tether, gammas: tuple[float, ...], survey: list[Crossing], tol: float, wc: float, load: float,
-                 undamped: Crossing) -> tuple[list[DampingPoint], Crossing]:
+def _damping_map(gammas: tuple[float, ...], survey: list[Crossing], wc: float, load: float, undamped: Crossing,
+                 least: Callable[[], Crossing | None]) -> tuple[list[DampingPoint], Crossing]:
     """The map's points from the critical load at each damping ``gammas`` (``survey``: one mesh), and the least
-    favourable crossing (undamped included), located again on two meshes for the verdict."""
+    favourable crossing: the undamped one where no point of the map lies below it, else the lowest point located
+    again on two meshes (``least()``, :func:`_least`), which the map then shows."""
     points: list[DampingPoint] = []
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
-    least = None
     for g, c in zip(gammas, survey):
         value = c.value if CriticalKind(c.kind).located else None
         points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
                        "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
                        "destabilised": bool(value is not None and value < ref * (1 - 1e-6))})
-        if value is not None and (least is None or value < least[0]):
-            least = (value, g, c.eigenvalue)
-    if least is None or (CriticalKind(undamped.kind).located and undamped.value <= least[0]):
+    lowest = _lowest(gammas, survey)
+    if lowest is None or (CriticalKind(undamped.kind).located and undamped.value <= lowest[1].value):
         return points, undamped
-    value, g, z = least
-    worst = critical(t.with_(gamma=g), tol=tol, near=(0.98 * value, 1.02 * value), mode=False, hint=(value, z))
+    worst = least()
     for q in points:  # the map shows the verdict's value where it was located again
-        if q["gamma"] == g and CriticalKind(worst.kind).located:
+        if q["gamma"] == lowest[0] and CriticalKind(worst.kind).located:
             q["B"], q["IB0_N_per_m"] = worst.value, worst.value * load
     return points, worst
 
 
+def _lowest(gammas: tuple[float, ...], survey: list[Crossing]) -> tuple[float, Crossing] | None:
+    """(damping, crossing) of the survey's lowest located crossing; None where none was located."""
+    found = [(g, c) for g, c in zip(gammas, survey) if CriticalKind(c.kind).located]
+    return min(found, key=lambda gc: gc[1].value) if found else None
+
+
+def _least(t: Tether, gammas: tuple[float, ...], survey: list[Crossing], tol: float) -> Crossing | None:
+    """The survey's lowest crossing located again on two meshes (followed from the survey's; the verdict's
+    candidate), None where the survey located none."""
+    lowest = _lowest(gammas, survey)
+    if lowest is None:
+        return None
+    g, c = lowest
+    return critical(t.with_(gamma=g), tol=tol, near=(0.98 * c.value, 1.02 * c.value), mode=False,
+                    hint=(c.value, c.eigenvalue))
+
+
+def _survey(t: Tether, gammas: tuple[float, ...], tol: float, least: bool) -> tuple[list[Crossing], Crossing | None]:
+    """The map's survey (each crossing continued from the last one's,
+    :func:`~etcheck.rod.straight.circulatory.damping_survey`) and, where asked, its lowest crossing on two meshes
+    (:func:`_least`: in a helper, beside the undamped threshold, before it is known whether the verdict needs it)."""
+    survey = damping_survey(t, gammas, tol)
+    return survey, _least(t, gammas, survey, tol) if least else None
+
+
 def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft: bool, wanted: bool
-                         ) -> tuple[Crossing, list[Crossing] | None]:
-    """The undamped crossing (in a draft on one mesh) and, where the map is ``wanted``, the map's survey (each
-    crossing continued from the last one's, :func:`~etcheck.rod.straight.circulatory.damping_survey`), meanwhile
-    on the other core where there is one; None where not wanted, or in a draft where the tether flutters undamped
-    at any load (no damping can be less favourable)."""
-    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft) if not wanted else None
-    if undamped is not None:
-        return undamped, None
-    with ahead(lambda: damping_survey(t, gammas, tol)) as survey:
-        undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
-        if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:
-            return undamped, None
-        return undamped, survey()
+                         ) -> tuple[Crossing, list[Crossing] | None, Callable[[], Crossing | None]]:
+    """The undamped crossing (in a draft on one mesh), and, where the map is ``wanted``, the map's survey and a
+    function giving its lowest crossing on two meshes (:func:`_least`); the survey None where not wanted, or in a
+    draft where the tether flutters undamped at any load (no damping can be less favourable). Where there are two
+    cores: a sign-off, which needs both, surveys here and locates the undamped threshold on the other core; a draft
+    locates the undamped threshold here, which decides whether the survey is needed, and surveys on the other
+    core, locating the survey's lowest crossing there too before it is known whether the verdict uses it."""
+    def undamped() -> Crossing:
+        return critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+
+    if not wanted:
+        return undamped(), None, lambda: None
+    if not draft:
+        with ahead(undamped) as beside:
+            survey = damping_survey(t, gammas, tol)
+            return beside(), survey, lambda: _least(t, gammas, survey, tol)
+    speculative = can_split()
+    with ahead(lambda: _survey(t, gammas, tol, least=speculative)) as surveyed:
+        u = undamped()
+        if u.kind == CriticalKind.FLUTTER and u.value == 0:
+            return u, None, lambda: None
+        survey, least = surveyed()
+    return u, survey, (lambda: least) if speculative else (lambda: _least(t, gammas, survey, tol))
 
 
 def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
@@ -133,15 +168,16 @@ def _samples(scaled: Scaled, current_A: float) -> tuple[dict | None, dict | None
 
 
 def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, draft: bool = False):
-    """(undamped crossing or None, damping map, the crossing the verdict uses, why). ``draft``: the undamped
-    threshold on one mesh unless the verdict uses it (then on two, as every crossing a verdict uses)."""
+    """(undamped crossing or None, damping map, the crossing the verdict uses or None, why) of a circulatory load
+    (a conservative one: the mission's damping, the crossing computed with the other parts of the check).
+    ``draft``: the undamped threshold on one mesh unless the verdict uses it (then on two, as every crossing a
+    verdict uses)."""
     p = t.params
     if not t.circulatory:  # conservative: the mission's damping, as for a uniform tether
-        c = critical(t, tol=tol, mode=False)
-        return None, [], c, ("the load is conservative (one current along the tether): the critical load at the "
-                             f"mission's damping (gamma = {p.gamma:.4g})")
+        return None, [], None, ("the load is conservative (one current along the tether): the critical load at "
+                                f"the mission's damping (gamma = {p.gamma:.4g})")
     gammas = tuple(frac * p.gamma for frac in DAMPING_FRACTIONS)
-    undamped, survey = _undamped_and_survey(t, gammas, tol, draft, wanted=not fixed and p.gamma > 0)
+    undamped, survey, least = _undamped_and_survey(t, gammas, tol, draft, wanted=not fixed and p.gamma > 0)
     if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:  # no damping can be less favourable
         undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)  # the verdict's: on two meshes
         return undamped, [], undamped, ("undamped the tether flutters at any load: no damping can give a lower "
@@ -149,10 +185,10 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, 
     if fixed or p.gamma == 0:
         if p.gamma == 0 and draft:  # the verdict's: on two meshes (the first one's search reused)
             undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
-        c = critical(t, tol=tol, mode=False) if p.gamma > 0 else undamped
-        return undamped, [], c, (f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the "
-                                 "undamped threshold is reported beside it")
-    points, worst = _damping_map(t, gammas, survey, tol, wc, load, undamped)
+        return undamped, [], None if p.gamma > 0 else undamped, (
+            f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the undamped threshold is "
+            "reported beside it")
+    points, worst = _damping_map(gammas, survey, wc, load, undamped, least)
     if worst is undamped and draft:  # the verdict's: on two meshes (the first one's search reused)
         worst = undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
     where = "undamped" if worst is undamped else f"at gamma = {worst_gamma(points, worst):.4g}"
@@ -168,18 +204,30 @@ def worst_gamma(points: list[DampingPoint], worst: Crossing) -> float:
 
 
 def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol: float = 1e-8,
-                      draft: bool = False) -> tuple[LinearSection, ProfilesSection]:
+                      draft: bool = False, beside: Callable[[float], Any] | None = None
+                      ) -> tuple[LinearSection, ProfilesSection, Any]:
     """Rung 1v's answers for the scene (``scaled.tether`` set): the linear section the margins read (critical
-    load at the operating spin, critical spin at the operating load) and the profiles section the report
-    shows. ``damping_fixed``: whether the mission gives its damping time; ``current_A`` the largest current."""
+    load at the operating spin, critical spin at the operating load), the profiles section the report shows,
+    and ``beside(gamma)`` (None without it): work at the damping the verdict uses (the margins under another
+    attachment of the ends), done together with this function's own once that damping is known, on both cores
+    where there are two. ``damping_fixed``: whether the mission gives its damping time; ``current_A`` the largest
+    current."""
     t = scaled.tether
     sc = scaled.scales
     wc, load = sc.frequency, sc.load
     p = t.params
     undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load, draft)
     gamma = verdict_gamma(p.gamma, points, verdict, undamped)
-    verdict = crossing_mode(t.with_(gamma=gamma), verdict)  # the mode of the crossing the verdict uses, only
-    linear = _linear(scaled, t.with_(gamma=gamma), verdict, tol)
+    tg = t.with_(gamma=gamma)
+    # independent of each other once the damping is known: heaviest first, shared between the cores
+    jobs = {"verdict": None if verdict is not None else lambda: critical(tg, tol=tol, mode=False),
+            "beside": None if beside is None else lambda: beside(gamma),
+            "bound": None if draft else lambda: _bound(scaled, gamma),
+            "spin": None if p.omega == 0 else lambda: critical_spin(tg, tol=tol)}
+    names = [k for k, job in jobs.items() if job is not None]
+    done = dict(zip(names, split_map(lambda k: jobs[k](), names)))
+    verdict = crossing_mode(tg, verdict if verdict is not None else done["verdict"])  # the verdict's mode only
+    linear = _linear(scaled, tg, verdict, done.get("spin"), tol)
     current, tension = _samples(scaled, current_A)
     section: ProfilesSection = {
         "model": MODEL,
@@ -189,18 +237,17 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
         "damping": {"fixed": damping_fixed or p.gamma == 0, "gamma": gamma, "damping_time_s": gamma / wc,
                     "why": why, "map": points},
         "undamped": None if undamped is None else _load_point(undamped, tol, load),
-        "uniform_tension_bound": None if draft else _bound(scaled, gamma),
+        "uniform_tension_bound": done.get("bound"),
         "mode": _mode(verdict, wc),
         "post_buckling": _after(verdict),
     }
-    return linear, section
+    return linear, section, done.get("beside")
 
 
-def _linear(scaled: Scaled, t: Tether, verdict: Crossing, tol: float) -> LinearSection:
+def _linear(scaled: Scaled, t: Tether, verdict: Crossing, spin: Crossing | None, tol: float) -> LinearSection:
     """The linear section the margins read: the crossing along the load (``verdict``) and, with spin, the critical
-    spin of ``t`` at its load (located here)."""
+    spin of ``t`` at its load (``spin``)."""
     p, wc, load = t.params, scaled.scales.frequency, scaled.scales.load
-    spin = critical_spin(t, tol=tol) if p.omega > 0 else None
     load_point = _load_point(verdict, tol, load)
     stable = bool(verdict.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) or
                   (load_point["value"] is not None and p.B < load_point["value"]))
@@ -223,14 +270,16 @@ def alternative_linear(scaled: Scaled, gamma: float, tol: float) -> LinearSectio
     another attachment of the ends, at the damping the mission's verdict uses (one mesh: shown beside the margin,
     not judged)."""
     t = scaled.tether.with_(gamma=gamma)
-    return _linear(scaled, t, critical(t, tol=tol, mode=False, check=False), tol)  # beside the margin: one mesh
+    spin = critical_spin(t, tol=tol) if t.params.omega > 0 else None
+    return _linear(scaled, t, critical(t, tol=tol, mode=False, check=False), spin, tol)  # beside the margin: one mesh
 
 
-def verdict_gamma(gamma: float, points: list[DampingPoint], verdict: Crossing, undamped: Crossing | None) -> float:
+def verdict_gamma(gamma: float, points: list[DampingPoint], verdict: Crossing | None, undamped: Crossing | None
+                  ) -> float:
     """The damping of the crossing the verdict uses."""
-    if not points:
-        return gamma
-    return 0.0 if verdict is undamped else worst_gamma(points, verdict)
+    if verdict is not None and verdict is undamped:
+        return 0.0
+    return worst_gamma(points, verdict) if points else gamma
 
 
 def _after(c: Crossing) -> str:

@@ -48,6 +48,7 @@ from etcheck.rod.straight.line_band import (
     band,
     default_hi,
     eigenvalue_count,
+    forget_bands,
     mean_params,
     mirrored,
     solve,
@@ -452,8 +453,10 @@ def _first_on(line: _Line, lo: float, hi: float, rtol: float, near, hint=None):
 
 
 def forget() -> None:
-    """Empty the memo of crossings found (:data:`_FOUND`): a benchmark's runs start from nothing."""
+    """Empty the memo of crossings found (:data:`_FOUND`) and of the bands' frequencies: a benchmark's runs start
+    from nothing."""
     _FOUND.clear()
+    forget_bands()
 
 
 def _remember(key: tuple, found) -> None:
@@ -472,7 +475,7 @@ def damping_survey(tether: Tether, gammas: tuple[float, ...], tol: float = 1e-8)
     searched for; each next one is continued from the last: the crossing eigenpair tracked (nonlinear inverse
     iteration) at the new damping and its real part brought to 0 by secant steps along the load, kept where the
     tether is stable just below it on the mesh (as a search from a bracket); else searched from the last one's
-    bracket."""
+    bracket. A survey's crossings carry no error estimate (error nan): a map's points, not a verdict."""
     hi = default_hi(tether, "B")
     rtol = min(tol, 1e-6) * 1e-2
     out: list[Crossing] = []
@@ -482,7 +485,7 @@ def damping_survey(tether: Tether, gammas: tuple[float, ...], tol: float = 1e-8)
         c, seed = (None, None) if seed is None else _continued(t, hi, rtol, tol, seed)
         if c is None:
             near = None if not out or not _positive(out[-1]) else (0.8 * out[-1].value, 1.25 * out[-1].value)
-            c = critical(t, tol=tol, near=near, mode=False, check=False)
+            c = critical(t, tol=tol, near=near, mode=False, check=False, estimate=False)
             seed = _seed(t, hi, c) if _positive(c) and c.kind == CriticalKind.FLUTTER else None
         out.append(c)
     return out
@@ -512,7 +515,7 @@ def _continued(t: Tether, hi: float, rtol: float, tol: float, seed) -> tuple[Cro
         return None, None
     _remember((t, "B", line.N, 0.0, hi, rtol, False), found)
     x, z = found
-    return _crossing(line, "B", x, x, z, 0.0, hi, line.N, tol, rtol, False), line.tracked[-1]
+    return _crossing(line, "B", x, x, z, 0.0, hi, line.N, tol, rtol, False, estimate=False), line.tracked[-1]
 
 
 def _secant(line: _Line, x: float, z: complex, hi: float, rtol: float) -> tuple[float, complex] | None:
@@ -545,7 +548,7 @@ def _secant(line: _Line, x: float, z: complex, hi: float, rtol: float) -> tuple[
 @single_blas_thread
 def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: float = 1e-8,
              ladder: tuple[int, ...] = LADDER, mode: bool = True, near: tuple[float, float] | None = None,
-             check: bool = True, hint: tuple[float, complex] | None = None) -> Crossing:
+             check: bool = True, hint: tuple[float, complex] | None = None, estimate: bool = True) -> Crossing:
     """The first loss of stability of the straight tether with profiles along ``axis`` ("B" or "omega"),
     from 0 to ``hi`` (default: :func:`default_hi`), the others fixed at ``tether.params``; dimensionless.
 
@@ -556,7 +559,8 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     stable just below it; else the line is scanned from 0. ``check=False``: the first mesh alone (no error
     estimate from a second one: a survey, such as the points of a damping map, not a verdict). ``hint``: with
     ``near``, the crossing (value, eigenvalue) found there on the first mesh (a survey's): a flutter eigenvalue
-    crossing on its own is followed from it first.
+    crossing on its own is followed from it first. ``estimate=False`` (with ``check=False``): not even the
+    round-off of the one mesh is estimated (error nan: a survey's point).
 
     The line is searched in stages (:func:`stages`), each from 0 to its end with the band of modes that end
     reshapes, so that a crossing near the expected value is found without the modes of a far end. Every solve
@@ -566,7 +570,7 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
     hi = default_hi(tether, axis) if hi is None else float(hi)
     try:
         for end in stages(tether, axis, hi):
-            c = _ladder(tether, axis, end, tol, ladder, mode, near, check, hint)
+            c = _ladder(tether, axis, end, tol, ladder, mode, near, check, hint, estimate)
             if c.kind != CriticalKind.NONE_FOUND:
                 return c
             near = hint = None
@@ -580,7 +584,8 @@ def critical(tether: Tether, axis: str = "B", hi: float | None = None, tol: floa
 
 
 def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int, ...], mode: bool,
-            near: tuple[float, float] | None, check: bool, hint: tuple[float, complex] | None = None) -> Crossing:
+            near: tuple[float, float] | None, check: bool, hint: tuple[float, complex] | None = None,
+            estimate: bool = True) -> Crossing:
     """:func:`critical` on [0, hi] (one stage)."""
     lo = 0.0
     rtol = min(tol, 1e-6) * 1e-2
@@ -609,7 +614,7 @@ def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int,
         return Crossing(axis, math.nan, CriticalKind.NOT_LOCATED, complex(math.nan), math.nan, False, lo, hi, N, M,
                         f"the meshes N = {N} and {M} disagree on whether the tether loses stability up to "
                         f"{axis} = {hi:g} ({MODEL})")
-    return _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise)
+    return _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise, estimate)
 
 
 def critical_spin(tether: Tether, tol: float = 1e-8) -> Crossing:
@@ -645,11 +650,11 @@ def _roundoff(line: _Line, x: float, z: complex) -> float:
     return noise / slope if slope > 0 else math.inf
 
 
-def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) -> Crossing:
+def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None, estimate=True) -> Crossing:
     N = line.N
     zero = max(x1, x2) <= AT_ZERO * hi
     if noise is None:
-        noise = 0.0 if zero or x1 == x2 == lo else _roundoff(line, x1, z2)
+        noise = 0.0 if zero or x1 == x2 == lo else _roundoff(line, x1, z2) if estimate else math.nan
     err = abs(x1 - x2) + rtol * abs(x2) + noise
     kind = _kind(z2)
     if x1 == x2 == lo:
@@ -662,8 +667,9 @@ def _crossing(line, axis, x1, x2, z2, lo, hi, M, tol, rtol, mode, noise=None) ->
                f"imaginary axis in proportion to {axis} ({MODEL})")
     else:
         how = f"meshes N = {N} and {M}" if M != N else f"one mesh, N = {N}: round-off only, no second mesh"
-        msg = f"first instability at {axis} = {x2:.12g} ({kind}{at}; {MODEL}); error estimate {err:.2e} ({how})"
-    converged = zero or bool(err <= tol * abs(x2))
+        msg = (f"first instability at {axis} = {x2:.12g} ({kind}{at}; {MODEL}); " +
+               (f"error estimate {err:.2e} ({how})" if estimate else f"one mesh, N = {N}, no error estimate (a survey)"))
+    converged = zero or not estimate or bool(err <= tol * abs(x2))
     shape = _mode(line, x2 * (1 + 8 * rtol) if not zero else AT_ZERO * hi, z2) if mode else None
     return Crossing(axis, 0.0 if zero else x2, kind, z2, 0.0 if zero else err, converged, lo, hi, N, M, msg, shape)
 

@@ -30,6 +30,7 @@ __all__ = [
     "band",
     "default_hi",
     "eigenvalue_count",
+    "forget_bands",
     "expected_end",
     "mean_params",
     "mirrored",
@@ -85,14 +86,29 @@ class Band:
 CHUNK = 7.0 / 3.0
 
 
+#: The undamped frequencies at zero load a band is cut from, by (undamped tether, mesh, omega, T, count).
+_FREQUENCIES: dict = {}
+
+
+def forget_bands() -> None:
+    """Empty the memo of the bands' frequencies (a benchmark's runs start from nothing)."""
+    _FREQUENCIES.clear()
+
+
 def band(fam: TetherFamily, point: dict, nev: int) -> Band:
     """The :class:`Band` of a line on ``fam`` (``point``: its values of B, omega, T at the start)."""
     gamma = fam.tether.params.gamma
     scale = max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
     if gamma == 0:
         return Band((SIGMA * scale,), (nev,), scale)
-    lam = solve(fam.operator(0.0, point["omega"], point["T"], damped=False), nev, SIGMA * scale, scale, "zero load")
-    freq = np.sort(np.abs(lam.imag[lam.imag > 0]))
+    key = (fam.tether.with_(gamma=0.0), fam.mesh, point["omega"], point["T"], nev)
+    if key not in _FREQUENCIES:  # the same for every damping: a damping map's lines share it
+        lam = solve(fam.operator(0.0, point["omega"], point["T"], damped=False), nev, SIGMA * scale, scale,
+                    "zero load")
+        if len(_FREQUENCIES) >= 16:
+            _FREQUENCIES.pop(next(iter(_FREQUENCIES)))
+        _FREQUENCIES[key] = np.sort(np.abs(lam.imag[lam.imag > 0]))
+    freq = _FREQUENCIES[key]
     if freq.size == 0 or 1.0 / gamma > 1.5 * freq[-1]:  # the cluster lies beyond the band: as without damping
         return Band((SIGMA * scale,), (nev,), scale)
     chunks = _chunks(freq)

@@ -234,7 +234,7 @@ def _equation_rows(bld: _Builder, row: int, cols: tuple, s: np.ndarray, h: float
         bld.add("KT", balance, own, -scale * (tau * d2 + dtau * d1))
         bld.add("KB", balance, other, -sign * scale * b * d1)
         bld.add("Kw", balance, own, -scale * (pc * d2 + d0))
-        bld.add("C0", balance, moment, scale * p.gamma * d2)
+        bld.add("C0", balance, moment, scale * d2)  # times gamma in the operator
         bld.add("Cw", balance, other, -sign * 2.0 * scale * d0)
         bld.add("M", balance, own, scale * (d0 - pc * d2))
         c = 1.0 / max(c4 / h**2, 1.0)
@@ -250,7 +250,7 @@ def _columns(start: int, m: int) -> tuple[np.ndarray, ...]:
 
 
 def _assemble(tether: Tether, grid: Mesh) -> dict[str, sp.csc_matrix]:
-    """The blocks of the operator on the mesh: A0 = K0 + B KB + T KT + omega^2 Kw, A1 = C0 + omega Cw,
+    """The blocks of the operator on the mesh: A0 = K0 + B KB + T KT + omega^2 Kw, A1 = gamma C0 + omega Cw,
     A2 = M. Rows: the equations of each subdomain, the boundary rows of each end (u and u' welded, u and m pinned
     or on a swivel: torsion, which holds the difference, decouples; the same of v) and the interface rows (u, u', m, m' and v, v', n, n' continuous), each scaled to
     derivatives in units of the thinner neighbour."""
@@ -289,20 +289,21 @@ def _assemble(tether: Tether, grid: Mesh) -> dict[str, sp.csc_matrix]:
 
 
 class TetherFamily:
-    """The operator of a tether on one mesh as exact polynomials in (B, T, omega): assembled once,
-    recombined per point (P, R, f, gamma, the profiles and the ends fixed)."""
+    """The operator of a tether on one mesh as exact polynomials in (B, T, omega, gamma): assembled once,
+    recombined per point (P, R, f, the profiles and the ends fixed; the damping is ``tether.params.gamma``)."""
 
-    def __init__(self, tether: Tether, grid: Mesh):
+    def __init__(self, tether: Tether, grid: Mesh, blocks: dict[str, sp.csc_matrix]):
         self.tether = tether
         self.mesh = grid
-        self.blocks = _assemble(tether, grid)
+        self.blocks = blocks
 
     def operator(self, B: float, omega: float, T: float, damped: bool = True):
         """(A0, A1, A2) at the given load, spin and tension (sparse; ``damped=False``: without the Kelvin-Voigt
         term)."""
         k = self.blocks
+        gamma = self.tether.params.gamma if damped else 0.0
         A0 = k["K0"] + B * k["KB"] + T * k["KT"] + omega**2 * k["Kw"]
-        A1 = k["C0"] + omega * k["Cw"] if damped else omega * k["Cw"]
+        A1 = gamma * k["C0"] + omega * k["Cw"]
         return A0.tocsc(), A1.tocsc(), k["M"]
 
     def static(self, axis: str, B: float, omega: float, T: float):
@@ -331,11 +332,14 @@ class TetherFamily:
 
 
 @lru_cache(maxsize=32)
-def _family_cached(tether: Tether, N: int) -> TetherFamily:
-    return TetherFamily(tether, mesh(tether, N))
+def _assembled(tether: Tether, N: int) -> tuple[Mesh, dict[str, sp.csc_matrix]]:
+    """The mesh and the blocks of the undamped ``tether`` at middle resolution N (the damping scales one block and
+    moves neither the mesh nor the others)."""
+    grid = mesh(tether, N)
+    return grid, _assemble(tether, grid)
 
 
 def family(tether: Tether, N: int) -> TetherFamily:
-    """The family of ``tether`` at middle resolution N (memoised; the mesh follows the layers at the
-    tether's own load, spin and tension)."""
-    return _family_cached(tether, int(N))
+    """The family of ``tether`` at middle resolution N (its assembly memoised over the damping; the mesh follows
+    the layers at the tether's own load, spin and tension)."""
+    return TetherFamily(tether, *_assembled(tether.with_(gamma=0.0), int(N)))
