@@ -110,38 +110,32 @@ def _least(t: Tether, gammas: tuple[float, ...], survey: list[Crossing], tol: fl
                     hint=(c.value, c.eigenvalue))
 
 
-def _survey(t: Tether, gammas: tuple[float, ...], tol: float, least: bool) -> tuple[list[Crossing], Crossing | None]:
-    """The map's survey (each crossing continued from the last one's,
-    :func:`~etcheck.rod.straight.circulatory.damping_survey`) and, where asked, its lowest crossing on two meshes
-    (:func:`_least`: in a helper, beside the undamped threshold, before it is known whether the verdict needs it)."""
-    survey = damping_survey(t, gammas, tol)
-    return survey, _least(t, gammas, survey, tol) if least else None
-
-
 def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft: bool, wanted: bool
                          ) -> tuple[Crossing, list[Crossing] | None, Callable[[], Crossing | None]]:
     """The undamped crossing (in a draft on one mesh), and, where the map is ``wanted``, the map's survey and a
     function giving its lowest crossing on two meshes (:func:`_least`); the survey None where not wanted, or in a
-    draft where the tether flutters undamped at any load (no damping can be less favourable). Where there are two
-    cores: a sign-off, which needs both, surveys here and locates the undamped threshold on the other core; a draft
-    locates the undamped threshold here, which decides whether the survey is needed, and surveys on the other
-    core, locating the survey's lowest crossing there too before it is known whether the verdict uses it."""
-    def undamped() -> Crossing:
-        return critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+    draft where the tether flutters undamped at any load (no damping can be less favourable).
 
-    if not wanted:
-        return undamped(), None, lambda: None
-    if not draft:
-        with ahead(undamped) as beside:
-            survey = damping_survey(t, gammas, tol)
-            return beside(), survey, lambda: _least(t, gammas, survey, tol)
+    Where there are two cores the survey's first crossing (at the smallest damping, searched for) is located on the
+    other one while the undamped threshold is located here; then the survey's others (each continued from the
+    last) on the other core while the first is located again on two meshes here: it is the lowest where damping
+    destabilises (Ziegler), and where it is not, this work was done while waiting."""
+    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft) if not wanted else None
+    if undamped is not None:
+        return undamped, None, lambda: None
     speculative = can_split()
-    with ahead(lambda: _survey(t, gammas, tol, least=speculative)) as surveyed:
-        u = undamped()
-        if u.kind == CriticalKind.FLUTTER and u.value == 0:
-            return u, None, lambda: None
-        survey, least = surveyed()
-    return u, survey, (lambda: least) if speculative else (lambda: _least(t, gammas, survey, tol))
+    with ahead(lambda: damping_survey(t, gammas[:1], tol)[0]) as beside:
+        undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+        if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:
+            return undamped, None, lambda: None
+        first = beside()
+    with ahead(lambda: damping_survey(t, gammas[1:], tol, after=(gammas[0], first))) as rest:
+        least = _least(t, gammas[:1], [first], tol) if speculative else None
+        survey = [first, *rest()]
+    lowest = _lowest(gammas, survey)
+    if least is not None and lowest is not None and lowest[0] == gammas[0]:
+        return undamped, survey, lambda: least
+    return undamped, survey, lambda: _least(t, gammas, survey, tol)
 
 
 def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:

@@ -469,25 +469,31 @@ def _remember(key: tuple, found) -> None:
 SECANT_STEPS = 12
 
 
-def damping_survey(tether: Tether, gammas: tuple[float, ...], tol: float = 1e-8) -> list[Crossing]:
+def damping_survey(tether: Tether, gammas: tuple[float, ...], tol: float = 1e-8,
+                   after: tuple[float, Crossing] | None = None) -> list[Crossing]:
     """The first crossing along the load at each Kelvin-Voigt damping ``gammas`` (rising), on one mesh (N =
     LADDER[0]): a survey such as the damping map, as :func:`critical` with ``check=False`` at each. The first is
-    searched for; each next one is continued from the last: the crossing eigenpair tracked (nonlinear inverse
+    searched for (or continued from ``after``: (damping, crossing) of the survey at a smaller damping, its part
+    computed apart); each next one is continued from the last: the crossing eigenpair tracked (nonlinear inverse
     iteration) at the new damping and its real part brought to 0 by secant steps along the load, kept where the
     tether is stable just below it on the mesh (as a search from a bracket); else searched from the last one's
     bracket. A survey's crossings carry no error estimate (error nan): a map's points, not a verdict."""
     hi = default_hi(tether, "B")
     rtol = min(tol, 1e-6) * 1e-2
     out: list[Crossing] = []
-    seed = None
+    last, seed = None, None
+    if after is not None:
+        g, last = after
+        seed = _seed(tether.with_(gamma=g), hi, last) if _positive(last) and last.kind == CriticalKind.FLUTTER else None
     for g in gammas:
         t = tether.with_(gamma=g)
         c, seed = (None, None) if seed is None else _continued(t, hi, rtol, tol, seed)
         if c is None:
-            near = None if not out or not _positive(out[-1]) else (0.8 * out[-1].value, 1.25 * out[-1].value)
+            near = None if last is None or not _positive(last) else (0.8 * last.value, 1.25 * last.value)
             c = critical(t, tol=tol, near=near, mode=False, check=False, estimate=False)
             seed = _seed(t, hi, c) if _positive(c) and c.kind == CriticalKind.FLUTTER else None
         out.append(c)
+        last = c
     return out
 
 
