@@ -168,3 +168,30 @@ def test_a_draft_takes_a_tension_profile_under_one_current_at_its_smallest_value
     assert draft["margins"][0]["value"] < signed["margins"][0]["value"]  # conservative
     tape = check(dataclasses.replace(load_mission(root / "missions" / "tape-tether.toml"), fidelity="draft")).results
     assert tape["plan"]["route"] == PROFILES
+
+
+@pytest.mark.parametrize("fidelity", ["auto", "draft"])
+def test_a_check_with_profiles_on_two_cores_answers_as_on_one(bare, fidelity):
+    """Rung 1v shares its parts between two cores (the damping map's survey beside the undamped threshold, the
+    uniform-tension bound beside the margins under the other attachment): the same answers as one core computing
+    them in turn, each located margin within its error."""
+    from etcheck.numerics.parallel import serial
+    from etcheck.rod.straight.circulatory import forget
+
+    mission = dataclasses.replace(_mission(), fidelity=fidelity)
+    forget()
+    two = bare if fidelity == "auto" else check(mission).results
+    forget()
+    with serial():
+        one = check(mission).results
+    for a, b in zip(one["margins"], two["margins"], strict=True):
+        assert a["verdict"] == b["verdict"]
+        assert b["value"] == pytest.approx(a["value"], rel=1e-6)
+        for x, y in zip(a["alternatives"], b["alternatives"], strict=True):
+            assert y["value"] == pytest.approx(x["value"], rel=1e-6)
+    assert [q["B"] for q in one["profiles"]["damping"]["map"]] == \
+        pytest.approx([q["B"] for q in two["profiles"]["damping"]["map"]], rel=1e-8)
+    bounds = [r["profiles"]["uniform_tension_bound"] for r in (one, two)]
+    assert (bounds[0] is None) == (bounds[1] is None) == (fidelity == "draft")
+    if bounds[0] is not None:
+        assert bounds[1]["value"] == pytest.approx(bounds[0]["value"], rel=1e-6)

@@ -260,6 +260,21 @@ def test_damping_survey_agrees_with_a_search_at_each_damping():
             assert c.value == pytest.approx(own.value, rel=1e-8)
 
 
+def test_damping_survey_continued_from_a_crossing_computed_apart_is_the_same_survey():
+    """A survey split in two (its first crossing apart, the others continued from it: the check's two cores) gives
+    the survey computed in one piece; its points say that they carry no error estimate."""
+    t = Tether(TAPE.with_(T=1.2), RISING)
+    gammas = (4.375e-4, 4.375e-3, 0.04375)
+    whole = circulatory.damping_survey(t, gammas)
+    circulatory.forget()
+    first = circulatory.damping_survey(t, gammas[:1])
+    split = first + circulatory.damping_survey(t, gammas[1:], after=(gammas[0], first[0]))
+    for a, b in zip(whole, split):
+        assert a.kind == b.kind == CriticalKind.FLUTTER
+        assert b.value == pytest.approx(a.value, rel=1e-9)
+        assert math.isnan(b.error) and "no error estimate" in b.message
+
+
 def test_spinning_tether_without_tension_is_answered_not_raised():
     """A spun SET-like tether without tension under a rising current (scenes where the root finder's tracked function
     could give the ends of its bracket other signs on a second evaluation, or land exactly on an eigenvalue: both
