@@ -117,17 +117,20 @@ def test_an_undamped_sign_off_past_its_budget_has_the_same_margins_without_its_s
     assert full["linear"]["spin_windows_scanned_to_rpm"] > cut["linear"]["spin_windows_scanned_to_rpm"]
 
 
-def test_a_slow_sign_off_says_where_its_time_went_and_offers_the_draft(full):
-    """The margins' own time is in the results (never budgeted, at most the whole check's); a sign-off past the
-    target says how long, how much of it the margins took on which model, and offers --draft; a quick one and a
-    draft say nothing."""
-    from etcheck.cli.check import SIGN_OFF_SECONDS, slow_sign_off
+def test_a_slow_check_says_where_its_time_went_and_a_slow_sign_off_offers_the_draft(full):
+    """The margins' own time is in the results (never budgeted, at most the whole check's); a sign-off past its
+    target says how long, how much of it the margins took on which model, and offers --draft; a draft past its
+    second says how long and by which models; a quick one of either says nothing."""
+    from etcheck.cli.check import DRAFT_SECONDS, SIGN_OFF_SECONDS, slow_check
 
     res = full["resources"]
     assert 0 < res["margins_s"] <= full["elapsed_s"]
-    assert slow_sign_off(full) == ""
+    assert slow_check(full) == ""
     slow = {**full, "elapsed_s": SIGN_OFF_SECONDS + 2.5, "resources": {**res, "margins_s": 11.0}}
-    line = slow_sign_off(slow)
+    line = slow_check(slow)
     assert "12.5 s" in line and "11.0 s of it the margins" in line and "--draft" in line
     assert full["margins"][0]["model"] in line
-    assert slow_sign_off({**slow, "fidelity": {**full["fidelity"], "name": "draft"}}) == ""
+    draft = {**full, "fidelity": {**full["fidelity"], "name": "draft"}}
+    assert slow_check({**draft, "elapsed_s": 0.5 * DRAFT_SECONDS}) == ""
+    line = slow_check({**draft, "elapsed_s": DRAFT_SECONDS + 1.5})
+    assert "this draft took 2.5 s" in line and full["margins"][0]["model"] in line and "--draft" not in line
