@@ -26,7 +26,7 @@ LEFT_OUT = ("stability map", "Campbell diagram", "eigenvalues at the operating p
             "stable spin windows and, without spin, the critical spin (undamped tethers)",
             "accuracy table", "post-buckling analysis (rungs 2-3)",
             "how far the margin moves with each assumption", "design limits",
-            "with a current along the tether: the margins under the other attachments of the ends")
+            "the margins under the other attachments of the ends")
 
 
 @dataclass(frozen=True)

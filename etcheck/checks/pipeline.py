@@ -120,10 +120,9 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     # the report's extras not computed by then are skipped (the margins never are)
     deadline = None if options.time_budget is None else started + options.time_budget
     # the same margins under the other attachments of the ends (with profiles: at the damping the verdict uses,
-    # computed by rung 1v beside its own parts; they take half a second: not in a draft, which says so in
-    # fidelity.left_out)
+    # computed by rung 1v beside its own parts); not in a draft, which says so in fidelity.left_out
     def other_ends(damping: float | None = None) -> tuple[Alternative, ...]:
-        return alternatives(mission, sc, scaled, options, damping)
+        return () if fid.draft else alternatives(mission, sc, scaled, options, damping)
 
     linear, profiles, accuracy_rows, skipped, alts = _straight_answers(mission, scaled, chosen, options, deadline,
                                                                        None if fid.draft else other_ends)

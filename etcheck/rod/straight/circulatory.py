@@ -413,6 +413,12 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None)
     (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
     found from it is kept only when the tether is stable just below it on this mesh. ``hint``: (x, lambda), that
     crossing on the other mesh: a flutter eigenvalue crossing on its own is followed from it (:func:`_secant`)."""
+    if hint is not None and near is not None and lo == 0 < hint[0] <= AT_ZERO * hi:
+        # the other mesh: unstable at any value above 0 (its crossing eigenvalue off the axis from 0 on); so is this
+        # one where it is stable at 0 and the same eigenvalue lies clearly off the axis where the other located it
+        z = complex(_nearest(line.near(hint[0], hint[1]), hint[1], 1)[0])
+        if line.growth(lo) <= 0 and z.real > 1e3 * np.finfo(float).eps * abs(z):
+            return hint[0], complex(z.real, abs(z.imag))
     if (hint is not None and near is not None and hint[0] > lo and not collides(line.tether)
             and _kind(hint[1]) == CriticalKind.FLUTTER):
         found = _secant(line, hint[0], hint[1], hi, rtol)
