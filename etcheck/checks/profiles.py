@@ -116,26 +116,37 @@ def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft
     function giving its lowest crossing on two meshes (:func:`_least`); the survey None where not wanted, or in a
     draft where the tether flutters undamped at any load (no damping can be less favourable).
 
-    Where there are two cores the survey's first crossing (at the smallest damping, searched for) is located on the
-    other one while the undamped threshold is located here; then the survey's others (each continued from the
-    last) on the other core while the first is located again on two meshes here: it is the lowest where damping
-    destabilises (Ziegler), and where it is not, this work was done while waiting."""
-    undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft) if not wanted else None
-    if undamped is not None:
-        return undamped, None, lambda: None
+    Where there are two cores the undamped threshold and the survey's first crossing (at the smallest damping,
+    searched for) are located side by side: in a draft the undamped threshold here (it decides whether the survey
+    is needed), in a sign-off on the other core (two meshes: the longer). Then the survey's others (each continued
+    from the last) are computed on another core while the first is located again on two meshes here: it is the
+    lowest where damping destabilises (Ziegler), and where it is not, this work was done while waiting."""
+    def undamped() -> Crossing:
+        return critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
+
+    def first() -> Crossing:
+        return damping_survey(t, gammas[:1], tol)[0]
+
+    if not wanted:
+        return undamped(), None, lambda: None
     speculative = can_split()
-    with ahead(lambda: damping_survey(t, gammas[:1], tol)[0]) as beside:
-        undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
-        if draft and undamped.kind == CriticalKind.FLUTTER and undamped.value == 0:
-            return undamped, None, lambda: None
-        first = beside()
-    with ahead(lambda: damping_survey(t, gammas[1:], tol, after=(gammas[0], first))) as rest:
-        least = _least(t, gammas[:1], [first], tol) if speculative else None
-        survey = [first, *rest()]
+    with ahead(first if draft else undamped) as beside:
+        if draft:
+            u = undamped()
+            if u.kind == CriticalKind.FLUTTER and u.value == 0:
+                return u, None, lambda: None
+            c1 = beside()
+        else:
+            c1 = first()
+        with ahead(lambda: damping_survey(t, gammas[1:], tol, after=(gammas[0], c1))) as rest:
+            least = _least(t, gammas[:1], [c1], tol) if speculative else None
+            survey = [c1, *rest()]
+        if not draft:
+            u = beside()
     lowest = _lowest(gammas, survey)
     if least is not None and lowest is not None and lowest[0] == gammas[0]:
-        return undamped, survey, lambda: least
-    return undamped, survey, lambda: _least(t, gammas, survey, tol)
+        return u, survey, lambda: least
+    return u, survey, lambda: _least(t, gammas, survey, tol)
 
 
 def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
