@@ -197,12 +197,15 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         return None, None, None, skipped, None
     if chosen.route == PROFILES:
         # imported here on purpose: rung 1v (scipy.sparse) loads only for a mission with profiles
-        from etcheck.checks.profiles import profile_stability
+        from etcheck.checks.profiles import profile_stability, stability_map
 
+        tol = max(options.tol, options.eig_tol)
         linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None,
-                                                   float(mission.worst_current.to_value("A")),
-                                                   tol=max(options.tol, options.eig_tol), draft=options.draft,
-                                                   beside=other_ends)
+                                                   float(mission.worst_current.to_value("A")), tol=tol,
+                                                   draft=options.draft, beside=other_ends)
+        if not options.draft:  # the report's extra, within the sign-off's time budget
+            linear["stability_map"] = Extras(skipped, deadline, options.time_budget)(
+                "stability map", lambda: stability_map(scaled, linear, profiles["damping"]["gamma"], tol))
         return linear, profiles, None, skipped, () if alts is None else alts  # none in a draft
     if chosen.rung != 1:
         return None, None, None, skipped, None

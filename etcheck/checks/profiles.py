@@ -24,7 +24,15 @@ from typing import Any
 
 import numpy as np
 
-from etcheck.checks.sections import CriticalPoint, DampingPoint, LinearSection, ProfileMode, ProfilesSection
+from etcheck.checks.sections import (
+    CriticalPoint,
+    DampingPoint,
+    LinearSection,
+    ProfileMode,
+    ProfilesSection,
+    StabilityMap,
+    StableRow,
+)
 from etcheck.numerics.parallel import ahead, can_split, split_map
 from etcheck.rod.straight.circulatory import (
     THRESHOLD,
@@ -32,7 +40,7 @@ from etcheck.rod.straight.circulatory import (
     critical,
     critical_spin,
     crossing_mode,
-    damping_survey,
+    first_crossings,
 )
 from etcheck.rod.straight.profiles import Tether
 from etcheck.rod.straight.spectral import CriticalKind
@@ -40,6 +48,8 @@ from etcheck.scaling import RPM, Scaled
 
 #: Dimensionless damping of the map, as fractions of the largest the mission allows (0 is computed apart).
 DAMPING_FRACTIONS = (1e-3, 1e-2, 1e-1, 0.3, 1.0)
+#: Spin rows of the stability map (each the first crossing along the load at that spin).
+MAP_ROWS = 7
 #: Tolerance of the uniform-tension bound (it is a bound, not the verdict).
 BOUND_TOLERANCE = 1e-6
 MODEL = "rung 1v (linear, profiles along the tether)"
@@ -125,7 +135,7 @@ def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft
         return critical(t.with_(gamma=0.0), tol=tol, mode=False, check=not draft)
 
     def first() -> Crossing:
-        return damping_survey(t, gammas[:1], tol)[0]
+        return first_crossings(t, "gamma", gammas[:1], tol)[0]
 
     if not wanted:
         return undamped(), None, lambda: None
@@ -138,7 +148,7 @@ def _undamped_and_survey(t: Tether, gammas: tuple[float, ...], tol: float, draft
             c1 = beside()
         else:
             c1 = first()
-        with ahead(lambda: damping_survey(t, gammas[1:], tol, after=(gammas[0], c1))) as rest:
+        with ahead(lambda: first_crossings(t, "gamma", gammas[1:], tol, after=(gammas[0], c1))) as rest:
             least = _least(t, gammas[:1], [c1], tol) if speculative else None
             survey = [c1, *rest()]
         if not draft:
@@ -268,6 +278,47 @@ def _linear(scaled: Scaled, t: Tether, verdict: Crossing, spin: Crossing | None,
         "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * load, "spin_rpm": p.omega * wc * RPM},
         "campbell": None, "stability_map": None,
     }
+
+
+def stability_map(scaled: Scaled, linear: LinearSection, gamma: float, tol: float) -> StabilityMap | None:
+    """The (load, spin) plane at the verdict's damping ``gamma``, as the uniform tether's map is drawn (the ranges
+    1.6 times past the operating point and the critical values of ``linear``): at each of :data:`MAP_ROWS` spins the
+    first crossing along the load (:func:`~etcheck.rod.straight.circulatory.first_crossings`, one mesh, continued
+    from spin to spin where it can be; the rows in two chains, one per core; at zero spin the verdict's own where
+    the tether does not spin), each row stable from zero load up to it. None where a row's crossing is not located
+    (the map would be wrong there): the report then draws none."""
+    t = scaled.tether.with_(gamma=gamma)
+    p, sc = t.params, scaled.scales
+    wc = sc.frequency
+    load, spin = linear["critical_load"], linear["critical_spin"]
+    B_ref = load["value"] if load["value"] is not None and CriticalKind(load["kind"]).located else 0.0
+    w_ref = spin["value"] if spin["value"] is not None and CriticalKind(spin["kind"]).located else 0.0
+    B_hi = 1.6 * max(B_ref, p.B)
+    w_hi = 1.6 * max(w_ref, p.omega, math.sqrt(p.R))
+    if not B_hi > 0:
+        return None
+    omegas = np.linspace(0.0, w_hi, MAP_ROWS)
+    at_rest = p.omega == 0 and load["kind"] != str(CriticalKind.NOT_LOCATED)  # row 0 is the verdict's line
+    todo = omegas[1:] if at_rest else omegas
+    half = (len(todo) + 1) // 2
+    chains = [tuple(todo[:half]), tuple(todo[half:])]
+    found = [(c.value if CriticalKind(c.kind).located else None, c.kind)
+             for chain in split_map(lambda ws: first_crossings(t, "omega", ws, tol, hi=B_hi), chains) for c in chain]
+    if at_rest:
+        found.insert(0, (load["value"], load["kind"]))
+    if any(kind == CriticalKind.NOT_LOCATED for _, kind in found):
+        return None
+    stable: list[StableRow] = []
+    for w, (value, kind) in zip(omegas, found):
+        if kind == CriticalKind.UNSTABLE_AT_START or value == 0:
+            intervals = []
+        else:
+            intervals = [[0.0, float(min(value if value is not None else B_hi, B_hi)) * sc.load]]
+        stable.append({"omega": float(w), "spin_rpm": float(w * wc * RPM), "IB0_N_per_m": intervals})
+    B = np.linspace(0.0, B_hi, 2)
+    return {"B": B.tolist(), "omega": omegas.tolist(), "IB0_N_per_m": (B * sc.load).tolist(),
+            "spin_rpm": (omegas * wc * RPM).tolist(), "max_growth": None, "stable_rows": stable,
+            "static_points": {"IB0_N_per_m": [], "spin_rpm": []}}
 
 
 def alternative_linear(scaled: Scaled, gamma: float, tol: float) -> LinearSection:

@@ -195,3 +195,27 @@ def test_a_check_with_profiles_on_two_cores_answers_as_on_one(bare, fidelity):
     assert (bounds[0] is None) == (bounds[1] is None) == (fidelity == "draft")
     if bounds[0] is not None:
         assert bounds[1]["value"] == pytest.approx(bounds[0]["value"], rel=1e-6)
+
+
+def test_a_sign_off_with_profiles_maps_the_load_and_spin_plane_on_rung_1v(bare):
+    """The stability map of a tether with profiles: MAP_ROWS spin rows at the verdict's damping, each stable from zero
+    load up to rung 1v's own first crossing at that spin (at zero spin the verdict's); none in a draft."""
+    from etcheck.checks.profiles import MAP_ROWS
+
+    sm = bare["linear"]["stability_map"]
+    rows = sm["stable_rows"]
+    assert len(rows) == MAP_ROWS == len(sm["omega"]) and sm["max_growth"] is None
+    load = bare["scales"]["load_N_per_m"]
+    verdict = bare["linear"]["critical_load"]["value"]
+    assert rows[0]["omega"] == 0.0 and rows[0]["IB0_N_per_m"] == [[0.0, pytest.approx(verdict * load, rel=1e-12)]]
+    gamma = bare["profiles"]["damping"]["gamma"]
+    t = scale(scene(_mission())).tether.with_(gamma=gamma)
+    for row in (rows[1], rows[-2], rows[-1]):
+        own = critical(t.with_(omega=row["omega"]), hi=sm["B"][-1], mode=False, check=False)
+        if own.kind == "unstable at start" or own.value == 0:  # past the critical spin at zero load
+            assert row["IB0_N_per_m"] == []
+        else:
+            end = row["IB0_N_per_m"][0][1] / load
+            assert end == pytest.approx(min(own.value, sm["B"][-1]), rel=1e-6)
+    draft = check(dataclasses.replace(_mission(), fidelity="draft")).results
+    assert draft["linear"]["stability_map"] is None

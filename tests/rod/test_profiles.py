@@ -253,7 +253,7 @@ def test_damping_survey_agrees_with_a_search_at_each_damping():
     parabola = Profile.from_function(lambda s: 1.3 - 0.15 * (2 * s - 1) ** 2, degree=2)
     for t in (Tether(TAPE.with_(T=1.2), RISING), Tether(small, KINKED, parabola)):
         gammas = (4.375e-4, 4.375e-3, 0.04375)
-        survey = circulatory.damping_survey(t, gammas)
+        survey = circulatory.first_crossings(t, "gamma", gammas)
         for g, c in zip(gammas, survey):
             own = critical(t.with_(gamma=g), mode=False, check=False)
             assert c.kind == own.kind == CriticalKind.FLUTTER
@@ -265,10 +265,10 @@ def test_damping_survey_continued_from_a_crossing_computed_apart_is_the_same_sur
     the survey computed in one piece; its points say that they carry no error estimate."""
     t = Tether(TAPE.with_(T=1.2), RISING)
     gammas = (4.375e-4, 4.375e-3, 0.04375)
-    whole = circulatory.damping_survey(t, gammas)
+    whole = circulatory.first_crossings(t, "gamma", gammas)
     circulatory.forget()
-    first = circulatory.damping_survey(t, gammas[:1])
-    split = first + circulatory.damping_survey(t, gammas[1:], after=(gammas[0], first[0]))
+    first = circulatory.first_crossings(t, "gamma", gammas[:1])
+    split = first + circulatory.first_crossings(t, "gamma", gammas[1:], after=(gammas[0], first[0]))
     for a, b in zip(whole, split):
         assert a.kind == b.kind == CriticalKind.FLUTTER
         assert b.value == pytest.approx(a.value, rel=1e-9)

@@ -188,7 +188,9 @@ def stability_map_plot(results: dict) -> str:
     ax.set_facecolor("#f6d5d1")
     if sm["stable_rows"]:
         b_row, rows_rpm, cols, w_col = shade_rows(ax, sm["stable_rows"], load)
-        boundary = Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (exact, cut at static points)")
+        boundary = Line2D([], [], color="#1b1b1b", lw=1.4,
+                          label="first loss of stability along the load (rung 1v)" if lin["route"] == "profiles"
+                          else "stability boundary (exact, cut at static points)")
     else:
         b_row, rows_rpm, cols, w_col = _shade_grid(ax, load, rpm, np.array(sm["max_growth"]), lin["threshold"])
         boundary = Line2D([], [], color="#1b1b1b", lw=1.4, label="stability boundary (grid)")
@@ -208,9 +210,11 @@ def stability_map_plot(results: dict) -> str:
         ax.plot(op["IB0_N_per_m"], cs["rpm"], marker="s", color="#c0392b", ms=6, zorder=5)
     handles = [
         Patch(color="#d5efdc", label="stable straight tether"),
-        Patch(color="#f6d5d1", label="unstable (buckled or whirling)"),
+        Patch(color="#f6d5d1", label="unstable (buckled, whirling or fluttering)" if lin["route"] == "profiles"
+              else "unstable (buckled or whirling)"),
         boundary,
-        Line2D([], [], marker=".", color="#444444", ls="", label="static (divergence) curves"),
+        *([Line2D([], [], marker=".", color="#444444", ls="", label="static (divergence) curves")]
+          if sp["IB0_N_per_m"] else []),
         Line2D([], [], color="#1f4e79", ls="--", label=f"load margin = {required:g}"),
         Line2D([], [], color="#7d3c98", ls=":", lw=1.4, label=f"spin margin = {required:g}"),
         Line2D([], [], marker="*", color="#27ae60", mec="k", ms=12, ls="", label="operating point"),
@@ -222,8 +226,12 @@ def stability_map_plot(results: dict) -> str:
     ax.ticklabel_format(style="sci", scilimits=(-3, 4), useMathText=True)  # a tape's 1e-4 N/m: "×10⁻⁴", not
     ax.set_xlim(load[0], load[-1])  # eight-digit tick labels running into each other
     ax.set_ylim(rpm[0], rpm[-1])
-    ax.set_title(f"Safe operating region of the straight tether (T = {results['scene']['tension_N']:.3g} N, "
-                 f"γ = {results['scaled']['gamma']:.3g})", fontsize=9)
+    if lin["route"] == "profiles":  # at the damping the verdict uses, the tension along the tether
+        state = (f"profiles along it, smallest T = {results['scene']['tension_N']:.3g} N, "
+                 f"γ = {results['profiles']['damping']['gamma']:.3g}")
+    else:
+        state = f"T = {results['scene']['tension_N']:.3g} N, γ = {results['scaled']['gamma']:.3g}"
+    ax.set_title(f"Safe operating region of the straight tether ({state})", fontsize=9)
     fig.tight_layout()
     legend_below(ax, handles=handles, ncol=3)
     return _image(fig)

@@ -67,7 +67,7 @@ __all__ = [
     "critical",
     "critical_spin",
     "crossing_mode",
-    "damping_survey",
+    "first_crossings",
     "forget",
     "growth",
 ]
@@ -475,28 +475,32 @@ def _remember(key: tuple, found) -> None:
 SECANT_STEPS = 12
 
 
-def damping_survey(tether: Tether, gammas: tuple[float, ...], tol: float = 1e-8,
-                   after: tuple[float, Crossing] | None = None) -> list[Crossing]:
-    """The first crossing along the load at each Kelvin-Voigt damping ``gammas`` (rising), on one mesh (N =
-    LADDER[0]): a survey such as the damping map, as :func:`critical` with ``check=False`` at each. The first is
-    searched for (or continued from ``after``: (damping, crossing) of the survey at a smaller damping, its part
-    computed apart); each next one is continued from the last: the crossing eigenpair tracked (nonlinear inverse
-    iteration) at the new damping and its real part brought to 0 by secant steps along the load, kept where the
-    tether is stable just below it on the mesh (as a search from a bracket); else searched from the last one's
-    bracket. A survey's crossings carry no error estimate (error nan): a map's points, not a verdict."""
-    hi = default_hi(tether, "B")
+def first_crossings(tether: Tether, param: str, values: tuple[float, ...], tol: float = 1e-8,
+           after: tuple[float, Crossing] | None = None, hi: float | None = None) -> list[Crossing]:
+    """The first crossing along the load up to ``hi`` (default :func:`default_hi`) at each value of ``param``
+    ("gamma": the Kelvin-Voigt damping of a damping map; "omega": the spin rows of a stability map), rising, on
+    one mesh (N = LADDER[0]): as :func:`critical` with ``check=False`` at each. The first is searched for (or
+    continued from ``after``: (value, crossing) at a smaller value, computed apart); each next one is continued
+    from the last: the crossing eigenpair tracked (nonlinear inverse iteration) at the new value and its real part
+    brought to 0 by secant steps along the load, kept where the tether is stable just below it on the mesh (as a
+    search from a bracket); else searched from the last one's bracket. A survey's crossings carry no error estimate
+    (error nan): a map's points, not a verdict."""
+    if param not in ("gamma", "omega"):
+        raise ValueError(f"param must be 'gamma' or 'omega', got {param!r}")
+    hi = default_hi(tether, "B") if hi is None else float(hi)
     rtol = min(tol, 1e-6) * 1e-2
     out: list[Crossing] = []
     last, seed = None, None
     if after is not None:
-        g, last = after
-        seed = _seed(tether.with_(gamma=g), hi, last) if _positive(last) and last.kind == CriticalKind.FLUTTER else None
-    for g in gammas:
-        t = tether.with_(gamma=g)
+        v, last = after
+        seed = (_seed(tether.with_(**{param: v}), hi, last) if _positive(last) and last.kind == CriticalKind.FLUTTER
+                else None)
+    for v in values:
+        t = tether.with_(**{param: v})
         c, seed = (None, None) if seed is None else _continued(t, hi, rtol, tol, seed)
         if c is None:
             near = None if last is None or not _positive(last) else (0.8 * last.value, 1.25 * last.value)
-            c = critical(t, tol=tol, near=near, mode=False, check=False, estimate=False)
+            c = critical(t, hi=hi, tol=tol, near=near, mode=False, check=False, estimate=False)
             seed = _seed(t, hi, c) if _positive(c) and c.kind == CriticalKind.FLUTTER else None
         out.append(c)
         last = c
