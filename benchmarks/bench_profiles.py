@@ -18,7 +18,7 @@ the other attachment of the ends, shared between the two cores ("together"), and
 without end masses and without tension (end_tension = 0 N, their collected current kept): each must end in
 seconds, located or said not located. BLAS on one thread.
 
-Run:  python benchmarks/bench_profiles.py [--quick]
+Run:  python benchmarks/bench_profiles.py [--quick] [--checks] [--serial]   (--checks: part 2 only; --serial: one core)
 """
 
 from __future__ import annotations
@@ -73,9 +73,10 @@ def part1() -> None:
 
 
 #: The parts of rung 1v's check timed in part 2 (functions of etcheck.checks.profiles, as this process sees them:
-#: work on the other core is not seen apart): the whole of rung 1v, its damping policy and the verdict's mode; the
-#: rest of rung 1v is the work shared between the cores at the verdict's damping.
-PARTS = ("profile_stability", "_damping_policy", "crossing_mode")
+#: work on the other core is not seen apart): the whole of rung 1v, its damping policy, the verdict's mode and the
+#: stability map (a sign-off's extra); the rest of rung 1v is the work shared between the cores at the verdict's
+#: damping.
+PARTS = ("profile_stability", "_damping_policy", "crossing_mode", "stability_map")
 RUNS = 3
 
 
@@ -122,7 +123,7 @@ def part2(quick: bool) -> None:
     print(f"whole checks, the median of {RUNS} runs; rung 1v's parts [s] as this process sees them: all of it, the "
           "damping policy, the work at the verdict's damping shared between the cores, the mode")
     print(f"{'mission':24s} {'fidelity':9s} {'time [s]':>9s} {'rung 1v':>8s} {'policy':>7s} {'together':>9s} "
-          f"{'mode':>6s} {'verdict':8s} margins")
+          f"{'mode':>6s} {'map':>6s} {'verdict':8s} margins")
     for name, mission in missions:
         for fidelity in ("auto", "draft"):
             m = dataclasses.replace(mission, fidelity=fidelity)
@@ -136,13 +137,16 @@ def part2(quick: bool) -> None:
             dt, parts = sorted(runs, key=lambda x: x[0])[RUNS // 2]
             margins = ", ".join(f"{g['value']:.10g}" if g["value"] is not None else f"- ({g['why'][:60]})"
                                 for g in r["margins"])
-            whole, policy, mode = (parts.get(p, 0.0) for p in PARTS)
+            whole, policy, mode, smap = (parts.get(p, 0.0) for p in PARTS)
             together = max(whole - policy - mode, 0.0)
             print(f"{name:24s} {fidelity:9s} {dt:9.2f} {whole:8.2f} {policy:7.2f} {together:9.2f} {mode:6.2f} "
-                  f"{r['verdict']:8s} {margins}")
+                  f"{smap:6.2f} {r['verdict']:8s} {margins}")
 
 
 if __name__ == "__main__":
-    with threadpool_limits(limits=1):
-        part1()
+    from etcheck.numerics.parallel import serial
+
+    with threadpool_limits(limits=1), serial("--serial" in sys.argv):  # --serial: one core, every part in turn
+        if "--checks" not in sys.argv:
+            part1()
         part2("--quick" in sys.argv)

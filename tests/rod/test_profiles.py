@@ -131,6 +131,21 @@ def test_critical_load_agrees_with_finite_elements(params, current, tension):
     assert B_fe == pytest.approx(c.value, rel=5e-6)
 
 
+def test_a_damped_spinning_tether_under_one_current_loses_stability_at_its_first_static_point():
+    """Kelvin-Tait-Chetaev on rung 1v: damped, one current along a tension that varies and spinning, stability is
+    lost where a real eigenvalue passes 0 (the route rung 1v takes, from the static pencils alone); Hermite finite
+    elements scanning their own spectra for Re lambda > 0 find it there, no flutter before it."""
+    params = RodParameters(P=1e-4, R=0.3, Gamma=0.7, T=3.0, omega=0.8, gamma=0.03)
+    tension = Profile.from_function(lambda s: 1 + 3 * s * (1 - s), degree=2)
+    t = Tether(params, Profile.uniform(), tension)
+    assert circulatory.static_only(t)
+    c = critical(t, mode=False)
+    assert c.kind == CriticalKind.DIVERGENCE and c.error <= 1e-8 * c.value
+    nodes = fe.graded_nodes(min(min(layer_widths(t.with_(B=c.value))), 0.05), 160, 1.15)
+    B_fe = fe.critical_load(params, Profile.uniform(), tension, nodes, 1.02 * c.value, n_scan=3, rtol=1e-10, k=16)
+    assert B_fe == pytest.approx(c.value, rel=5e-6)
+
+
 def test_tape_with_a_rising_current_flutters_below_its_operating_load():
     """The issue's finding: the shipped tape with a current rising linearly along it flutters undamped at
     about 0.7 of its operating load; damping (gamma = 0.04375) lowers that threshold (Ziegler)."""

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 
@@ -46,6 +47,7 @@ from etcheck.rod.straight.line_band import (
     RESTARTS,
     NotLocated,
     band,
+    band_scale,
     default_hi,
     eigenvalue_count,
     forget_bands,
@@ -70,6 +72,7 @@ __all__ = [
     "first_crossings",
     "forget",
     "growth",
+    "static_only",
 ]
 
 MODEL = "rung 1v (graded collocation, profiles)"
@@ -145,10 +148,21 @@ class _Line:
             raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {(nev - 4) // 2} modes, more than the mesh "
                              f"resolves ({self.fam.mesh.size} points per field at N = {N})")
         self.base = {"B": p.B, "omega": p.omega, "T": p.T}
-        self.band = band(self.fam, self.point(0.0), nev)
+        self.nev = nev
         self.memo: dict[float, np.ndarray] = {}
         self._static: np.ndarray | None = None
         self.tracked: list[tuple[float, complex, np.ndarray]] = []
+
+    @cached_property
+    def band(self):
+        """Where the eigenvalues of the line are sought (:func:`~etcheck.rod.straight.line_band.band`): set up
+        on the first spectrum (a line on which stability changes only at static points may need none)."""
+        return band(self.fam, self.point(0.0), self.nev)
+
+    @cached_property
+    def scale(self) -> float:
+        """The size of the line's lowest frequencies, by which each solve scales lambda (the band's own)."""
+        return band_scale(self.fam, self.point(0.0))
 
     def point(self, x: float) -> dict:
         return self.base | {self.axis: x}
@@ -192,7 +206,7 @@ class _Line:
         A = self.fam.operator(**self.point(x))
         off = 1e-3 * (1.0 + abs(z))
         sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
-        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.band.scale, ordering=ORDER, maxiter=RESTARTS)
+        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.scale, ordering=ORDER, maxiter=RESTARTS)
 
     def track(self, x: float, z: complex) -> complex:
         """The eigenvalue at x that continues the one near z: nonlinear inverse iteration from the tracked
@@ -206,7 +220,7 @@ class _Line:
                 self.tracked.append((x, lam, y))
                 return lam
         off = 1e-3 * (1.0 + abs(z))
-        lam, Y = sparse_qep_nearest(*A, k=2, sigma=complex(z.real + off, z.imag), scale=self.band.scale,
+        lam, Y = sparse_qep_nearest(*A, k=2, sigma=complex(z.real + off, z.imag), scale=self.scale,
                                     ordering=ORDER, vectors=True, maxiter=RESTARTS)
         i = int(np.argmin(np.abs(lam - z)))
         self.tracked.append((x, complex(lam[i]), Y[:, i]))
@@ -277,6 +291,14 @@ def _crossing_function(line: _Line, a: float, b: float):
         pair = _nearest(lam, centre, 2)
         return float(((pair[0] - pair[1]) ** 2).real) if pair.size == 2 else math.nan
     return discriminant
+
+
+def static_only(tether: Tether) -> bool:
+    """Whether stability can change only at static points (a real eigenvalue through 0): damped (Kelvin-Voigt,
+    acting on all bending) under a conservative load (one current: the operator at lambda = 0 is symmetric, the
+    spin's term gyroscopic), Kelvin-Tait-Chetaev, as on rung 1's static pencils; the tension may vary along the
+    tether (it keeps the stiffness symmetric)."""
+    return tether.params.gamma > 0 and not tether.circulatory
 
 
 def collides(tether: Tether) -> bool:
@@ -408,6 +430,36 @@ def _widened(line: _Line, near: tuple[float, float], lo: float, hi: float) -> tu
     return None
 
 
+def _first_static(line: _Line, lo: float):
+    """:func:`_first` where stability changes only at static points (:func:`static_only`): unstable at lo where the
+    stiffness is not positive there, else lost at the first static point above lo (a simple root: one real
+    eigenvalue through 0). At lo = 0 the stiffness is positive (bending and tension) up to the first static point
+    of the other axis from rest: a spin below the unloaded tether's first static spin (a line along the load), a
+    load below the first static load at rest (a line along the spin), from one static pencil each, not from the
+    spectrum (a band of dozens of modes at the line's start, seconds where its far end reshapes them)."""
+    if lo != 0.0 and line.growth(lo) > 0:
+        return lo, _unstable_eigenvalue(line.spectrum(lo))
+    if lo == 0.0 and not _positive_at_start(line):
+        return lo, 0j
+    roots = line.static_roots()
+    roots = roots[roots > lo]
+    return (float(roots[0]), 0j) if roots.size else (None, None)
+
+
+def _positive_at_start(line: _Line) -> bool:
+    """Whether the stiffness of a :func:`static_only` tether is positive at the start of its line (the other axis at
+    its value, this one at 0): that value below the other axis's first static point at 0 here."""
+    other = "omega" if line.axis == "B" else "B"
+    value = abs(line.base[other])
+    if value == 0.0:
+        return True
+    A, Nx = line.fam.static(other, **(line.base | {line.axis: 0.0, other: 0.0}))
+    x = sparse_pencil_nearest(A, Nx, k=STATIC_ROOTS, shift=0.0, ordering=ORDER)
+    x = x[np.abs(x.imag) <= 1e-8 * np.abs(x)].real
+    first = np.sqrt(x[x > 0]) if other == "omega" else np.abs(x[x != 0])
+    return bool(first.size == 0 or value < float(np.min(first)))
+
+
 def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None):
     """The first crossing on one mesh: (value, eigenvalue), (lo, eigenvalue) when unstable at lo, or
     (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
@@ -419,6 +471,8 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None)
         z = complex(_nearest(line.near(hint[0], hint[1]), hint[1], 1)[0])
         if line.growth(lo) <= 0 and z.real > 1e3 * np.finfo(float).eps * abs(z):
             return hint[0], complex(z.real, abs(z.imag))
+    if static_only(line.tether):
+        return _first_static(line, lo)
     if (hint is not None and near is not None and hint[0] > lo and not collides(line.tether)
             and _kind(hint[1]) == CriticalKind.FLUTTER):
         found = _secant(line, hint[0], hint[1], hi, rtol)
@@ -706,7 +760,7 @@ def _mode(line: _Line, x: float, z: complex):
     """(s, u, v) of the eigenvector nearest z at x on a uniform grid of 201 points, complex, scaled so that the
     larger of |u|, |v| peaks at 1 with zero phase there."""
     A = line.fam.operator(**line.point(x))
-    lam, Y = sparse_qep_nearest(*A, k=2, sigma=z + 1e-7 * (1 + abs(z)), vectors=True, scale=line.band.scale,
+    lam, Y = sparse_qep_nearest(*A, k=2, sigma=z + 1e-7 * (1 + abs(z)), vectors=True, scale=line.scale,
                                 ordering=ORDER, maxiter=RESTARTS)
     if lam.size == 0:  # the solver did not converge: no mode to draw
         return None

@@ -28,6 +28,7 @@ __all__ = [
     "Band",
     "NotLocated",
     "band",
+    "band_scale",
     "default_hi",
     "eigenvalue_count",
     "forget_bands",
@@ -90,6 +91,12 @@ CHUNK = 7.0 / 3.0
 _FREQUENCIES: dict = {}
 
 
+def band_scale(fam: TetherFamily, point: dict) -> float:
+    """The size of a line's lowest frequencies (``point``: its values of B, omega, T at the start), by which its
+    eigenvalues are scaled in each solve: pi sqrt(mean tension), at least 1."""
+    return max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
+
+
 def forget_bands() -> None:
     """Empty the memo of the bands' frequencies (a benchmark's runs start from nothing)."""
     _FREQUENCIES.clear()
@@ -98,7 +105,7 @@ def forget_bands() -> None:
 def band(fam: TetherFamily, point: dict, nev: int) -> Band:
     """The :class:`Band` of a line on ``fam`` (``point``: its values of B, omega, T at the start)."""
     gamma = fam.tether.params.gamma
-    scale = max(1.0, math.pi * math.sqrt(max(point["T"], 0.0) * float(np.mean(fam.tether.tension(np.linspace(0, 1, 101))))))
+    scale = band_scale(fam, point)
     if gamma == 0:
         return Band((SIGMA * scale,), (nev,), scale)
     key = (fam.tether.with_(gamma=0.0), fam.mesh, point["omega"], point["T"], nev)
