@@ -93,6 +93,9 @@ TRACK_STEP = 10.0
 NOISE = 10.0
 #: A bracket is narrowed to this fraction of its end before the crossing in it is located.
 NARROW = 0.25
+#: A mesh resolves a band of at most this many modes per point of a field (:attr:`_Line.resolved`); the ladder
+#: starts at the first of its meshes that does.
+RESOLVED = 0.5
 #: A critical load below this fraction of the scanned range is a crossing at zero (flutter at any load).
 AT_ZERO = 1e-7
 
@@ -158,6 +161,12 @@ class _Line:
         """Where the eigenvalues of the line are sought (:func:`~etcheck.rod.straight.line_band.band`): set up
         on the first spectrum (a line on which stability changes only at static points may need none)."""
         return band(self.fam, self.point(0.0), self.nev)
+
+    @property
+    def resolved(self) -> bool:
+        """Whether the mesh resolves the line's band: its modes at most :data:`RESOLVED` of its points per field
+        (the eigenvalues of a mesh's top modes are not converged, and their collisions are spurious)."""
+        return (self.nev - 4) // 2 <= RESOLVED * self.fam.mesh.size
 
     @cached_property
     def scale(self) -> float:
@@ -663,6 +672,8 @@ def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int,
     for N in ladder:
         M = check_resolution(N)
         line = _Line(tether, axis, N, hi)
+        if not (line.resolved or static_only(tether) or N == ladder[-1]):
+            continue  # a finer mesh first: this one's top modes would collide spuriously
         x1, z1 = _first_on(line, lo, hi, rtol, near, hint if N == ladder[0] else None)
         if not check:
             M, x2, z2 = N, x1, z1
