@@ -360,3 +360,20 @@ def test_an_isotropic_tether_at_rest_under_one_current_only_diverges():
     found = [critical(t, tol=1e-6, ladder=(N,), check=False, mode=False) for N in (24, 36)]
     assert [c.kind for c in found] == [CriticalKind.DIVERGENCE] * 2, [c.message for c in found]
     assert found[1].value == pytest.approx(found[0].value, rel=1e-7)
+
+
+def test_a_slow_flutter_reports_the_eigenvalue_that_crosses():
+    """The shipped tape, lightly damped and slowly spun: Re lambda of the crossing eigenvalue passes 0 at 1e-3 per
+    unit load, so just past the crossing it is still below the threshold of instability; the crossing reported is
+    that eigenvalue, on the axis there (not the one nearest 0: another mode, its frequency and shape)."""
+    from helpers import tape
+
+    from etcheck.checks.orbit_field import with_orbit_field
+    from etcheck.input.mission import mission_from_dict
+    from etcheck.scaling import scale, scene
+
+    t = scale(scene(with_orbit_field(mission_from_dict(tape())))).tether.with_(gamma=4.375e-5, omega=0.00256)
+    c = critical(t, mode=False)
+    assert c.kind == CriticalKind.FLUTTER
+    assert abs(c.eigenvalue.real) <= 1e-9 * abs(c.eigenvalue)
+    assert c.eigenvalue.imag == pytest.approx(4.1363211, rel=1e-7)

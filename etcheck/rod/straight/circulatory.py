@@ -406,8 +406,12 @@ def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, comple
         return min(b, AT_ZERO * line.hi), _unstable_eigenvalue(line.spectrum(b))
     past = min(x * (1 + 4 * rtol), b) if x > 0 else b
     lam = line.spectrum(past)
-    z = _unstable_eigenvalue(lam) if line.growth(past) > 0 else complex(_nearest(lam, 0j, 1)[0])
-    return x, z
+    if line.growth(past) > 0:
+        return x, _unstable_eigenvalue(lam)
+    # a slow crossing: just past it the crossing eigenvalue is off the axis by less than the threshold; it is the one
+    # that continues the eigenvalue unstable at b (not the one nearest 0: another mode's frequency and shape)
+    z = complex(_nearest(lam[lam.imag >= 0], _unstable_eigenvalue(line.spectrum(b)), 1)[0])
+    return x, complex(z.real, abs(z.imag))
 
 
 def _kind(z: complex) -> str:
