@@ -443,19 +443,16 @@ def _widened(line: _Line, near: tuple[float, float], lo: float, hi: float) -> tu
     return None
 
 
-def _first_static(line: _Line, lo: float):
-    """:func:`_first` where stability changes only at static points (:func:`static_only`): unstable at lo where the
-    stiffness is not positive there, else lost at the first static point above lo (a simple root: one real
-    eigenvalue through 0). At lo = 0 the stiffness is positive (bending and tension) up to the first static point
-    of the other axis from rest: a spin below the unloaded tether's first static spin (a line along the load), a
-    load below the first static load at rest (a line along the spin), from one static pencil each, not from the
-    spectrum (a band of dozens of modes at the line's start, seconds where its far end reshapes them)."""
-    if lo != 0.0 and line.growth(lo) > 0:
-        return lo, _unstable_eigenvalue(line.spectrum(lo))
-    if lo == 0.0 and not _positive_at_start(line):
-        return lo, 0j
+def _first_static(line: _Line):
+    """:func:`_first` from 0 where stability changes only at static points (:func:`static_only`): unstable at 0
+    where the stiffness is not positive there, else lost at the first static point (a simple root: one real
+    eigenvalue through 0). At 0 the stiffness is positive (bending and tension) up to the first static point of the
+    other axis from rest: a spin below the unloaded tether's first static spin (a line along the load), a load below
+    the first static load at rest (a line along the spin), from one static pencil, not from the spectrum (a band of
+    dozens of modes at the line's start, seconds where its far end reshapes them)."""
+    if not _positive_at_start(line):
+        return 0.0, 0j
     roots = line.static_roots()
-    roots = roots[roots > lo]
     return (float(roots[0]), 0j) if roots.size else (None, None)
 
 
@@ -484,8 +481,8 @@ def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None)
         z = complex(_nearest(line.near(hint[0], hint[1]), hint[1], 1)[0])
         if line.growth(lo) <= 0 and z.real > 1e3 * np.finfo(float).eps * abs(z):
             return hint[0], complex(z.real, abs(z.imag))
-    if static_only(line.tether):
-        return _first_static(line, lo)
+    if static_only(line.tether) and lo == 0:
+        return _first_static(line)
     if (hint is not None and near is not None and hint[0] > lo and not collides(line.tether)
             and _kind(hint[1]) == CriticalKind.FLUTTER):
         found = _secant(line, hint[0], hint[1], hi, rtol)
@@ -543,7 +540,7 @@ SECANT_STEPS = 12
 
 
 def first_crossings(tether: Tether, param: str, values: tuple[float, ...], tol: float = 1e-8,
-           after: tuple[float, Crossing] | None = None, hi: float | None = None) -> list[Crossing]:
+                    after: tuple[float, Crossing] | None = None, hi: float | None = None) -> list[Crossing]:
     """The first crossing along the load up to ``hi`` (default :func:`default_hi`) at each value of ``param``
     ("gamma": the Kelvin-Voigt damping of a damping map; "omega": the spin rows of a stability map), rising, on
     one mesh (N = LADDER[0]): as :func:`critical` with ``check=False`` at each. The first is searched for (or
