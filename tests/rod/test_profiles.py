@@ -377,3 +377,29 @@ def test_a_slow_flutter_reports_the_eigenvalue_that_crosses():
     assert c.kind == CriticalKind.FLUTTER
     assert abs(c.eigenvalue.real) <= 1e-9 * abs(c.eigenvalue)
     assert c.eigenvalue.imag == pytest.approx(4.1363211, rel=1e-7)
+
+
+@pytest.mark.slow  # 15 s: a band of 228 eigenvalues per point
+def test_the_ladder_starts_at_a_mesh_that_resolves_the_band():
+    """An undamped spun tether between end masses under a large tension: the load up to its line's end reshapes
+    112 modes, which the coarsest meshes (129 and 169 points per field) do not resolve (their top modes collided
+    spuriously: flutter at 1538 and 2147; the ladder now starts past them). The crossing is located on meshes that
+    resolve the band, and it is the divergence at the first static point that the same tether damped finds on its
+    static route (Kelvin-Tait-Chetaev): two routes of rung 1v, spectra and static pencils, agree."""
+    from etcheck.input.mission import mission_from_dict
+    from etcheck.scaling import scale, scene
+
+    data = {"mission": {"name": "spun between end masses"},
+            "tether": {"length": "576.4505415411761 m",
+                       "bending_stiffness": ["0.026131525907200956 N m2", "0.00890701270823247 N m2"],
+                       "mass_per_length": "0.0006971129721733759 kg/m", "poisson_ratio": 0.411,
+                       "rotary_inertia_ratio": 0.004056802354213013, "damping_time": "0 s",
+                       "end_masses": ["168 kg", "10.5 kg"]},
+            "operation": {"spin_rate": "0.0024066897792523953 rad/s", "axial_field": "50 uT",
+                          "orbit_altitude": "1121 km", "current": "0.00032246005123118504 A"}}
+    t = scale(scene(mission_from_dict(data))).tether
+    c = critical(t, mode=False)
+    assert c.kind == CriticalKind.DIVERGENCE and c.N >= 48
+    damped = critical(t.with_(gamma=0.04375), mode=False)
+    assert circulatory.static_only(t.with_(gamma=0.04375))
+    assert c.value == pytest.approx(damped.value, rel=1e-6)
