@@ -33,6 +33,7 @@ from etcheck.checks.sections import (
     StabilityMap,
     StableRow,
 )
+from etcheck.checks.straight import picture_ranges
 from etcheck.numerics.parallel import ahead, can_split, split_map
 from etcheck.rod.straight.circulatory import (
     THRESHOLD,
@@ -290,13 +291,8 @@ def stability_map(scaled: Scaled, linear: LinearSection, gamma: float, tol: floa
     t = scaled.tether.with_(gamma=gamma)
     p, sc = t.params, scaled.scales
     wc = sc.frequency
-    load, spin = linear["critical_load"], linear["critical_spin"]
-    B_ref = load["value"] if load["value"] is not None and CriticalKind(load["kind"]).located else 0.0
-    w_ref = spin["value"] if spin["value"] is not None and CriticalKind(spin["kind"]).located else 0.0
-    B_hi = 1.6 * max(B_ref, p.B)
-    w_hi = 1.6 * max(w_ref, p.omega, math.sqrt(p.R))
-    if not B_hi > 0:
-        return None
+    load = linear["critical_load"]
+    B_hi, w_hi = picture_ranges(p, linear)
     omegas = np.linspace(0.0, w_hi, MAP_ROWS)
     at_rest = p.omega == 0 and load["kind"] != str(CriticalKind.NOT_LOCATED)  # row 0 is the verdict's line
     todo = omegas[1:] if at_rest else omegas

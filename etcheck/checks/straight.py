@@ -376,17 +376,23 @@ def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: i
     }
 
 
+def picture_ranges(p, linear: LinearSection) -> tuple[float, float]:
+    """(B, omega) up to which the stability map and the Campbell diagram are drawn (dimensionless): 1.6 times past
+    the operating point and the located critical values of ``linear`` (the spin at least sqrt(R); without a load
+    or a located critical load, the first static load at rest)."""
+    load, spin = linear["critical_load"], linear["critical_spin"]
+    B_ref = load["value"] if load["value"] is not None and CriticalKind(load["kind"]).located else None
+    w_ref = spin["value"] if spin["value"] is not None and CriticalKind(spin["kind"]).located else None
+    B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1, p.ends)[0])
+    return B_hi, 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
+
+
 def _pictures(scaled: Scaled, options: WhirlOptions, route: str, op, N: int, out: LinearSection,
               extra: Extras) -> dict:
     """The Campbell diagram and the stability map (each through ``extra``: skipped past the deadline)."""
     p, sc = scaled.params, scaled.scales
     wc = sc.frequency
-    load, spin = out["critical_load"], out["critical_spin"]
-    # ranges of the pictures: past the boundary and the operating point
-    B_ref = load["value"] if CriticalKind(load["kind"]).located else None
-    w_ref = spin["value"] if CriticalKind(spin["kind"]).located and spin["value"] else None
-    B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1, p.ends)[0])
-    w_hi = 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
+    B_hi, w_hi = picture_ranges(p, out)
     w_rows = np.linspace(0.0, w_hi, options.row_points)
     campbell_data = None
     if route != EXACT:
