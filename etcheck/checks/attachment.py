@@ -22,17 +22,7 @@ from etcheck.checks.sections import AlternativeMargin, AttachmentSection
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import WhirlOptions, linear_stability
 from etcheck.input.mission import Mission
-from etcheck.rod.core.ends import (
-    ALL_PINNED,
-    ALL_WELDED,
-    BUCKLED_WELDED_ONLY,
-    SWIVEL,
-    Ends,
-    bending_order,
-    describe,
-    is_welded,
-    twist_held,
-)
+from etcheck.rod.core.ends import ALL_PINNED, ALL_WELDED, BUCKLED_WELDED_ONLY, Ends, describe, is_welded
 from etcheck.scaling import Scaled, Scene
 
 __all__ = ["Alternative", "alternatives", "alternative_ends", "attachment_section", "with_alternatives"]
@@ -51,14 +41,10 @@ class Alternative:
         return overall_verdict(list(self.margins))
 
 
-def _bending(ends: Ends) -> tuple[int, int]:
-    return tuple(bending_order(e) for e in ends)  # type: ignore[return-value]
-
-
 def alternative_ends(ends: Ends) -> tuple[Ends, ...]:
     """The attachments to compare with: welded and pinned at both ends, less those that bend as ``ends`` do (a
     swivel bends as a pin; torsion does not enter the straight tether's margins)."""
-    return tuple(alt for alt in (ALL_WELDED, ALL_PINNED) if _bending(alt) != _bending(ends))
+    return tuple(alt for alt in (ALL_WELDED, ALL_PINNED) if alt.bending != Ends.of(ends).bending)
 
 
 def alternatives(mission: Mission, sc: Scene, scaled: Scaled, options: WhirlOptions,
@@ -104,11 +90,11 @@ def attachment_section(scaled: Scaled, alts: tuple[Alternative, ...]) -> Attachm
     """``attachment``: the ends as given, in words, what they mean for torsion and the buckled rungs, and the
     straight margins' verdict under each alternative."""
     ends = scaled.params.ends
-    if all(twist_held(e) for e in ends):
+    if ends.holds_twist:
         torsion = ("twist held at both ends" + ("" if is_welded(ends) else " (a pinned end is taken as a gimbal: it "
                                                 "passes the torque about the tether's axis, not a bending moment)"))
     else:
-        which = "lower" if ends[0] == SWIVEL else "upper"
+        which = "upper" if ends.lower.holds_twist else "lower"
         torsion = (f"the {which} end turns freely about the tether's axis (a swivel passes no torque); the other "
                    "holds the twist")
     return {

@@ -36,7 +36,7 @@ from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.checks.sections_verdict import LateralLoad, ModelValidity, ValidityCheck
 from etcheck.input.mission import Mission
 from etcheck.numerics.optimize import brentq
-from etcheck.rod.core.ends import clamped_count, describe, is_welded
+from etcheck.rod.core.ends import Ends, describe, is_welded
 from etcheck.scaling import Scaled, Scene
 
 #: Bow at mid-span over the length above which the straight-tether model does not describe the tether.
@@ -118,7 +118,7 @@ def lateral_load(mission: Mission, sc: Scene) -> LateralLoad:
     b_perp, source, assumed = cross_field(mission)
     current = float(mission.worst_current.to_value("A"))
     q = current * b_perp
-    clamped = clamped_count(sc.ends) == 2  # a pinned end lets the tether bow more: both taken pinned then
+    clamped = all(end.holds_slope for end in Ends.of(sc.ends).conditions)  # a pinned end lets it bow more: both taken pinned then
     bow = mid_span_bow(q, sc.length, sc.tension, sc.EI2, clamped)
     outside = bow > BOW_LIMIT * sc.length
     return {

@@ -29,7 +29,7 @@ from etcheck.input.sweep_axes import AXES, Axis, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
-from etcheck.rod.core.ends import ALL_WELDED, check_ends, describe, is_welded
+from etcheck.rod.core.ends import ALL_WELDED, Ends, describe, is_welded
 from etcheck.rod.core.ends import KINDS as END_KINDS
 from etcheck.rod.core.parameters import F_CLAMPED
 
@@ -417,7 +417,7 @@ def _end_conditions(value: Any, spec: Field, fld: str, source: str) -> tuple[str
         if not isinstance(item, str) or item not in spec.choices:
             raise MissionError(source, fld, f"unknown attachment {item!r}", f"use one of {', '.join(spec.choices)}")
     try:
-        return check_ends(items)
+        return Ends.of(items)
     except ValueError:
         raise MissionError(source, fld, "a swivel at both ends leaves the tether free to turn about its axis",
                            "hold the twist at one end at least: welded or pinned") from None

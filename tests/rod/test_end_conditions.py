@@ -10,14 +10,20 @@ welded load, one of each 0.63) are checked to the digits quoted and to all digit
 
 from __future__ import annotations
 
+import json
 import math
+import pickle
+from dataclasses import asdict, dataclass
+from typing import ClassVar
 
 import mpmath as mp
 import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
 
-from etcheck.rod.core.ends import ALL_PINNED, ALL_WELDED, check_ends, euler_load, first_bending_root
+from etcheck.rod.core import ends as ends_module
+from etcheck.rod.core import linear
+from etcheck.rod.core.ends import ALL_PINNED, ALL_WELDED, Ends
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
 from etcheck.rod.core.spectrum import spectrum
 from etcheck.rod.straight import analytic
@@ -27,8 +33,8 @@ from etcheck.rod.straight.exact import exact_critical, exact_root, string_limit_
 from etcheck.rod.straight.spectral import static_points
 from etcheck.rod.straight.undamped import undamped_critical
 
-MIXED = ("welded", "pinned")
-SWAPPED = ("pinned", "welded")
+MIXED = Ends(("welded", "pinned"))
+SWAPPED = Ends(("pinned", "welded"))
 R_SET = 21 / 38
 
 
@@ -114,7 +120,7 @@ def test_exact_determinant_and_static_pencils_agree(ends, scene):
 def test_compressive_limit_is_the_euler_load_of_the_weak_axis(ends):
     p = RodParameters(P=1e-3, R=R_SET, Gamma=0.77, ends=ends)
     limit = exact_root(p, "T", sign=-1.0).value
-    assert limit == pytest.approx(-euler_load(ends) * p.R / p.f, rel=1e-11)
+    assert limit == pytest.approx(-ends.euler_load * p.R / p.f, rel=1e-11)
 
 
 def test_end_swap_gives_the_same_answers():
@@ -214,12 +220,196 @@ def test_undamped_pinned_tether_against_the_pencil():
 
 
 def test_bounds_of_the_ends():
-    assert first_bending_root(ALL_WELDED) ** 4 == pytest.approx(F_CLAMPED, rel=1e-15)
-    assert math.tan(first_bending_root(MIXED)) == pytest.approx(math.tanh(first_bending_root(MIXED)), rel=1e-13)
-    k = math.sqrt(euler_load(MIXED))
+    assert ALL_WELDED.first_bending_root ** 4 == pytest.approx(F_CLAMPED, rel=1e-15)
+    assert math.tan(MIXED.first_bending_root) == pytest.approx(math.tanh(MIXED.first_bending_root), rel=1e-13)
+    k = math.sqrt(MIXED.euler_load)
     assert math.tan(k) == pytest.approx(k, rel=1e-12)
     with pytest.raises(ValueError, match="swivel at both ends"):
-        check_ends(("swivel", "swivel"))
+        Ends(("swivel", "swivel"))
     with pytest.raises(ValueError, match="ends must be"):
         RodParameters(P=0.0, R=1.0, Gamma=1.0, ends=("welded", "glued"))
     assert RodParameters(P=0.0, R=1.0, Gamma=1.0, ends=["pinned", "welded"]).ends == SWAPPED  # hashable pair
+
+
+# --- the kinds and the pair as objects (etcheck/rod/core/ends.py) ----------------------------------------------
+
+
+def test_registry_names_and_what_each_kind_holds():
+    assert ends_module.KINDS == ("welded", "pinned", "swivel")
+    kinds = {name: ends_module.REGISTRY[name] for name in ends_module.KINDS}
+    assert all(k.name == name for name, k in kinds.items())
+    assert [k.holds_slope for k in kinds.values()] == [True, False, False]
+    assert [k.holds_twist for k in kinds.values()] == [True, True, False]
+    assert [k.bending for k in kinds.values()] == [ends_module.CLAMPED, ends_module.HINGED, ends_module.HINGED]
+    assert [k.free_moments for k in kinds.values()] == [(), (0, 1), (0, 1, 2)]
+    e = Ends.of(["swivel", "welded"])
+    assert (e.lower, e.upper) == (kinds["swivel"], kinds["welded"]) and Ends.of(e) is e
+    with pytest.raises(ValueError, match="registered already"):
+        ends_module.register(ends_module.Pinned)
+
+
+def test_the_pair_is_its_names_in_results_and_caches():
+    """Ends is the tuple of names: JSON, asdict, repr (the sweep cache's key), pickling and hashing are the names'."""
+    p = RodParameters(P=1e-3, R=0.5, Gamma=0.7, ends=("welded", "swivel"))
+    assert json.dumps(asdict(p)["ends"]) == '["welded", "swivel"]' and repr(p.ends) == "('welded', 'swivel')"
+    assert RodParameters(**asdict(p)) == p and pickle.loads(pickle.dumps(p)).ends.upper.name == "swivel"
+    assert hash(p.ends) == hash(("welded", "swivel")) and isinstance(p.ends, Ends)
+
+
+@pytest.mark.parametrize("names, said", [
+    (("welded", "welded"), "welded at both ends"),
+    (("pinned", "pinned"), "pinned at both ends (no bending moment, twist held)"),
+    (("welded", "pinned"), "lower end welded, upper end pinned (no bending moment, twist held)"),
+    (("pinned", "swivel"), "lower end pinned, upper end on a swivel (pinned: no bending moment, twist held; "
+                           "on a swivel: no moment, free to twist)"),
+])
+def test_describe(names, said):
+    assert Ends(names).describe() == said == ends_module.describe(list(names))
+
+
+@pytest.mark.parametrize("names, root, equation", [
+    (("welded", "welded"), 4.730040744862704, lambda b: mp.cos(b) * mp.cosh(b) - 1),
+    (("welded", "pinned"), 3.926602312047919, lambda b: mp.tan(b) - mp.tanh(b)),
+    (("swivel", "welded"), 3.926602312047919, lambda b: mp.tan(b) - mp.tanh(b)),
+    (("pinned", "swivel"), math.pi, mp.sin),
+])
+def test_beam_roots_against_their_equations(names, root, equation):
+    ends = Ends(names)
+    assert ends.first_bending_root == root and ends.beam is Ends(names[::-1]).beam  # either way round
+    with mp.workdps(30):
+        assert float(mp.findroot(equation, root)) == pytest.approx(root, rel=1e-15)
+
+
+def _slope_quotient(beta: float, clamped: int) -> float:
+    """int phi'^2 / int phi^2 of the first beam mode (clamped at s = 0 unless ``clamped`` is 0) by quadrature."""
+    b = mp.mpf(beta)
+    if clamped:
+        sigma = (mp.cosh(b) - mp.cos(b)) / (mp.sinh(b) - mp.sin(b))
+        phi = lambda s: mp.cosh(b * s) - mp.cos(b * s) - sigma * (mp.sinh(b * s) - mp.sin(b * s))  # noqa: E731
+    else:
+        phi = lambda s: mp.sin(b * s)  # noqa: E731
+    with mp.workdps(20):
+        return float(mp.quad(lambda s: mp.diff(phi, s) ** 2, [0, 1]) / mp.quad(lambda s: phi(s) ** 2, [0, 1]))
+
+
+@pytest.mark.parametrize("names, euler, clamped", [
+    (("welded", "welded"), 4 * math.pi**2, 2), (("welded", "pinned"), 20.190728556426630, 1),
+    (("pinned", "pinned"), math.pi**2, 0)])
+def test_euler_loads_and_slope_quotients(names, euler, clamped):
+    """The Euler loads of a column, T L^2 / EI (f = 1; the check divides by f as the exact route's limit above
+    shows): 4 pi^2, 20.19 (tan k = k), pi^2; and int phi'^2 / int phi^2 of the first beam mode to 4 digits."""
+    ends = Ends(names)
+    assert ends.euler_load == pytest.approx(euler, rel=1e-15)
+    if clamped == 1:
+        with mp.workdps(30):
+            k = float(mp.findroot(lambda x: mp.tan(x) - x, 4.49))
+        assert ends.euler_load == pytest.approx(k * k, rel=1e-15)
+    assert ends.beam.slope_quotient == pytest.approx(_slope_quotient(ends.first_bending_root, clamped), rel=5e-4)
+
+
+@pytest.mark.parametrize("kind", ["welded", "pinned", "swivel"])
+def test_determinant_rows_are_the_scaled_state_at_the_rows_held(kind):
+    """Each kind's held values of a basis solution (u, v) e^{k s} are its rows of that solution's scaled state
+    (u, u'/ku, u''/ku^2, u'''/ku^3, v, ..), and the same for the complex state (w, w'/kap, ..)."""
+    end = ends_module.REGISTRY[kind]
+    rng = np.random.default_rng(3)
+    u, v, k = (rng.normal(size=(2, 5)) + 1j * rng.normal(size=(2, 5)) for _ in range(3))
+    ku, kv = np.array([1.5, 3.0]), np.array([2.0, 0.7])
+    state = np.stack([u * (k / ku[:, None]) ** j for j in range(4)] + [v * (k / kv[:, None]) ** j for j in range(4)],
+                     axis=1)
+    assert end.real_values(u, v, k, ku, kv) == pytest.approx(state[:, end.real_rows()], rel=1e-14)
+    ms = k / ku[:, None]
+    assert end.complex_values(ms) == pytest.approx(np.stack([ms**j for j in range(4)], axis=1)[:, end.complex_rows()],
+                                                   rel=1e-14)
+    assert list(end.real_rows()) == [0, end.bending_order, 4, 4 + end.bending_order]
+
+
+def _rotation(seed: int) -> np.ndarray:
+    q, r = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
+    return q * np.sign(np.diag(r)) * np.linalg.det(q * np.sign(np.diag(r)))
+
+
+@pytest.mark.parametrize("names", [("welded", "pinned"), ("swivel", "welded"), ("pinned", "swivel")])
+def test_collocation_rows_are_the_linearised_conditions(names):
+    """The boundary rows on a turned frame D and a base moment M0 at each end, applied to any (a, m) at the end
+    nodes: welded (a x d3) . e1, (a x d3) . e2, (a x d1) . e2 (eqs. (76)-(81)); pinned (m + M0 x a) . d1,
+    (m + M0 x a) . d2 and the twist; swivel (m + M0 x a) . d_j for j = 1, 2, 3."""
+    N = 4
+    D = np.stack([_rotation(1), _rotation(2)])
+    M = np.array([[0.3, -1.1, 0.7], [2.0, 0.4, -0.5]])
+    rows = linear.end_rows(D, N, Ends(names), M).reshape(12, linear.NFIELDS, N + 1)
+    rng = np.random.default_rng(5)
+    Y = rng.normal(size=(linear.NFIELDS, N + 1))
+    e1, e2 = np.eye(3)[0], np.eye(3)[1]
+    for end, (first, node) in enumerate(((3, 0), (9, N))):
+        a, m, d = Y[3:6, node], Y[9:12, node], D[end]
+        moment = m + np.cross(M[end], a)
+        held = {"welded": [np.cross(a, d[:, 2]) @ e1, np.cross(a, d[:, 2]) @ e2, np.cross(a, d[:, 0]) @ e2],
+                "pinned": [moment @ d[:, 0], moment @ d[:, 1], np.cross(a, d[:, 0]) @ e2],
+                "swivel": [moment @ d[:, 0], moment @ d[:, 1], moment @ d[:, 2]]}[names[end]]
+        got = [np.sum(rows[first + j] * Y) for j in range(3)]
+        assert got == pytest.approx(held, rel=1e-13, abs=1e-13)
+
+
+# --- a new kind is one class ----------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Bearing(ends_module.Welded):
+    """A toy kind: the slope held, free to twist (a clamp on a bearing)."""
+
+    name: ClassVar[str] = "bearing"
+    words: ClassVar[str] = "in a bearing"
+    meaning: ClassVar[str] = "slope held, free to twist"
+    holds_twist: ClassVar[bool] = False
+
+
+@dataclass(frozen=True)
+class Sleeve(ends_module.EndCondition):
+    """A toy kind that bends in a way no pair table knows."""
+
+    name: ClassVar[str] = "sleeve"
+    words: ClassVar[str] = "in a sleeve"
+    meaning: ClassVar[str] = "a new bending behaviour"
+    bending: ClassVar[str] = "sleeve"
+    bending_order: ClassVar[int] = 1
+    holds_twist: ClassVar[bool] = True
+
+
+@pytest.fixture
+def toy_kinds(monkeypatch):
+    monkeypatch.setattr(ends_module, "REGISTRY", dict(ends_module.REGISTRY))
+    ends_module.register(Bearing)
+    ends_module.register(Sleeve)
+
+
+def test_a_new_kind_that_bends_as_a_weld_is_one_class(toy_kinds):
+    """The toy bearing reaches every rung-0/1 route through the registry alone: the pair tables by its bending,
+    its collocation rows (no moment about d3: the torsional frequencies of one free end, (n - 1/2) pi ...), the
+    exact determinant (the weld's rows: its loads are the welded tether's)."""
+    ends = Ends(("bearing", "welded"))
+    assert ends.bending == ("clamped", "clamped") and ends.euler_load == ALL_WELDED.euler_load
+    assert ends.describe() == "lower end in a bearing, upper end welded (slope held, free to twist)"
+    assert not ends.is_welded and not ends.holds_twist and ends.lower.free_moments == (2,)
+    P, R, G = 1e-3, 0.55, 0.77
+    p = RodParameters(P=P, R=R, Gamma=G, ends=ends)
+    mus = np.sort(np.concatenate([analytic.bending_frequencies(P, R, p.f, 4, axis, ends) for axis in ("weak", "stiff")]
+                                 + [analytic.torsion_frequencies(P, G, p.f, 4, ends)]))
+    assert analytic.torsion_frequencies(P, G, p.f, 1, ends)[0] == pytest.approx(
+        0.5 * analytic.torsion_frequencies(P, G, p.f, 1)[0], rel=1e-15)
+    got = np.sort(np.abs(spectrum(p, k=8).eigenvalues.imag))
+    assert got[:6] == pytest.approx(mus[:6], rel=1e-9)
+    q = RodParameters(**SCENES[0], ends=ends)
+    assert exact_root(q, "B").value == pytest.approx(exact_root(q.with_(ends=ALL_WELDED), "B").value, rel=1e-12)
+    with pytest.raises(ValueError, match="a bearing and a swivel leaves the tether free to turn"):
+        Ends(("bearing", "swivel"))
+
+
+def test_a_new_bending_behaviour_is_refused_where_no_table_knows_it(toy_kinds):
+    ends = Ends(("sleeve", "welded"))
+    with pytest.raises(ValueError, match=r"no beam mode for the ends sleeve, welded: .* \('clamped', 'sleeve'\)"):
+        ends.euler_load
+    with pytest.raises(ValueError, match="no closed-form static buckling"):
+        analytic.critical_loads(0.5, F_CLAMPED, 1, ends)
+    with pytest.raises(NotImplementedError, match="Sleeve gives no rows for the exact determinant"):
+        det.evaluate(RodParameters(P=1e-3, R=0.3, Gamma=0.7, B=3.0, ends=ends))

@@ -69,7 +69,7 @@ import scipy.linalg as sla
 
 from etcheck.errors import SolverError
 from etcheck.numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
-from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
+from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY
 from etcheck.rod.core.linear import NFIELDS, collocation, end_rows, static_operator, stiffness_diag
 from etcheck.rod.core.parameters import RodParameters
 
@@ -212,7 +212,7 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def require_welded(params: RodParameters) -> None:
     """Raise ValueError (:data:`~etcheck.rod.core.ends.BUCKLED_WELDED_ONLY`) unless both ends are welded: no
     buckled state is ever computed with the wrong ends."""
-    if not is_welded(params.ends):
+    if not params.ends.is_welded:
         raise ValueError(f"rungs 2-3 are {BUCKLED_WELDED_ONLY} (ends {params.ends[0]}, {params.ends[1]})")
 
 

@@ -63,7 +63,7 @@ from etcheck.numerics.chebyshev import (
 )
 from etcheck.numerics.memory import matrix_bytes, require
 from etcheck.rod.core.base_state import BaseState, StraightBaseState
-from etcheck.rod.core.ends import ALL_WELDED, SWIVEL, WELDED, Ends, is_welded
+from etcheck.rod.core.ends import ALL_WELDED, Ends
 from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
@@ -218,20 +218,20 @@ def _assemble(E: np.ndarray | None, G: np.ndarray | None, col: Collocation) -> n
 def boundary_rows(base: BaseState, N: int, ends: Ends = ALL_WELDED) -> np.ndarray:
     """The 12 linearised boundary conditions: welded (eqs. (76)-(81)), pinned or swivel ends
     (:mod:`etcheck.rod.core.ends`)."""
-    if is_welded(ends):
-        return end_rows(base.D0(np.array([0.0, 1.0])), N)
     at = np.array([0.0, 1.0])
-    return end_rows(base.D0(at), N, ends, base.M0(at))
+    moments = any(end.free_moments for end in ends.conditions)
+    return end_rows(base.D0(at), N, ends, base.M0(at) if moments else None)
 
 
 def end_rows(D: np.ndarray, N: int, ends: Ends = ALL_WELDED, M: np.ndarray | None = None) -> np.ndarray:
     """:func:`boundary_rows` from the base state's frames at the two ends, ``D`` (2, 3, 3), column i = d_i, and its
-    contact moments there, ``M`` (2, 3) (needed only for an end that is not welded).
+    contact moments there, ``M`` (2, 3) (needed only for an end that passes no moment about some axis).
 
     Position rows at both ends (s = 0: xi . e1 = xi . e2 = 0 and the end force phi . e3 = 0; s = 1: xi = 0), then
-    three rows per end: welded, the end rotations (a x d3) . e1 = (a x d3) . e2 = (a x d1) . e2 = 0 (eqs. (76)-(81));
-    pinned, no perturbed bending moment (m + M0 x a) . d1 = (m + M0 x a) . d2 = 0 (the linearised M . d_j = 0) and
-    the twist (a x d1) . e2 = 0; swivel, no perturbed moment about any d_j."""
+    three rows per end on (a, m), each end's :meth:`~etcheck.rod.core.ends.EndCondition.collocation_rows`: welded,
+    the end rotations (a x d3) . e1 = (a x d3) . e2 = (a x d1) . e2 = 0 (eqs. (76)-(81)); pinned, no perturbed
+    bending moment (m + M0 x a) . d1 = (m + M0 x a) . d2 = 0 (the linearised M . d_j = 0) and the twist
+    (a x d1) . e2 = 0; swivel, no perturbed moment about any d_j."""
     rows = np.zeros((12, NFIELDS, N + 1))
     # s = 0: xi1 = xi2 = 0, phi3 = 0; s = 1: xi = 0
     rows[0, 0, 0] = rows[1, 1, 0] = rows[2, 8, 0] = 1.0
@@ -242,17 +242,10 @@ def end_rows(D: np.ndarray, N: int, ends: Ends = ALL_WELDED, M: np.ndarray | Non
     g = np.stack([np.stack([zero, d3[:, 2], -d3[:, 1]], axis=1),  # d3 x e1
                   np.stack([-d3[:, 2], zero, d3[:, 0]], axis=1),  # d3 x e2
                   np.stack([-d1[:, 2], zero, d1[:, 0]], axis=1)], axis=1)  # d1 x e2; (end, row, component)
-    rows[3:6, 3:6, 0] = g[0]
-    rows[9:12, 3:6, N] = g[1]
     for end, (first, node) in enumerate(((3, 0), (9, N))):
-        kind = ends[end]
-        if kind == WELDED:
-            continue
-        # (m + M0 x a) . d_j = m . d_j + a . (d_j x M0)
-        for j in range(3 if kind == SWIVEL else 2):
-            rows[first + j, :, node] = 0.0
-            rows[first + j, 9:12, node] = D[end, :, j]
-            rows[first + j, 3:6, node] = np.cross(D[end, :, j], M[end])
+        block = ends.conditions[end].collocation_rows(g[end], D[end], None if M is None else M[end])
+        rows[first:first + 3, 3:6, node] = block[:, :3]
+        rows[first:first + 3, 9:12, node] = block[:, 3:]
     return rows.reshape(12, NFIELDS * (N + 1))
 
 

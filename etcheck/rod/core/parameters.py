@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from etcheck.rod.core.ends import ALL_WELDED, Ends, check_ends
+from etcheck.rod.core.ends import ALL_WELDED, Ends
 
 #: First clamped-clamped bending root to the fourth power, 4.730040744862704**4:
 #: the paper's reference-frequency constant f (eq. (36)).
@@ -24,7 +24,7 @@ class RodParameters:
     omega  spin rate omega/omega_c
     T      end tension T L^2/(f EI1), positive in tension
     gamma  Kelvin-Voigt damping gamma_v omega_c
-    ends   attachment at s = 0 and s = 1 (:mod:`etcheck.rod.core.ends`; the paper's is welded at both)
+    ends   attachment at s = 0 and s = 1 (:class:`etcheck.rod.core.ends.Ends`; the paper's is welded at both)
 
     The scaling constant f stays the clamped beam's (eq. (36)) whatever the ends: it is only a scale.
     """
@@ -40,7 +40,7 @@ class RodParameters:
     ends: Ends = ALL_WELDED
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "ends", check_ends(self.ends))  # a list (JSON, asdict) becomes the hashable pair
+        object.__setattr__(self, "ends", Ends.of(self.ends))  # names (a list from JSON, a tuple) become the typed pair
         for name in ("P", "R", "Gamma", "f", "B", "omega", "T", "gamma"):
             value = getattr(self, name)
             if not math.isfinite(value):

@@ -32,13 +32,14 @@ one, the mixed one's (2 pi / beta_1)^3 = 0.629.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import lru_cache, partial
 
 import numpy as np
 
 from etcheck.numerics.optimize import bracketed_roots, brentq
-from etcheck.rod.core.ends import ALL_WELDED, Ends, bending_order, clamped_count, twist_held
+from etcheck.rod.core.ends import ALL_WELDED, CLAMPED, HINGED, Ends
 
 SQRT3 = math.sqrt(3.0)
 #: Step of the complex-step derivative (exact to rounding, no cancellation).
@@ -100,10 +101,10 @@ def _clamped_matrix(beta: float, ends: Ends = ALL_WELDED) -> np.ndarray:
     m = _complex_exponents(beta)
     shift = np.where(m.real > 0, 1.0, 0.0)
     rows = []
-    for s, end in zip((0.0, 1.0), ends):
+    for s, end in zip((0.0, 1.0), Ends.of(ends).conditions):
         e = np.exp(m * (s - shift))
         rows.append(np.concatenate([[1.0], e]))
-        rows.append(np.concatenate([[0.0], m ** bending_order(end) * e]))
+        rows.append(np.concatenate([[0.0], m ** end.bending_order * e]))
     return np.array(rows, dtype=complex)
 
 
@@ -197,6 +198,42 @@ def critical_loads(R: float, f: float, n: int = 5, ends: Ends = ALL_WELDED) -> n
 # --- any attachment: the three closed-form characteristic functions -------------------
 
 
+def _g_clamped(b, e1, e2):
+    return e1 * np.cos(b) - np.cos(0.5 * b + math.pi / 3) - e2 * np.cos(0.5 * b - math.pi / 3)
+
+
+def _g_mixed(b, e1, e2):
+    return np.sin(0.5 * b) * (1.0 - 2.0 * e1 * np.cos(0.5 * b) + e2)
+
+
+def _g_hinged(b, e1, e2):
+    return e1 * np.cos(b) - np.sin(0.5 * b + math.pi / 6) - e2 * np.cos(0.5 * b + math.pi / 3)
+
+
+@dataclass(frozen=True)
+class _StaticForm:
+    """Rung 0 for a pair of bending behaviours: ``reduced`` g e^-a from (beta, e^-a, e^-2a); the k-th zero near
+    2 pi k + ``offset`` (``exact``: there exactly); ``chi``: the paper's chi (eq. (91)) is the scaled function and
+    its double zeros are located on it (:func:`characteristic_roots`)."""
+
+    reduced: Callable
+    offset: float
+    exact: bool = False
+    chi: bool = False
+
+
+#: Rung 0's closed forms by the (sorted) pair of the ends' bending behaviours (:attr:`Ends.bending`).
+_STATIC = {
+    (CLAMPED, CLAMPED): _StaticForm(_g_clamped, math.pi / 3, chi=True),
+    (CLAMPED, HINGED): _StaticForm(_g_mixed, 0.0, exact=True),
+    (HINGED, HINGED): _StaticForm(_g_hinged, -math.pi / 3),
+}
+
+
+def _form(ends) -> _StaticForm:
+    return Ends.of(ends).entry(_STATIC, "closed-form static buckling (rung 0)")
+
+
 def reduced_characteristic(beta, ends: Ends = ALL_WELDED):
     """The real characteristic function g(beta) of the static straight rod with these ends, times e^(-a),
     a = sqrt(3) beta / 2 (bounded, simple zeros at the buckling betas; see the module docstring):
@@ -209,18 +246,13 @@ def reduced_characteristic(beta, ends: Ends = ALL_WELDED):
     b = np.asarray(beta)
     e1 = np.exp(-0.5 * SQRT3 * b)
     e2 = e1 * e1
-    welded = clamped_count(ends)
-    if welded == 2:
-        return e1 * np.cos(b) - np.cos(0.5 * b + math.pi / 3) - e2 * np.cos(0.5 * b - math.pi / 3)
-    if welded == 0:
-        return e1 * np.cos(b) - np.sin(0.5 * b + math.pi / 6) - e2 * np.cos(0.5 * b + math.pi / 3)
-    return np.sin(0.5 * b) * (1.0 - 2.0 * e1 * np.cos(0.5 * b) + e2)
+    return _form(ends).reduced(b, e1, e2)
 
 
 def characteristic_scaled(beta, ends: Ends = ALL_WELDED):
     """chi(beta) e^(-sqrt(3) beta) of eq. (91) for welded ends, and its analogue 2 g(beta)^2 for others
     (:func:`reduced_characteristic`): the real 8 x 8 determinant, with double zeros. Dimensionless."""
-    if clamped_count(ends) == 2:
+    if _form(ends).chi:
         return chi_scaled(beta)
     return 2.0 * reduced_characteristic(np.asarray(beta, dtype=float), ends) ** 2
 
@@ -231,14 +263,14 @@ def _reduced_derivative(beta: float, ends: Ends) -> float:
 
 def _asymptote(k: int, ends: Ends) -> float:
     """Asymptotic position of the k-th buckling beta: pi/3 + 2 pi k welded, 2 pi k mixed, 2 pi k - pi/3 pinned."""
-    return 2 * math.pi * k + {2: math.pi / 3, 1: 0.0, 0: -math.pi / 3}[clamped_count(ends)]
+    return 2 * math.pi * k + _form(ends).offset
 
 
 def _simple_zero(k: int, ends: Ends) -> float:
     """The k-th zero of g: 2 pi k for mixed ends; pinned-pinned, Newton's method from its asymptote
     2 pi k - pi/3, Brent's on that +- 1 should a step leave it."""
     guess = beta = _asymptote(k, ends)
-    if clamped_count(ends) == 1:
+    if _form(ends).exact:
         return beta
     lo, hi = guess - 1.0, guess + 1.0
     for _ in range(20):
@@ -275,7 +307,7 @@ def static_roots(ends: Ends = ALL_WELDED, n: int = 5) -> tuple[CharacteristicRoo
     touching zero); ``error``: the size of one more Newton step, relative."""
     if n < 1:
         raise ValueError(f"n must be >= 1, got {n}")
-    if clamped_count(ends) == 2:
+    if _form(ends).chi:
         return characteristic_roots(n)
     return tuple(_root_record(k, ends) for k in range(1, n + 1))
 
@@ -358,12 +390,18 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
     if T < 0:
         raise ValueError("bending_frequencies: a compressive end force (T < 0) is not modelled here")
     stiffness = {"weak": R, "stiff": 1.0}[axis]
-    fT = f * T
-    welded = clamped_count(ends)
-    if welded == 0:
-        k = np.arange(1, n + 1) * math.pi
-        return np.sqrt((stiffness * k**4 + fT * k**2) / (P * stiffness * k**2 + 1.0)) / math.sqrt(f)
-    equation = _clamped_beam_function if welded == 2 else _clamped_pinned_beam_function
+    frequencies = Ends.of(ends).entry(_FREQUENCIES, "bending frequencies")
+    return frequencies(P, stiffness, f * T, n) / math.sqrt(f)
+
+
+def _hinged_frequencies(P: float, stiffness: float, fT: float, n: int) -> np.ndarray:
+    """The first n frequencies (f = 1) pinned at both ends: the modes sin(k s), k = n pi."""
+    k = np.arange(1, n + 1) * math.pi
+    return np.sqrt((stiffness * k**4 + fT * k**2) / (P * stiffness * k**2 + 1.0))
+
+
+def _scanned_frequencies(equation, P: float, stiffness: float, fT: float, n: int) -> np.ndarray:
+    """The first n roots (f = 1) of a frequency ``equation`` (mu, P, stiffness, fT)."""
     g = lambda mu: equation(mu, P, stiffness, fT)  # noqa: E731
     # the f = 1 frequency of the n-th mode is below that of a beam plus that of a string without rotary inertia
     # (rotary inertia only lowers them): scan finely and refine the first n sign changes to the last bits
@@ -374,7 +412,16 @@ def bending_frequencies(P: float, R: float, f: float, n: int = 5, axis: str = "w
     i = np.nonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0)[0][:n]
     if i.size < n:
         raise RuntimeError(f"found only {i.size} of {n} bending frequencies")
-    return bracketed_roots(g, grid[i], grid[i + 1]) / math.sqrt(f)
+    return bracketed_roots(g, grid[i], grid[i + 1])
+
+
+#: The first n bending frequencies (f = 1) from (P, stiffness, f T, n), by the (sorted) pair of the ends' bending
+#: behaviours.
+_FREQUENCIES = {
+    (CLAMPED, CLAMPED): partial(_scanned_frequencies, _clamped_beam_function),
+    (CLAMPED, HINGED): partial(_scanned_frequencies, _clamped_pinned_beam_function),
+    (HINGED, HINGED): _hinged_frequencies,
+}
 
 
 def torsion_frequencies(P: float, Gamma: float, f: float, n: int = 5, ends: Ends = ALL_WELDED) -> np.ndarray:
@@ -386,5 +433,5 @@ def torsion_frequencies(P: float, Gamma: float, f: float, n: int = 5, ends: Ends
     """
     if P == 0:
         return np.full(n, np.inf)
-    order = np.arange(1, n + 1) - (0.0 if all(twist_held(e) for e in ends) else 0.5)
+    order = np.arange(1, n + 1) - (0.0 if Ends.of(ends).holds_twist else 0.5)
     return order * math.pi * math.sqrt(Gamma / (2 * P * f))

@@ -34,7 +34,6 @@ import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.memory import fits
-from etcheck.rod.core.ends import is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution, roundoff_floor
 from etcheck.rod.straight.analytic import critical_loads, static_roots
@@ -118,7 +117,7 @@ def _first_root(params: RodParameters, axis: str, tol: float, sign: float, ladde
     if axis == "B" and sign > 0 and params.omega == 0 and params.T == 0:
         root = static_roots(params.ends, 1)[0]
         return PencilRoot("B", float(critical_loads(params.R, params.f, 1, params.ends)[0]), 3.0 * root.error, 0,
-                          True, "rung 0 (chi roots)" if is_welded(params.ends) else "rung 0 (closed form)")
+                          True, "rung 0 (chi roots)" if params.ends.is_welded else "rung 0 (closed form)")
     # the ladder ends at the finest rung whose families fit the memory budget (the first one is always tried)
     fitting = [n for n in ladder if fits(family_bytes(check_resolution(n)))] or list(ladder[:1])
     model = "rung 1 (static pencil)" if len(fitting) == len(ladder) else \

@@ -81,12 +81,10 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.linalg import lapack
 
-from etcheck.rod.core.ends import ALL_WELDED, Ends, bending_order, is_welded
+from etcheck.rod.core.ends import ALL_WELDED, Ends
 from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
-    "BC_COMPLEX",
-    "BC_REAL",
     "bc_complex",
     "bc_real",
     "Characteristic",
@@ -120,24 +118,18 @@ _CONFLUENT = 1e-4
 _CONFLUENT_WIDE = 1e-12
 #: |k| below which an exponent is treated as near zero (Schur route).
 _SMALL_K = 1e-3
-#: Boundary-value rows of the scaled state at a welded end: u, u', v, v' (real) or w, w' (complex).
-BC_REAL = np.array([0, 1, 4, 5])
-BC_COMPLEX = np.array([0, 1])
 
 
-def bc_real(ends: Ends = ALL_WELDED):
-    """The boundary-value rows of the real scaled state at each end: BC_REAL where both are welded, else a pair
-    (rows at s = 0, rows at s = 1) with u, u'', v, v'' at a pinned end (no bending moment)."""
-    if is_welded(ends):
-        return BC_REAL
-    return tuple(np.array([0, bending_order(e), 4, 4 + bending_order(e)]) for e in ends)
+def bc_real(ends: Ends = ALL_WELDED) -> tuple[np.ndarray, np.ndarray]:
+    """The boundary-value rows of the real scaled state held at each end (rows at s = 0, rows at s = 1): u, u',
+    v, v' at a welded end, u, u'', v, v'' at a pinned one (no bending moment;
+    :meth:`~etcheck.rod.core.ends.EndCondition.real_rows`)."""
+    return ends.lower.real_rows(), ends.upper.real_rows()
 
 
-def bc_complex(ends: Ends = ALL_WELDED):
+def bc_complex(ends: Ends = ALL_WELDED) -> tuple[np.ndarray, np.ndarray]:
     """:func:`bc_real` of the complex state (w, w'/kap, ..): w, w' or w, w''."""
-    if is_welded(ends):
-        return BC_COMPLEX
-    return tuple(np.array([0, bending_order(e)]) for e in ends)
+    return ends.lower.complex_rows(), ends.upper.complex_rows()
 
 
 # --- coefficients and scales ---------------------------------------------------------
@@ -198,8 +190,8 @@ class Evans:
 
 
 def schur(A: np.ndarray, bc, shift: int = 0) -> Evans:
-    """D by the ordered Schur route; ``bc`` the boundary rows, the same at both ends or a pair (s = 0, s = 1)."""
-    b0, b1 = (bc, bc) if isinstance(bc, np.ndarray) else bc
+    """D by the ordered Schur route; ``bc`` the boundary rows, a pair (s = 0, s = 1)."""
+    b0, b1 = bc
     cplx = np.iscomplexobj(A)
     T, Q = sla.schur(A, output="complex" if cplx else "real")
     re = np.diag(T).real.copy()  # real parts (equal on the diagonal of a 2x2 block)
@@ -345,11 +337,10 @@ def _splits(re: np.ndarray, shift: int = 0) -> np.ndarray:
 
 def assemble(k: np.ndarray, V, logdet: np.ndarray, shift: int) -> tuple[np.ndarray, np.ndarray]:
     """D (n,) and the scaled boundary matrices M (n, 2 r, m) from exponents k (n, m),
-    boundary rows V (n, r, m) (initial values of the basis solutions at the bc rows; a pair
-    (V0, V1) where the two ends hold different rows) and log det of the full initial-data matrix W (n,)."""
-    V0, V1 = (V, V) if isinstance(V, np.ndarray) else V
-    norm = np.max(np.abs(V0), axis=1) if V1 is V0 else np.maximum(np.max(np.abs(V0), axis=1),
-                                                                   np.max(np.abs(V1), axis=1))
+    boundary rows V, a pair (V0, V1) of (n, r, m) (initial values of the basis solutions at the rows held at s = 0
+    and at s = 1) and log det of the full initial-data matrix W (n,)."""
+    V0, V1 = V
+    norm = np.maximum(np.max(np.abs(V0), axis=1), np.max(np.abs(V1), axis=1))
     V0, V1 = V0 / norm[:, None, :], V1 / norm[:, None, :]
     logdet = logdet - np.sum(np.log(norm), axis=1)
     tau = _splits(k.real, shift)
@@ -413,20 +404,15 @@ def _exponential_batch(P: float, R: float, f: float, B: np.ndarray, w2: np.ndarr
         k = np.where(ok[:, None], k, 1.0 + np.arange(k.shape[1]))
         V = tuple(np.where(ok[:, None, None], x, 1.0) for x in V)
         logW = np.where(ok, logW, 0.0)
-        value, M = assemble(k, V[0] if is_welded(ends) else V, logW, shift)
+        value, M = assemble(k, V, logW, shift)
     return np.where(ok & np.isfinite(value), value, np.nan), M
 
 
 def end_values(u: np.ndarray, v: np.ndarray, k: np.ndarray, ku: np.ndarray, kv: np.ndarray, ends: Ends) -> tuple:
     """The boundary values (n, 4, m) of the basis solutions (u, v) exp(k s) of the scaled state at s = 0, one array per
-    end: u, u' / ku, v, v' / kv at a welded end, u, u'' / ku^2, v, v'' / kv^2 at a pinned one."""
-    out = []
-    for end in ends:
-        if bending_order(end) == 1:
-            out.append(np.stack([u, u * k / ku[:, None], v, v * k / kv[:, None]], axis=1))
-        else:
-            out.append(np.stack([u, u * (k / ku[:, None]) ** 2, v, v * (k / kv[:, None]) ** 2], axis=1))
-    return tuple(out)
+    end: u, u' / ku, v, v' / kv at a welded end, u, u'' / ku^2, v, v'' / kv^2 at a pinned one
+    (:meth:`~etcheck.rod.core.ends.EndCondition.real_values`)."""
+    return tuple(end.real_values(u, v, k, ku, kv) for end in ends.conditions)
 
 
 def real_batch(params: RodParameters, B, omega, T, factor: float = 1.0, shift: int = 0) -> np.ndarray:
@@ -517,12 +503,12 @@ def isotropic_batch(c4: float, c2: np.ndarray, c0: np.ndarray, c1: np.ndarray, k
             m = polynomial_roots(c)
             ok = _separated(m, small)
         ms = m / kap[:, None]
-        V = tuple(np.stack([np.ones_like(m), ms if bending_order(e) == 1 else ms**2], axis=1) for e in ends)
+        V = tuple(end.complex_values(ms) for end in ends.conditions)
         logW = log_vandermonde(ms)
         ok &= np.isfinite(logW) & np.all([np.all(np.isfinite(x), axis=(1, 2)) for x in V], axis=0)
         m = np.where(ok[:, None], m, 1.0 + np.arange(4))
         V = tuple(np.where(ok[:, None, None], x, 1.0) for x in V)
-        value, M = assemble(m, V[0] if is_welded(ends) else V, np.where(ok, logW, 0.0), shift)
+        value, M = assemble(m, V, np.where(ok, logW, 0.0), shift)
     return np.where(ok & np.isfinite(value), value, np.nan), M, m
 
 

@@ -17,7 +17,6 @@ import numpy as np
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.optimize import brentq, minimize_scalar
-from etcheck.rod.core.ends import clamped_count, euler_load, first_bending_root, is_welded
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.damped_critical import (
@@ -62,8 +61,6 @@ AXES = ("B", "omega", "T", "ray")
 _EPS = np.finfo(float).eps
 #: beta_1 of the first double zero of chi (eq. (91)) to 7 digits: the scan's scale of the welded static load.
 _BETA1 = 7.332130
-#: int phi'^2 / int phi^2 of the first bending mode phi by the number of welded ends (pinned-pinned pi^2).
-_SLOPE = {0: math.pi**2, 1: 11.51, 2: 12.30}
 
 
 # --- roots along an axis -----------------------------------------------------------------
@@ -107,19 +104,19 @@ def root_scale(params: RodParameters, axis: str, sign: float) -> float:
     bending mode for the spin; the Euler load for the tension (each for the rod's ends)."""
     P, R, f = params.P, params.R, params.f
     Tp = max(params.T, 0.0)
-    welded = is_welded(params.ends)
-    static = _BETA1**3 * math.sqrt(R) / f if welded else float(critical_loads(R, f, 1, params.ends)[0])
+    ends = params.ends
+    static = _BETA1**3 * math.sqrt(R) / f if ends.is_welded else float(critical_loads(R, f, 1, ends)[0])
     load = static + 2 * math.pi * Tp
-    # first bending mode: int phi''^2 / int phi^2 = beta^4 (f when welded), int phi'^2 / int phi^2 = _SLOPE
-    slope = _SLOPE[clamped_count(params.ends)]
-    bending = R if welded else R * first_bending_root(params.ends) ** 4 / f
+    # first bending mode: int phi''^2 / int phi^2 = beta^4 (f when welded), int phi'^2 / int phi^2 (Ends.beam)
+    slope = ends.beam.slope_quotient
+    bending = R if ends.is_welded else R * ends.first_bending_root ** 4 / f
     spin = math.sqrt((bending + slope * Tp) / max(1.0 - slope * P * R, 0.05))
     if axis == "B":
         return load
     if axis == "omega":
         return spin
     if axis == "T":
-        return euler_load(params.ends) * R / f + abs(params.B) / (2 * math.pi) + params.omega**2 / math.pi**2
+        return ends.euler_load * R / f + abs(params.B) / (2 * math.pi) + params.omega**2 / math.pi**2
     if params.B == 0 and params.omega == 0:
         raise ValueError("the ray needs B != 0 or omega != 0")
     return 1.0 / (abs(params.B) / load + params.omega**2 / spin**2)
@@ -383,7 +380,7 @@ def string_limit_load(params: RodParameters, order: int = 1) -> float:
     the root at any order in eps. With w = A + C exp(i beta s),
     beta = B / T = 2 pi + delta, the four conditions split at first order
     into (delta - 2 pi n eps_u) Im C = 0 and (delta - 2 pi n eps_v) Re C = 0,
-    n the number of welded ends: the double string root splits into
+    n the number of ends that hold the slope (welded): the double string root splits into
     beta = 2 pi (1 + n eps_u) (the mode whose ends bend about the weak
     axis, the first one) and 2 pi (1 + n eps_v). So
 
@@ -409,7 +406,7 @@ def string_limit_load(params: RodParameters, order: int = 1) -> float:
         raise ValueError("order must be 0, 1 or 2")
     T, R, f, P, w2 = params.T, params.R, params.f, params.P, params.omega**2
     a = T + P * R * w2
-    n = clamped_count(params.ends)
+    n = sum(end.holds_slope for end in params.ends.conditions)
     layer = n * math.sqrt(R / (f * a))
     ratio = 1.0
     if order >= 1:

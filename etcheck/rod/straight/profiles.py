@@ -49,7 +49,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from etcheck.numerics.chebyshev import diff_matrix, first_kind_nodes, lobatto_nodes, lobatto_weights, resample_matrix
-from etcheck.rod.core.ends import bending_order
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
 
@@ -261,14 +260,14 @@ def _assemble(tether: Tether, grid: Mesh) -> dict[str, sp.csc_matrix]:
     for j, (a, b, m) in enumerate(zip(grid.edges[:-1], grid.edges[1:], grid.degrees)):
         y, _, PDk = _reference(m)
         row = _equation_rows(bld, row, _columns(starts[j], m), a + (b - a) * y, b - a, PDk, tether)
-    for end, side in zip(tether.params.ends, (0, 1)):
+    for end, side in zip(tether.params.ends.conditions, (0, 1)):
         at = 0 if side == 0 else len(grid.degrees) - 1
         m = grid.degrees[at]
         _, Dk, _ = _reference(m)
         point = 0 if side == 0 else m
         cu, cv, cm, cn = _columns(starts[at], m)
         for disp, moment in ((cu, cm), (cv, cn)):
-            for k in (0, bending_order(end)):  # u, then h u' (welded) or the moment, zero with u'' (pinned, swivel)
+            for k in (0, end.bending_order):  # u, then h u' (welded) or the moment, zero with u'' (pinned, swivel)
                 bld.add("K0", row, disp if k < 2 else moment, Dk[k if k < 2 else 0][point])
                 row += 1
     for j in range(len(grid.degrees) - 1):

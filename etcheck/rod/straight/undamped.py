@@ -17,7 +17,6 @@ import numpy as np
 
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.parallel import can_split, split_map
-from etcheck.rod.core.ends import euler_load
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight import exact
 from etcheck.rod.straight.spectral import CriticalKind, CriticalPoint
@@ -198,7 +197,7 @@ def _isotropic(p: RodParameters, tol: float, windows: bool, spin: bool) -> Undam
     """:func:`undamped_critical` for R = 1 on the lines of D+ (roots that never touch), with the bound of
     :mod:`etcheck.rod.straight.undamped_isotropic`: below the static load at rest B_s the rod is stable at every spin,
     so only loads past B_s (and spins at such loads) are followed."""
-    if p.T <= -euler_load(p.ends) / p.f:  # the Euler load: K_B is not positive at B = 0
+    if p.T <= -p.ends.euler_load / p.f:  # the Euler load: K_B is not positive at B = 0
         raise ArithmeticError("R = 1 compressed past its Euler load: the undamped isotropic lines need "
                               "a rod stable at rest")
     rest = _at_rest(p)
@@ -346,7 +345,7 @@ def has_real_pair(params: RodParameters, n: int = 64) -> bool:
     Euler compression), below the static load at rest (:mod:`etcheck.rod.straight.undamped_isotropic`)."""
     if stiffness_definite(params):
         return False
-    if params.R == 1.0 and params.T > -euler_load(params.ends) / params.f and params.B < _at_rest(params).value:
+    if params.R == 1.0 and params.T > -params.ends.euler_load / params.f and params.B < _at_rest(params).value:
         return False
     mu_lo = rayleigh_floor(params, params.B, params.omega, params.T)
     mu = -np.linspace(math.sqrt(-mu_lo), 0.0, n + 1) ** 2

@@ -54,7 +54,7 @@ import math
 import numpy as np
 
 from etcheck.numerics.memory import items_within
-from etcheck.rod.core.ends import ALL_WELDED, Ends, first_bending_root, is_welded
+from etcheck.rod.core.ends import ALL_WELDED, Ends
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight import determinant
 from etcheck.rod.straight.determinant import assemble, bc_real, end_values, log_vandermonde, schur, smoothing
@@ -257,7 +257,7 @@ def _exponential(R, f, B, alpha, beta, c0, c1, ku, kv, shift=0, ends: Ends = ALL
         k = np.where(ok[:, None], k, 1.0 + np.arange(8))
         V = tuple(np.where(ok[:, None, None], x, 1.0) for x in V)
         logW = np.where(ok, logW, 0.0)
-        value, _ = assemble(k, V[0] if is_welded(ends) else V, logW, shift)
+        value, _ = assemble(k, V, logW, shift)
         value = value * smoothing(k)
     return np.where(ok & np.isfinite(value), value, np.nan)
 
@@ -373,8 +373,8 @@ def rayleigh_floor(params: RodParameters, B_max: float, omega_max: float, T_min:
 def bending_floor(ends: Ends) -> float:
     """A lower bound of int w''^2 / int w^2 over w held at these ends (w = w' = 0 welded, w = 0 pinned): beta^4 of
     the first beam mode (cos(beta) cosh(beta) = 1 welded at both, tan(beta) = tanh(beta) at one, beta = pi
-    pinned at both; :func:`etcheck.rod.core.ends.first_bending_root`), rounded down."""
-    return first_bending_root(ends) ** 4 * (1.0 - 1e-12)
+    pinned at both; :attr:`etcheck.rod.core.ends.Ends.first_bending_root`), rounded down."""
+    return ends.first_bending_root ** 4 * (1.0 - 1e-12)
 
 
 def stiffness_positive(params: RodParameters, B, omega) -> np.ndarray:
