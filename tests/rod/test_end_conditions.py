@@ -14,6 +14,7 @@ import json
 import math
 import pickle
 from dataclasses import asdict, dataclass
+from pathlib import Path
 from typing import ClassVar
 
 import mpmath as mp
@@ -248,6 +249,24 @@ def test_registry_names_and_what_each_kind_holds():
         ends_module.register(ends_module.Pinned)
 
 
+def test_the_results_schema_names_the_kinds():
+    """Every enum of end names in docs/results.schema.json is the registry's (a new kind adds its name there)."""
+    schema = json.loads((Path(__file__).resolve().parents[2] / "docs" / "results.schema.json").read_text())
+
+    def enums(node):
+        if isinstance(node, dict):
+            if "swivel" in node.get("enum", ()):
+                yield node["enum"]
+            for value in node.values():
+                yield from enums(value)
+        elif isinstance(node, list):
+            for value in node:
+                yield from enums(value)
+
+    found = list(enums(schema))
+    assert found and all(e == list(ends_module.KINDS) for e in found)
+
+
 def test_the_pair_is_its_names_in_results_and_caches():
     """Ends is the tuple of names: JSON, asdict, repr (the sweep cache's key), pickling and hashing are the names'."""
     p = RodParameters(P=1e-3, R=0.5, Gamma=0.7, ends=("welded", "swivel"))
@@ -408,7 +427,7 @@ def test_a_new_kind_that_bends_as_a_weld_is_one_class(toy_kinds):
 def test_a_new_bending_behaviour_is_refused_where_no_table_knows_it(toy_kinds):
     ends = Ends(("sleeve", "welded"))
     with pytest.raises(ValueError, match=r"no beam mode for the ends sleeve, welded: .* \('clamped', 'sleeve'\)"):
-        ends.euler_load
+        _ = ends.euler_load
     with pytest.raises(ValueError, match="no closed-form static buckling"):
         analytic.critical_loads(0.5, F_CLAMPED, 1, ends)
     with pytest.raises(NotImplementedError, match="Sleeve gives no rows for the exact determinant"):

@@ -15,10 +15,13 @@ from etcheck.report.figures.common import image as _image
 from etcheck.report.figures.common import pyplot as _plt
 from etcheck.report.figures.diagram import branch_plot, shapes_plot
 
+#: The paper's attachment as the results name it: the one whose characteristic function is chi of eq. (91).
+PAPER_ENDS = ["welded", "welded"]
+
 
 def _ends(results: dict) -> tuple[list[str], str]:
-    """The tether's ends [lower, upper] and their description (welded at both when the results do not say)."""
-    att = results.get("attachment") or {"ends": ["welded", "welded"], "described": "welded at both ends"}
+    """The tether's ends [lower, upper] as the results name them, and their description."""
+    att = results["attachment"]
     return att["ends"], att["described"]
 
 
@@ -27,7 +30,7 @@ def chi_plot(results: dict) -> str:
     plt = _plt()
     sr = results["straight_rod"]
     ends, described = _ends(results)
-    welded = ends == ["welded", "welded"]
+    welded = ends == PAPER_ENDS
     beta = sr["chi_curve"]["beta"]
     chi = sr["chi_curve"]["chi_scaled"]
     op = sr["operating_beta"]
@@ -78,7 +81,7 @@ def mode_plot(results: dict) -> str:
     ax1.set_title("First buckling mode (one of a double pair)", fontsize=9)
     ax2.plot(x, y, color="#7d3c98")
     ends, _ = _ends(results)
-    ax2.plot([0], [0], "ko", ms=3, label="welded ends" if ends == ["welded", "welded"] else
+    ax2.plot([0], [0], "ko", ms=3, label="welded ends" if ends == PAPER_ENDS else
              "ends (" + ", ".join(dict.fromkeys(ends)) + ")")
     ax2.set_aspect("equal", adjustable="datalim")
     ax2.set_xlabel("x / max (–)")
