@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from etcheck import load_mission
-from etcheck.rod.core.ends import KINDS
+from etcheck.rod.core.ends import KINDS, Ends
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.scaling import Scaled, Scales, Scene, scale, scene, unscale, with_length
 
@@ -205,4 +205,4 @@ def test_scene_holds_plain_floats(name):
             continue
         assert type(getattr(s, field.name)) is float, field.name
     for name_, value in dataclasses.asdict(scale(s).params).items():
-        assert type(value) is (tuple if name_ == "ends" else float), name_
+        assert type(value) is (Ends if name_ == "ends" else float), name_  # Ends: the tuple of the two names
