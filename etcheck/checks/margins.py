@@ -17,7 +17,7 @@ from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.input.mission import Mission
 from etcheck.rod.core.ends import describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.scaling import RPM, Scaled, Scene
+from etcheck.scaling import Scaled, Scene
 
 
 class Verdict(StrEnum):
@@ -176,8 +176,8 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
                 "rpm",
                 spin,
                 spin["rpm"],
-                sc.spin_rate * RPM,
-                scaled.scales.frequency * RPM,
+                sc.spin_rpm,
+                scaled.scales.spin_rpm,
                 required,
                 "the straight tether first loses stability as the spin rate grows at the operating load",
                 "the straight tether is already unstable without spin at the operating load (statically buckled)"

@@ -28,6 +28,7 @@ from etcheck.checks.orbit_field import statement
 from etcheck.checks.sections import OrbitSection, OrbitSeries
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
+from etcheck.scaling import Scene
 
 #: Most samples of the whole-window series written to results.json.
 MAX_SERIES = 3000
@@ -57,8 +58,9 @@ def _series(s, idx: np.ndarray, current: float, critical: float | None) -> Orbit
     }
 
 
-def orbit_results(mission: Mission, margins: list[Margin]) -> OrbitSection | None:
-    """The field and the load margin along the mission's orbit (None without an [orbit] table)."""
+def orbit_results(mission: Mission, sc: Scene, margins: list[Margin]) -> OrbitSection | None:
+    """The field and the load margin along the mission's orbit (None without an [orbit] table) at the scene's
+    worst current; the mission for its evaluated orbit."""
     env = mission.orbit_envelope
     if env is None:
         return None
@@ -66,7 +68,7 @@ def orbit_results(mission: Mission, margins: list[Margin]) -> OrbitSection | Non
 
     s = env.series
     n = len(s)
-    current = float(mission.worst_current.to_value("A"))
+    current = sc.current
     m = load_margin(margins)
     critical = m.critical if m is not None else None
     period = orbital_period(mission.orbit)

@@ -113,7 +113,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         chosen = replace(chosen, reason=f"{chosen.reason}; {DRAFT_BOUND}")
     fid = fidelity_of(mission.fidelity, mission.tolerance)
     rung0 = static_buckling(scaled)
-    static: StraightRodSection = {**rung0, "limits": static_limits(rung0, mission, sc)}
+    static: StraightRodSection = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
     options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=(), time_budget=None)
@@ -150,7 +150,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     margin_records = [m.as_dict() for m in margins]
     results: CheckResults = {
         **results_header(mission),
-        "scene": scene_section(mission, sc),
+        "scene": scene_section(sc),
         "scaled": cast(ScaledSection, asdict(scaled.params)),
         "scales": {
             "length_m": scaled.scales.length,
@@ -174,7 +174,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "design_limits": limits,
         "flight": flight(mission, verdict, margins, scope),
         "validity": validity(mission, scaled, chosen, post),
-        "orbit": orbit_results(mission, margins),  # None without an [orbit] table
+        "orbit": orbit_results(mission, sc, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
         "resources": {"memory_budget_bytes": memory.budget(), "time_budget_s": options.time_budget,
                       "skipped": skipped, "margins_s": margins_s},
@@ -200,8 +200,7 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         from etcheck.checks.profiles import profile_stability, stability_map
 
         tol = max(options.tol, options.eig_tol)
-        linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None,
-                                                   float(mission.worst_current.to_value("A")), tol=tol,
+        linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None, tol=tol,
                                                    draft=options.draft, beside=other_ends)
         if not options.draft:  # the report's extra, within the sign-off's time budget
             linear["stability_map"] = Extras(skipped, deadline, options.time_budget)(
@@ -291,12 +290,12 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
         return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c, "reason": str(exc)}
 
 
-def scene_section(mission: Mission, sc: Scene) -> SceneSection:
+def scene_section(sc: Scene) -> SceneSection:
     """The ``scene`` section of a check's results: the worst-case operating point in SI (the tension the minimum
     of a gravity-gradient profile, which is given beside it)."""
     return {
-        "worst_current_A": float(mission.worst_current.to_value("A")),
-        "worst_field_T": float(mission.worst_field.to_value("T")),
+        "worst_current_A": sc.current,
+        "worst_field_T": sc.field.axial,
         "length_m": sc.length,
         "EI1_N_m2": sc.EI1,
         "EI2_N_m2": sc.EI2,
@@ -307,7 +306,7 @@ def scene_section(mission: Mission, sc: Scene) -> SceneSection:
         "spin_rate_rad_s": sc.spin_rate,
         "tension_N": sc.tension,
         # tether.end_masses: the gravity-gradient profile (N), which rung 1v uses; tension_N is its minimum (a bound)
-        "tension_profile": None if mission.gravity_gradient is None else mission.gravity_gradient.as_dict(),
+        "tension_profile": None if sc.gravity_gradient is None else sc.gravity_gradient.as_dict(),
         "damping_time_s": sc.damping_time,
         "f": sc.f,
     }

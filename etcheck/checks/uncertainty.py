@@ -134,7 +134,7 @@ def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> Ma
                          "(seconds each), and the check computes no uncertainty study for it")
     chosen = plan(scaled.params, mission.fidelity)
     rung0 = static_buckling(scaled)
-    static = {**rung0, "limits": static_limits(rung0, mission, sc)}
+    static = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
     linear = linear_stability(scaled, replace(options, draft=True), chosen.route) \
         if chosen.rung == 1 and chosen.complete else None
     margins = [m for m in straight_margins(mission, sc, scaled, chosen, static, linear) if m.verdict != INCOMPLETE]

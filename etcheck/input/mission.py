@@ -182,6 +182,18 @@ class Mission:
         return max(abs(self.axial_field[0]), abs(self.axial_field[1]))
 
     @property
+    def current_range_A(self) -> tuple[float, float]:
+        """operation.current as given, (low, high) in A: plain floats for the report's statements."""
+        lo, hi = (float(x.to_value(u.A)) for x in self.current)
+        return lo, hi
+
+    @property
+    def axial_field_range_uT(self) -> tuple[float, float]:
+        """operation.axial_field as given, (low, high) in µT: plain floats for the report's statements."""
+        lo, hi = (float(x.to_value(u.uT)) for x in self.axial_field)
+        return lo, hi
+
+    @property
     def worst_cross_field(self) -> u.Quantity | None:
         """The largest |field across the tether| given (None where not given)."""
         return None if self.cross_field is None else max(abs(self.cross_field[0]), abs(self.cross_field[1]))
