@@ -176,21 +176,25 @@ class Scaled:
     tether: Tether | None = None
 
 
-def scene(mission: Mission) -> Scene:
+def scene(mission: Mission, field: MagneticField | None = None) -> Scene:
     """The worst-case operating point of a mission, in SI floats.
 
     Worst case: largest |I| times largest |B0| over the given ranges. A missing
     damping_time means the default dimensionless gamma (DEFAULT_GAMMA) at the
-    mission's length, i.e. gamma_v = DEFAULT_GAMMA / omega_c. A mission with an
-    [orbit] table must have been resolved by the check's orbit stage
-    (etcheck.checks.orbit_field.with_orbit_field) for its field.
+    mission's length, i.e. gamma_v = DEFAULT_GAMMA / omega_c. ``field``: the
+    worst field where the mission does not give it (None: ``operation.axial_field``
+    and ``operation.cross_field``); a mission with an [orbit] table takes the field
+    over its orbit, which the check's orbit stage evaluates and passes
+    (:func:`etcheck.checks.orbit_field.resolve`).
     """
     # plain Python floats (not numpy scalars): everything downstream stays JSON-able
     EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in mission.bending_stiffness)
     profile = mission.current_profile
     L = float(mission.length.to_value(u.m))
     rho_a = float(mission.mass_per_length.to_value(u.kg / u.m))
-    f = mission.scaling_constant
+    f = mission.check.scaling_constant
+    field = _field(mission) if field is None else field
+    current = float(mission.worst_current.to_value(u.A))
     if mission.damping_time is None:
         damping = DEFAULT_GAMMA / Scales(L, EI1, rho_a, f).frequency
     else:
@@ -202,7 +206,7 @@ def scene(mission: Mission) -> Scene:
         GJ=float(mission.torsional_stiffness.to_value(u.N * u.m**2)),
         mass_per_length=rho_a,
         P=mission.rotary_inertia_ratio,
-        load=float(mission.operating_load.to_value(u.N / u.m)),
+        load=current * field.axial,
         spin_rate=float(mission.spin_rate.to_value(u.rad / u.s)),
         tension=float(mission.end_tension.to_value(u.N)),
         damping_time=damping,
@@ -210,27 +214,22 @@ def scene(mission: Mission) -> Scene:
         ends=mission.end_conditions,
         current_profile=None if profile is None or profile.uniform else profile.profile,
         gravity_gradient=mission.gravity_gradient,
-        current=float(mission.worst_current.to_value(u.A)),
-        field=_field(mission),
+        current=current,
+        field=field,
         axial_stiffness=None if mission.youngs_modulus is None or mission.cross_section_area is None else
         float((mission.youngs_modulus * mission.cross_section_area).to_value(u.N)),
     )
 
 
 def _field(mission: Mission) -> MagneticField:
-    """The worst field along the tether and across it [T]: the cross field as stated, else the largest
-    sqrt(|B|^2 - (B.up)^2) over the orbit (the field across a tether on the local vertical), else the axial."""
-    axial = float(mission.worst_field.to_value(u.T))
-    if mission.cross_field is not None:
-        return MagneticField(axial, float(mission.worst_cross_field.to_value(u.T)))
-    env = mission.orbit_envelope
-    if env is None:
-        return MagneticField(axial, axial)
-    import numpy as np
-
-    s = env.series
-    across = np.sqrt(np.maximum(s.b_magnitude**2 - s.axial_nominal**2, 0.0))
-    return MagneticField(axial, float(np.max(across)))
+    """The worst field the mission gives along the tether and across it [T] (the cross field, where not given,
+    taken equal to the axial one)."""
+    if mission.orbit is not None:
+        raise ValueError("the field of a mission with an [orbit] table is the worst over its orbit: the check's "
+                         "orbit stage evaluates it (etcheck.checks.orbit_field.resolve)")
+    axial = float(max(abs(mission.axial_field[0]), abs(mission.axial_field[1])).to_value(u.T))
+    cross = mission.worst_cross_field
+    return MagneticField(axial, axial if cross is None else float(cross.to_value(u.T)))
 
 
 def scale(s: Scene) -> Scaled:

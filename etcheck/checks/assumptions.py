@@ -49,7 +49,7 @@ def assumptions(mission: Mission, base: Scene, margin_name: str | None, margin_v
         rows = [_ends(mission, other_ends), *_profile_rows(inp, margin_name, margin_value, profiles)]
     else:
         rows = [_ends(mission, other_ends), _current(inp), _tension(inp), _field(inp), _damping(inp)]
-    return {"margin": margin_name, "margin_value": margin_value, "required": mission.required_margin,
+    return {"margin": margin_name, "margin_value": margin_value, "required": mission.check.required_margin,
             "rows": rows, "time_s": time.perf_counter() - started}
 
 
@@ -131,9 +131,8 @@ def _field(inp: Inputs, elasticity: tuple[float | None, str] | None = None) -> A
     """The field record; ``elasticity`` (value, how) where the caller has it, else from the uniform routes."""
     m = inp.mission
     value = f"{inp.field * 1e6:.4g} µT"
-    if m.orbit_envelope is not None:
-        env = m.orbit_envelope
-        source = f"the worst over the [orbit] ({env.model}, with libration)"
+    if m.orbit is not None:
+        source = f"the worst over the [orbit] ({m.orbit.model}, with libration)"
         flag = _flag(m, "orbit")
     else:
         lo, hi = m.axial_field_range_uT

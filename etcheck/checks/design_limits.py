@@ -156,7 +156,7 @@ class Inputs:
 
 
 def inputs_of(mission: Mission, base: Scene, options: WhirlOptions) -> Inputs:
-    return Inputs(base, mission, mission.required_margin, options)
+    return Inputs(base, mission, mission.check.required_margin, options)
 
 
 #: input -> (label, unit shown, SI -> shown factor, direction: +1 the margin falls as it grows, -1 it rises,

@@ -277,5 +277,5 @@ def margin_model(mission, scene, scaled, chosen, margins, options: WhirlOptions 
                "end_tension": scene.tension, "damping_time": scene.damping_time}
     gj_ratio = scene.GJ / (scene.EI1 + scene.EI2) if mission.poisson_ratio is not None else None
     at_nominal = {m.name: (math.inf if m.value is None else m.value) for m in margins}
-    return MarginModel(nominal, scene.P, scene.length, scene.f, gj_ratio, kinds, route, mission.required_margin,
+    return MarginModel(nominal, scene.P, scene.length, scene.f, gj_ratio, kinds, route, mission.check.required_margin,
                        options, at_nominal, p.gamma > 0, p.gamma, p.ends)

@@ -108,7 +108,7 @@ def overall_verdict(margins: list[Margin], within_validity: bool = True) -> str:
 
 def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: StraightRodSection,
                      linear: LinearSection | None, damping: str = "") -> list[Margin]:
-    required = mission.required_margin
+    required = mission.check.required_margin
     first = static["critical_loads"][0]
     if linear is not None:
         return linear_margins(sc, scaled, required, linear, damping)

@@ -100,7 +100,7 @@ def cross_field_source(mission: Mission) -> tuple[str, bool]:
     """
     if mission.cross_field is not None:
         return "operation.cross_field", mission.is_assumed("operation.cross_field")
-    if mission.orbit_envelope is not None:
+    if mission.orbit is not None:
         return "the largest over the orbit (IGRF, tether on the local vertical)", mission.is_assumed("orbit")
     return ("not given: taken equal to the worst axial field (a field of that size may lie across the "
             "tether); give [operation] cross_field or an [orbit] table", True)

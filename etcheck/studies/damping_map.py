@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from etcheck.checks.coil import eigenvalue_paths, path_spectra, secondary_pitchfork_at
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.results import results_header
 from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
@@ -28,7 +28,7 @@ from etcheck.rod.buckled.secondary import b1_spin_branch
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution
 from etcheck.rod.straight.spectral import THRESHOLD, divergence_loads
-from etcheck.scaling import Scales, scale, scene
+from etcheck.scaling import Scales, scale
 from etcheck.studies.diagram import refuse_outside_limit
 
 
@@ -184,8 +184,8 @@ def _curve_point(params: RodParameters, omega: float, N: int, B_ref: float, fail
 def damping_results(mission: Mission, gammas=HOPF_GAMMAS, B_max: float | None = None, omega_max: float = 4.0,
                     n_B: int = 14, n_omega: int = 12, N: int = 24) -> dict[str, Any]:
     """:func:`damping_study` of the mission's tether (its P, R, Gamma, tension), as a results file."""
-    mission = with_orbit_field(mission)
-    scaled = scale(scene(mission))
+    resolved = resolve(mission)
+    mission, scaled = resolved.mission, scale(resolved.scene)
     at_rest = scaled.params.with_(omega=0.0)
     # the thinnest boundary layers are at the fastest spin of the map; refused before any solve
     refuse_outside_limit(mission, at_rest, "the damping map")

@@ -43,7 +43,7 @@ from typing import Any
 import numpy as np
 
 from etcheck import __version__
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.plan import EXACT, straight_route
 from etcheck.checks.results import results_header
 from etcheck.checks.validity import BOW_LIMIT, mid_span_bow
@@ -60,7 +60,7 @@ from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.damped_critical import first_root
 from etcheck.rod.straight.exact import first_exact_root
 from etcheck.rod.straight.undamped import has_real_pair
-from etcheck.scaling import Scene, scale, scene, with_length
+from etcheck.scaling import Scene, scale, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 from etcheck.studies.sweep_point import (
     STATUS_FAILED,
@@ -355,8 +355,8 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
     """
     started = time.perf_counter()
     axes = tuple(sorted(axes, key=lambda a: a.name != "length"))
-    mission = with_orbit_field(mission)
-    base = scene(mission)
+    resolved = resolve(mission)
+    mission, base = resolved.mission, resolved.scene
     grids = [a.values for a in axes]
     shape = tuple(len(g) for g in grids)
     cache = Cache(options.cache)
@@ -409,7 +409,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
         "axes": [a.as_dict() for a in axes],
         "tolerance": options.tol,
         "buckled_assessed": options.buckled,
-        "required_margin": mission.required_margin,
+        "required_margin": mission.check.required_margin,
         "operating": _operating(base) | (orbit.operating if orbit else {}),
         "grid": grid,
         "critical_length": lengths,
@@ -446,7 +446,7 @@ def _operating(base: Scene) -> dict[str, float]:
 
 def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     """Per-point SI data as arrays of the grid shape (lists, JSON-able)."""
-    required = mission.required_margin
+    required = mission.check.required_margin
     fields = ("load_N_per_m", "critical_load_N_per_m", "load_margin", "load_error", "spin_rpm", "critical_spin_rpm",
               "spin_margin", "spin_error", "critical_spin_at_rest_rpm", "B", "omega", "T", "gamma", "P", "N",
               "buckled_deflection_m", "bow_over_length")
