@@ -32,7 +32,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -172,7 +172,7 @@ from etcheck.numerics.heap import keep_freed_memory
 keep_freed_memory()
 from etcheck.checks.pipeline import check
 from etcheck.input.mission import load_mission
-m = replace(load_mission("missions/set.toml"), fidelity="draft")
+m = load_mission("missions/set.toml").with_fidelity("draft")
 t0 = time.perf_counter()
 r = check(m).results
 print(json.dumps({"wall": time.perf_counter() - t0,
@@ -403,8 +403,8 @@ def missions_table(paths: list[Path]) -> None:
           f" {'stated error':>12}  model")
     for path in paths:
         m = load_mission(path)
-        _timed(replace(m, fidelity="draft"))  # warm: operator families and caches
-        t_draft, draft = _timed(replace(m, fidelity="draft"))
+        _timed(m.with_fidelity("draft"))  # warm: operator families and caches
+        t_draft, draft = _timed(m.with_fidelity("draft"))
         t_sign, sign = _timed(m)
         for i, (a, b) in enumerate(zip(draft["margins"], sign["margins"])):
             diff = (abs(a["value"] - b["value"]) / b["value"]

@@ -23,7 +23,6 @@ Run:  python benchmarks/bench_profiles.py [--quick] [--checks] [--serial]   (--c
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 import time
 from pathlib import Path
@@ -126,7 +125,7 @@ def part2(quick: bool) -> None:
           f"{'mode':>6s} {'map':>6s} {'verdict':8s} margins")
     for name, mission in missions:
         for fidelity in ("auto", "draft"):
-            m = dataclasses.replace(mission, fidelity=fidelity)
+            m = mission.with_fidelity(fidelity)
             runs = []
             for _ in range(RUNS):
                 spent.clear()

@@ -3,6 +3,10 @@
 ``scene(mission)`` reduces a mission to one worst-case operating point in SI
 floats; ``scale(scene)`` gives the dimensionless :class:`RodParameters` plus the
 :class:`Scales` needed to go back; ``unscale`` inverts it exactly (to rounding).
+This is the one unit boundary: the scene carries every operating value a check
+needs (current, field, tension, stiffnesses ... in SI floats) and the scales turn
+dimensionless answers back into SI (:meth:`Scales.line_load`, :meth:`Scales.current`,
+:meth:`Scales.rpm` ...); nothing past this module handles units.
 
     omega_c = sqrt(f EI1 / (rho A L^4))   [rad/s]
     B       = I B0 L^3 / (f EI1)          T̄ = T L^2 / (f EI1)
@@ -32,12 +36,26 @@ RPM = 60.0 / (2.0 * math.pi)
 
 
 @dataclass(frozen=True)
+class MagneticField:
+    """The worst-case magnetic field at the tether [T]: ``axial`` along the undeformed tether (|B0| of the
+    paper's load I B0) and ``cross`` across it (the bow under the Lorentz load: stated, the largest over the
+    orbit, else taken equal to the axial field). A direction of the cross field (an angle about the tether) is
+    one more field of this record."""
+
+    axial: float
+    cross: float
+
+
+@dataclass(frozen=True)
 class Scene:
     """One operating point in SI floats (the unit edge has been crossed).
 
     length [m], EI1, EI2, GJ [N m^2], mass_per_length [kg/m], P [-],
     load = |I B0| [N/m], spin_rate [rad/s], tension [N] (positive pulls),
-    damping_time gamma_v [s], f [-].
+    damping_time gamma_v [s], f [-]; current = |I| [A] and field [T], the
+    worst case whose product is ``load`` (None in a scene scaled back from
+    dimensionless parameters, which know only the product); axial_stiffness
+    E A [N] (None where the mission gives no youngs_modulus and cross-section).
     """
 
     length: float
@@ -57,21 +75,38 @@ class Scene:
     # one end tension); ``tension`` is then its smallest value along the tether, a bound
     current_profile: Profile | None = None
     gravity_gradient: GravityGradient | None = None
+    current: float | None = None
+    field: MagneticField | None = None
+    axial_stiffness: float | None = None
 
     @property
     def profiles(self) -> bool:
         """Whether current or tension varies along the tether (rung 1v)."""
         return self.current_profile is not None or self.gravity_gradient is not None
 
+    @property
+    def spin_rpm(self) -> float:
+        """The spin rate in revolutions per minute."""
+        return self.spin_rate * RPM
+
+    @property
+    def largest_tension(self) -> float:
+        """The largest tension along the tether [N]: the gravity gradient's at the centre of mass, else the end
+        tension."""
+        return self.gravity_gradient.maximum if self.gravity_gradient is not None else self.tension
+
 
 @dataclass(frozen=True)
 class Scales:
-    """What turns dimensionless numbers back into SI (arXiv:0810.3668 eq. (36))."""
+    """What turns dimensionless numbers back into SI (arXiv:0810.3668 eq. (36)); ``current`` [A] and ``field``
+    [T]: the scene's worst case (None where unknown), which split a load I B0 into a current or a field."""
 
     length: float  # L [m]
     EI1: float  # [N m^2]
     mass_per_length: float  # rho A [kg/m]
     f: float  # [-]
+    worst_current: float | None = None  # |I| [A]
+    worst_field: float | None = None  # |B0| [T]
 
     @property
     def frequency(self) -> float:
@@ -88,6 +123,47 @@ class Scales:
         """Distributed-load scale f EI1 / L^3 [N/m]: I B0 = B * load."""
         return self.f * self.EI1 / self.length**3
 
+    @property
+    def spin_rpm(self) -> float:
+        """omega_c in revolutions per minute: the rpm of a dimensionless spin rate of 1."""
+        return self.frequency * RPM
+
+    def line_load(self, B):
+        """Load per length I B0 = B f EI1 / L^3 [N/m] of a dimensionless load B (a float or an array)."""
+        return B * self.load
+
+    def current(self, B: float) -> float:
+        """The current [A] whose load I B0 at the worst field is the dimensionless load B."""
+        return self.line_load(B) / self.worst_field
+
+    def tension(self, T):
+        """Force T f EI1 / L^2 [N] of a dimensionless force T (end tension, internal force)."""
+        return T * self.force
+
+    def moment(self, M):
+        """Moment M f EI1 / L [N m] of a dimensionless moment M."""
+        return M * (self.force * self.length)
+
+    def distance(self, x):
+        """Length x L [m] of a dimensionless length x."""
+        return x * self.length
+
+    def rad_s(self, w):
+        """Angular rate w omega_c [rad/s] of a dimensionless rate (spin, frequency, growth rate)."""
+        return w * self.frequency
+
+    def damping_time(self, gamma: float) -> float:
+        """Kelvin-Voigt damping time gamma_v = gamma / omega_c [s] of a dimensionless damping gamma."""
+        return gamma / self.frequency
+
+    def hz(self, w):
+        """Frequency w omega_c / (2 pi) [Hz] of a dimensionless angular frequency w."""
+        return self.rad_s(w) / (2.0 * math.pi)
+
+    def rpm(self, w):
+        """Spin rate [rpm] of a dimensionless spin rate w."""
+        return w * self.frequency * RPM
+
 
 @dataclass(frozen=True)
 class Scaled:
@@ -100,19 +176,25 @@ class Scaled:
     tether: Tether | None = None
 
 
-def scene(mission: Mission) -> Scene:
+def scene(mission: Mission, field: MagneticField | None = None) -> Scene:
     """The worst-case operating point of a mission, in SI floats.
 
     Worst case: largest |I| times largest |B0| over the given ranges. A missing
     damping_time means the default dimensionless gamma (DEFAULT_GAMMA) at the
-    mission's length, i.e. gamma_v = DEFAULT_GAMMA / omega_c.
+    mission's length, i.e. gamma_v = DEFAULT_GAMMA / omega_c. ``field``: the
+    worst field where the mission does not give it (None: ``operation.axial_field``
+    and ``operation.cross_field``); a mission with an [orbit] table takes the field
+    over its orbit, which the check's orbit stage evaluates and passes
+    (:func:`etcheck.checks.orbit_field.resolve`).
     """
     # plain Python floats (not numpy scalars): everything downstream stays JSON-able
     EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in mission.bending_stiffness)
     profile = mission.current_profile
     L = float(mission.length.to_value(u.m))
     rho_a = float(mission.mass_per_length.to_value(u.kg / u.m))
-    f = mission.scaling_constant
+    f = mission.check.scaling_constant
+    field = _field(mission) if field is None else field
+    current = float(mission.worst_current.to_value(u.A))
     if mission.damping_time is None:
         damping = DEFAULT_GAMMA / Scales(L, EI1, rho_a, f).frequency
     else:
@@ -124,7 +206,7 @@ def scene(mission: Mission) -> Scene:
         GJ=float(mission.torsional_stiffness.to_value(u.N * u.m**2)),
         mass_per_length=rho_a,
         P=mission.rotary_inertia_ratio,
-        load=float(mission.operating_load.to_value(u.N / u.m)),
+        load=current * field.axial,
         spin_rate=float(mission.spin_rate.to_value(u.rad / u.s)),
         tension=float(mission.end_tension.to_value(u.N)),
         damping_time=damping,
@@ -132,12 +214,28 @@ def scene(mission: Mission) -> Scene:
         ends=mission.end_conditions,
         current_profile=None if profile is None or profile.uniform else profile.profile,
         gravity_gradient=mission.gravity_gradient,
+        current=current,
+        field=field,
+        axial_stiffness=None if mission.youngs_modulus is None or mission.cross_section_area is None else
+        float((mission.youngs_modulus * mission.cross_section_area).to_value(u.N)),
     )
+
+
+def _field(mission: Mission) -> MagneticField:
+    """The worst field the mission gives along the tether and across it [T] (the cross field, where not given,
+    taken equal to the axial one)."""
+    if mission.orbit is not None:
+        raise ValueError("the field of a mission with an [orbit] table is the worst over its orbit: the check's "
+                         "orbit stage evaluates it (etcheck.checks.orbit_field.resolve)")
+    axial = float(max(abs(mission.axial_field[0]), abs(mission.axial_field[1])).to_value(u.T))
+    cross = mission.worst_cross_field
+    return MagneticField(axial, axial if cross is None else float(cross.to_value(u.T)))
 
 
 def scale(s: Scene) -> Scaled:
     """Scene (SI) -> dimensionless parameters (arXiv:0810.3668 eq. (36)) and scales."""
-    scales = Scales(length=s.length, EI1=s.EI1, mass_per_length=s.mass_per_length, f=s.f)
+    scales = Scales(length=s.length, EI1=s.EI1, mass_per_length=s.mass_per_length, f=s.f, worst_current=s.current,
+                    worst_field=None if s.field is None else s.field.axial)
     wc = scales.frequency
     params = RodParameters(
         P=s.P,

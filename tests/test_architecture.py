@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import os
 import pkgutil
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -295,3 +296,30 @@ def test_a_planted_private_import_is_found(tmp_path):
     target = tmp_path / "etcheck" / "checks" / "plan.py"
     target.write_text(target.read_text() + "\nfrom etcheck.rod.straight.spectral import _family_cached\n")
     assert any("_family_cached" in b for b in _private_imports(tmp_path))
+
+
+#: the modules past the unit boundary (etcheck.scaling) that may still hold astropy units, and why
+UNITS_ALLOWED = {
+    # the orbit stage writes the worst field over the orbit into the mission's echo of its axial field (a quantity,
+    # as the file gives it) and times the orbit's window in UTC
+    "etcheck/checks/orbit_field.py",
+}
+#: an astropy unit conversion or a quantity made from a unit: ``x.to_value(...)``, ``x.to(u.N)``, ``3 * u.s``,
+#: an import of astropy (``u.real`` of an eigenvector ``u`` is no unit)
+UNIT_PATTERN = re.compile(r"\.to_value\(|\.to\(\s*(u\.|[\"'])|\bastropy\b|"
+                          r"\bu\.(?:m|s|N|A|T|uT|nT|kg|rad|deg|km|d|h|min|one|cycle|Quantity|Unit)\b")
+
+
+def test_nothing_past_scaling_handles_units():
+    """docs/scaling.md: the scene carries the operating values in SI floats and the Scales convert dimensionless
+    answers back; the checks and studies convert no units themselves (nor read the mission's quantities)."""
+    found = []
+    for folder in ("checks", "studies"):
+        for path in sorted((PACKAGE / folder).rglob("*.py")):
+            rel = path.relative_to(ROOT).as_posix()
+            if rel in UNITS_ALLOWED:
+                continue
+            for n, line in enumerate(path.read_text().splitlines(), 1):
+                if UNIT_PATTERN.search(line.split("#")[0]):
+                    found.append(f"{rel}:{n}: {line.strip()}")
+    assert found == [], "unit conversions past etcheck.scaling:\n" + "\n".join(found)

@@ -122,3 +122,22 @@ def test_the_import_hook_hides_numpys_tools_only_while_the_clone_is_made(tmp_pat
         sys.modules.pop(name, None)
     assert (list(numpy.__all__), dir(numpy)) == before and "testing" in dir(numpy)
     assert not hook.installed()
+
+
+LOAD_PROBE = """
+import json, sys
+from etcheck import load_mission
+m = load_mission("missions/proseds-orbit.toml")
+assert m.orbit is not None
+print(json.dumps(sorted(m for m in sys.modules if m.split(".")[0] in ("ppigrf", "pandas", "sgp4")
+                        or m.startswith(("astropy.utils.iers", "etcheck.orbit.envelope", "etcheck.orbit.field",
+                                         "etcheck.orbit.attitude")))))
+"""
+
+
+def test_loading_an_orbit_mission_only_reads_it():
+    # the field over the orbit (IGRF through ppigrf and pandas, SGP4, Earth orientation from IERS tables) is the
+    # check's orbit stage: reading the [orbit] table loads none of it
+    run = subprocess.run([sys.executable, "-c", LOAD_PROBE], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert json.loads(run.stdout.strip().splitlines()[-1]) == []

@@ -49,7 +49,7 @@ def assumptions(mission: Mission, base: Scene, margin_name: str | None, margin_v
         rows = [_ends(mission, other_ends), *_profile_rows(inp, margin_name, margin_value, profiles)]
     else:
         rows = [_ends(mission, other_ends), _current(inp), _tension(inp), _field(inp), _damping(inp)]
-    return {"margin": margin_name, "margin_value": margin_value, "required": mission.required_margin,
+    return {"margin": margin_name, "margin_value": margin_value, "required": mission.check.required_margin,
             "rows": rows, "time_s": time.perf_counter() - started}
 
 
@@ -88,7 +88,7 @@ def _value(x: float | None) -> str:
 
 def _current(inp: Inputs) -> AssumptionRecord:
     m = inp.mission
-    lo, hi = (float(x.to_value("A")) for x in m.current)
+    lo, hi = m.current_range_A
     value = f"{inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
     value += "; uniform along the tether"
     el, how = _load_elasticity(inp)
@@ -131,12 +131,11 @@ def _field(inp: Inputs, elasticity: tuple[float | None, str] | None = None) -> A
     """The field record; ``elasticity`` (value, how) where the caller has it, else from the uniform routes."""
     m = inp.mission
     value = f"{inp.field * 1e6:.4g} µT"
-    if m.orbit_envelope is not None:
-        env = m.orbit_envelope
-        source = f"the worst over the [orbit] ({env.model}, with libration)"
+    if m.orbit is not None:
+        source = f"the worst over the [orbit] ({m.orbit.model}, with libration)"
         flag = _flag(m, "orbit")
     else:
-        lo, hi = (float(x.to_value("uT")) for x in m.axial_field)
+        lo, hi = m.axial_field_range_uT
         source = "operation.axial_field" + (f" (worst of {lo:.4g} … {hi:.4g} µT)" if lo != hi else "")
         flag = _flag(m, "operation.axial_field")
     el, how = _load_elasticity(inp) if elasticity is None else elasticity
@@ -159,7 +158,7 @@ def _damping(inp: Inputs) -> AssumptionRecord:
                        "with any damping the straight tether loses stability only where its static operator is "
                        "singular (Kelvin-Tait-Chetaev): its critical values do not depend on the damping", 0.0,
                        "exact (Kelvin-Tait-Chetaev)", "no damping (flutter possible)", alt)
-    gamma_time = DEFAULT_GAMMA / scale(inp.base).scales.frequency
+    gamma_time = scale(inp.base).scales.damping_time(DEFAULT_GAMMA)
     alt = _margin_or_none(inp, "damping_time", gamma_time)
     return _record("damping", "material damping (Kelvin-Voigt)", value, source, flag,
                    "without damping the straight tether can also lose stability by flutter, and gyroscopic "
@@ -236,7 +235,7 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
             return None
         return point["value"] / p.B
 
-    lo, hi = (float(x.to_value("A")) for x in m.current)
+    lo, hi = m.current_range_A
     current = f"largest {inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
     if cp is None:
         current_row = _record("current", "current along the tether", current + "; uniform along the tether",

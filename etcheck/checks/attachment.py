@@ -57,9 +57,9 @@ def alternatives(mission: Mission, sc: Scene, scaled: Scaled, options: WhirlOpti
     for ends in alternative_ends(scaled.params.ends):
         tether = None if scaled.tether is None else scaled.tether.with_(ends=ends)
         alt = Scaled(params=scaled.params.with_(ends=ends), scales=scaled.scales, tether=tether)
-        chosen = plan(alt.params, mission.fidelity, modelled_along(sc, mission.fidelity))
+        chosen = plan(alt.params, mission.check.model, modelled_along(sc, mission.check.draft))
         rung0 = static_buckling(alt)
-        static = {**rung0, "limits": static_limits(rung0, mission, sc)}
+        static = {**rung0, "limits": static_limits(rung0, sc, alt.scales)}
         if chosen.route == PROFILES and chosen.complete:
             from etcheck.checks.profiles import alternative_linear  # rung 1v (scipy.sparse) for profiles only
 

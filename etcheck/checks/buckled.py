@@ -275,11 +275,12 @@ def _liftoff_of(params: RodParameters, j: int) -> LiftoffSpin:
     return liftoff_spin_estimate(params, "b1" if j % 2 else "b2", (j + 1) // 2)
 
 
-def _shape(state: eq.Equilibrium, L: float) -> Shape:
+def _shape(state: eq.Equilibrium, scales: Scales) -> Shape:
     s = np.linspace(0.0, 1.0, SHAPE_POINTS)
     x = state.x0(s)
     return {"s": s.tolist(), "x": x[:, 0].tolist(), "y": x[:, 1].tolist(), "z": x[:, 2].tolist(),
-            "x_m": (x[:, 0] * L).tolist(), "y_m": (x[:, 1] * L).tolist(), "z_m": (x[:, 2] * L).tolist()}
+            "x_m": scales.distance(x[:, 0]).tolist(), "y_m": scales.distance(x[:, 1]).tolist(),
+            "z_m": scales.distance(x[:, 2]).tolist()}
 
 
 def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOptions, gamma: float,
@@ -288,14 +289,13 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     """The record of a branch and the stability of its states where the record has it (``check``: its resolution
     check, when already made; ``stability=False``: without its stability, which :func:`_with_stability` adds,
     unless its eigenvalue paths are computed: their spectra give it)."""
-    L = scales.length
     t0 = time.perf_counter()
     check = resolution_check(branch) if check is None else check
     out = branch.summary() | {
         "label": label,
         "points": len(branch.values),
-        "IB0_N_per_m": (np.asarray(branch.values) * scales.load).tolist(),
-        "max_deflection_m": (branch.max_deflection * L).tolist(),
+        "IB0_N_per_m": scales.line_load(np.asarray(branch.values)).tolist(),
+        "max_deflection_m": scales.distance(branch.max_deflection).tolist(),
         "measure1_error": check.measure1_error,
         "deflection_error": check.deflection_error,
         "N_check": check.N_check,
@@ -312,11 +312,11 @@ def _branch_data(branch: Branch, label: str, scales: Scales, options: DiagramOpt
     shapes = {}
     try:
         B, st = locate(branch, eq.measure1, options.shape_measure)
-        shapes[f"measure1={options.shape_measure:g}"] = _shape(st, L) | {"B": B, "measure1": eq.measure1(st)}
+        shapes[f"measure1={options.shape_measure:g}"] = _shape(st, scales) | {"B": B, "measure1": eq.measure1(st)}
     except ValueError:
         pass
-    shapes["end"] = _shape(branch.states[-1], L) | {"B": float(branch.values[-1]),
-                                                    "measure1": float(branch.measure1[-1])}
+    shapes["end"] = _shape(branch.states[-1], scales) | {"B": float(branch.values[-1]),
+                                                         "measure1": float(branch.measure1[-1])}
     out["shapes"] = shapes
     out["check_time"] = time.perf_counter() - t0
     return out, stab
@@ -326,8 +326,8 @@ def _special_point(q, scales: Scales) -> SpecialPoint:
     """A located special point of a branch with the measures of its state (the nearer end of its final bracket,
     within the located width of the point: where the figures mark it)."""
     ms = eq.measures(q.state)
-    return {"kind": q.kind, "B": q.value, "IB0_N_per_m": q.value * scales.load, "measure1": q.measure1,
-            "measure2": ms.measure2, "max_deflection_m": ms.max_deflection * scales.length, "bracket": list(q.bracket)}
+    return {"kind": q.kind, "B": q.value, "IB0_N_per_m": scales.line_load(q.value), "measure1": q.measure1,
+            "measure2": ms.measure2, "max_deflection_m": scales.distance(ms.max_deflection), "bracket": list(q.bracket)}
 
 
 def _second_step(attached: list[_Primary], options: DiagramOptions) -> list[tuple[str, str]]:
@@ -393,7 +393,7 @@ def diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DEF
         rec, stab = _branch_data(a.branch, lab, scales, options, params.gamma, stability=False)
         return rec | {
             "pitchfork_B": B_pf, "pitchfork_B_error": _finite(B_pf_error),
-            "pitchfork_IB0_N_per_m": B_pf * scales.load, "symmetry": a.which,
+            "pitchfork_IB0_N_per_m": scales.line_load(B_pf), "symmetry": a.which,
             "liftoff_omega": _finite(a.liftoff.omega), "liftoff_omega_error": _finite(a.liftoff.error)}, stab
 
     def first(job):
@@ -439,7 +439,7 @@ def diagram(params: RodParameters, scales: Scales, options: DiagramOptions = DEF
         + (" + rung 3 (stability of each state)" if options.stability else ""),
         "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "omega", "T", "gamma")},
         "B_max": B_max,
-        "IB0_max_N_per_m": B_max * scales.load,
+        "IB0_max_N_per_m": scales.line_load(B_max),
         "N": options.N,
         "branches": out_branches,
         "lifted_off": lifted,
@@ -478,14 +478,13 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: 
     sp = spectrum(st.params, base=st, k=8, tol=1e-6)
     lam = sp.eigenvalues
     i = int(np.argmax(lam.real)) if lam.size else None
-    L, force, moment, wc = scales.length, scales.force, scales.force * scales.length, scales.frequency
     least = None
     if i is not None:
         z = lam[i]
-        least = {"re": float(z.real), "im": float(z.imag), "growth_rate_per_s": float(z.real * wc),
-                 "frequency_Hz": float(abs(z.imag) * wc / (2 * math.pi)),
+        least = {"re": float(z.real), "im": float(z.imag), "growth_rate_per_s": float(scales.rad_s(z.real)),
+                 "frequency_Hz": float(scales.hz(abs(z.imag))),
                  "damping_ratio": float(-z.real / abs(z)) if abs(z) else None,
-                 "decay_time_s": float(-1.0 / (z.real * wc)) if z.real < 0 else None,
+                 "decay_time_s": float(-1.0 / scales.rad_s(z.real)) if z.real < 0 else None,
                  "error": float(sp.errors[i])}
     return {
         "damping_sensitivity": damping_sensitivity(st, scales),
@@ -494,12 +493,12 @@ def operating_state(params: RodParameters, scales: Scales, N: int = 32, branch: 
         "B": B,
         "measure1": ms.measure1,
         "max_deflection": ms.max_deflection,
-        "max_deflection_m": ms.max_deflection * L,
-        "end_shortening_m": ms.end_shortening * L,
-        "end_force_N": {"s=0": [v * force for v in ms.F0], "s=L": [v * force for v in ms.F1]},
-        "end_moment_N_m": {"s=0": [v * moment for v in ms.M0], "s=L": [v * moment for v in ms.M1]},
-        "shape": _shape(st, L),
-        "deflection_error_m": check.deflection_error * L,
+        "max_deflection_m": scales.distance(ms.max_deflection),
+        "end_shortening_m": scales.distance(ms.end_shortening),
+        "end_force_N": {"s=0": [scales.tension(v) for v in ms.F0], "s=L": [scales.tension(v) for v in ms.F1]},
+        "end_moment_N_m": {"s=0": [scales.moment(v) for v in ms.M0], "s=L": [scales.moment(v) for v in ms.M1]},
+        "shape": _shape(st, scales),
+        "deflection_error_m": scales.distance(check.deflection_error),
         "residual": st.residual_norm,
         "N": N,
         "N_check": check.N_check,
@@ -568,7 +567,7 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         star = _secondary_pitchfork(params, b1, N) if any(q.kind == "break" for q in b1.special) else NO_SECONDARY
         out["secondary_pitchfork_B"] = star.B
         out["secondary_pitchfork_error"] = star.error
-        out["secondary_pitchfork_IB0_N_per_m"] = None if star.B is None else star.B * scales.load
+        out["secondary_pitchfork_IB0_N_per_m"] = None if star.B is None else scales.line_load(star.B)
         if star.reason:
             out["secondary_pitchfork_reason"] = star.reason
         out["b1_first_unstable_B"] = first_unstable
@@ -577,7 +576,7 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         past = [st for v, st in zip(values, stable) if v >= params.B]
         bound = float(max(values)) if star.B is None and past and all(st is True for st in past) else None
         out["b1_stable_to_B"] = bound
-        out["b1_stable_to_IB0_N_per_m"] = None if bound is None else bound * scales.load
+        out["b1_stable_to_IB0_N_per_m"] = None if bound is None else scales.line_load(bound)
     else:  # e.g. lifted off at this spin: b1 does not leave the straight tether
         out |= {"secondary_pitchfork_B": None, "secondary_pitchfork_error": None,
                 "secondary_pitchfork_IB0_N_per_m": None, "b1_first_unstable_B": None, "b1_stable_at_start": None,
@@ -594,9 +593,8 @@ def postbuckling_check(params: RodParameters, scales: Scales, B_c: float, requir
         region = coil_region(params, scales, omega_max=max(1.0, 2.0 * params.omega), liftoff_omega=lift.omega)
         region["liftoff_omega_error"] = _finite(lift.error)
         low = spin_limit(region, params.B)
-        rpm = scales.frequency * 60.0 / (2.0 * math.pi)
-        region |= {"operating_rpm": params.omega * rpm,
-                   "lowest_stable_spin_rpm": None if low is None else low * rpm}
+        region |= {"operating_rpm": scales.rpm(params.omega),
+                   "lowest_stable_spin_rpm": None if low is None else scales.rpm(low)}
         out["region"] = region
     out["time_s"] = time.perf_counter() - t0
     return out

@@ -34,7 +34,7 @@ from etcheck.rod.buckled.spectra import BranchSpectra, branch_spectra, damped_op
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum, spectrum_from
 from etcheck.rod.straight.spectral import THRESHOLD
-from etcheck.scaling import RPM, Scales
+from etcheck.scaling import Scales
 
 #: least-|lambda| pairs whose eigenvalues decide a state's stability, and the two-resolution tolerance they meet
 STATE_K, STATE_TOL = 6, 1e-6
@@ -123,15 +123,14 @@ DAMPING_FACTORS = (0.25, 0.5, 1.0, 2.0, 4.0)
 def damping_sensitivity(state: eq.Equilibrium, scales: Scales) -> list[DampingSensitivity]:
     """Least-damped mode of a state for the scene's damping times DAMPING_FACTORS (one operator, rung 3)."""
     op = damped_operator(state.params, state, state.N)
-    wc = scales.frequency
     rows = []
     for k in DAMPING_FACTORS:
         g = k * state.params.gamma
         lam = operator_eigenvalues(op, g, 20, False)
         z = lam[int(np.argmax(lam.real))]
-        rows.append({"factor": k, "gamma": g, "damping_time_s": g / wc, "growth_rate_per_s": float(z.real * wc),
+        rows.append({"factor": k, "gamma": g, "damping_time_s": scales.damping_time(g), "growth_rate_per_s": float(scales.rad_s(z.real)),
                      "damping_ratio": float(-z.real / abs(z)) if abs(z) else None,
-                     "decay_time_s": float(-1.0 / (z.real * wc)) if z.real < 0 else None,
+                     "decay_time_s": float(-1.0 / scales.rad_s(z.real)) if z.real < 0 else None,
                      "stable": bool(z.real <= THRESHOLD)})
     return rows
 
@@ -182,29 +181,28 @@ def coil_region(params: RodParameters, scales: Scales, omega_max: float, liftoff
         p = params.with_(omega=float(w))
         pt = secondary_pitchfork_at(p, float(w), N, N, B_ref)
         star = pt.B if pt is not None else math.inf
-        rows.append({"omega": float(w), "spin_rpm": float(w * scales.frequency * RPM),
+        rows.append({"omega": float(w), "spin_rpm": float(scales.rpm(w)),
                      "pitchfork_B": pitchfork(float(w)),
                      "secondary_B": star if math.isfinite(star) else None})
     for r in rows:
         for k in ("pitchfork_B", "secondary_B"):
-            r[k.replace("_B", "_IB0_N_per_m")] = None if r[k] is None else r[k] * scales.load
+            r[k.replace("_B", "_IB0_N_per_m")] = None if r[k] is None else scales.line_load(r[k])
     edge_w = np.linspace(0.0, omega_max, n_edge)
     if math.isfinite(lift) and 0.0 < lift < omega_max:
         edge_w = np.sort(np.append(edge_w[edge_w < lift], lift))
     edge = [pitchfork(float(w)) for w in edge_w]
     edge = [0.0 if (e is None and math.isfinite(lift) and w >= lift) else e for w, e in zip(edge_w, edge)]
     curve, interp_error = secondary_curve(rows, n_edge)
-    rpm = scales.frequency * RPM
     return {"rows": rows, "N": N, "liftoff_omega": lift if math.isfinite(lift) else None,
-            "liftoff_rpm": lift * rpm if math.isfinite(lift) else None,
-            "pitchfork_curve": {"omega": edge_w.tolist(), "spin_rpm": (edge_w * rpm).tolist(),
-                                "B": edge, "IB0_N_per_m": [None if e is None else e * scales.load for e in edge]},
-            "secondary_curve": {"omega": curve[0], "spin_rpm": [w * rpm for w in curve[0]], "B": curve[1],
-                                "IB0_N_per_m": [b * scales.load for b in curve[1]],
+            "liftoff_rpm": lift * scales.spin_rpm if math.isfinite(lift) else None,
+            "pitchfork_curve": {"omega": edge_w.tolist(), "spin_rpm": (edge_w * scales.spin_rpm).tolist(),
+                                "B": edge, "IB0_N_per_m": [None if e is None else scales.line_load(e) for e in edge]},
+            "secondary_curve": {"omega": curve[0], "spin_rpm": [w * scales.spin_rpm for w in curve[0]], "B": curve[1],
+                                "IB0_N_per_m": [scales.line_load(b) for b in curve[1]],
                                 "interpolation": "PCHIP through the rows",
                                 "interpolation_error_B": interp_error,
                                 "interpolation_error_IB0_N_per_m": None if interp_error is None
-                                else interp_error * scales.load},
+                                else scales.line_load(interp_error)},
             "time_s": time.perf_counter() - t0}
 
 

@@ -124,21 +124,29 @@ class Inputs:
     """The mission's worst-case scene and how each input moves it (SI)."""
 
     base: Scene
-    mission: Mission
-    current: float  # A, worst case
-    field: float  # T, worst case along the tether
+    mission: Mission  # for the report's statements of the inputs (etcheck.checks.assumptions)
     required: float
     options: WhirlOptions  # the check's rung-1 settings (tolerances)
+
+    @property
+    def current(self) -> float:
+        """The worst current [A]."""
+        return self.base.current
+
+    @property
+    def field(self) -> float:
+        """The worst field along the tether [T]."""
+        return self.base.field.axial
 
     def scene(self, name: str, x: float) -> Scene:
         """The base scene with input ``name`` (length m, current A, end_tension N, spin_rate rad/s) set to x."""
         s = self.base
         if name == "length":
             s = with_length(s, x)
-            gg = self.mission.gravity_gradient
+            gg = self.base.gravity_gradient
             return replace(s, tension=replace(gg, length=x).minimum) if gg is not None else s
         if name == "current":
-            return replace(s, load=x * self.field)
+            return replace(s, load=x * self.field, current=x)
         if name == "end_tension":
             return replace(s, tension=x)
         return replace(s, spin_rate=x)
@@ -148,8 +156,7 @@ class Inputs:
 
 
 def inputs_of(mission: Mission, base: Scene, options: WhirlOptions) -> Inputs:
-    return Inputs(base, mission, float(mission.worst_current.to_value("A")), float(mission.worst_field.to_value("T")),
-                  mission.required_margin, options)
+    return Inputs(base, mission, mission.check.required_margin, options)
 
 
 #: input -> (label, unit shown, SI -> shown factor, direction: +1 the margin falls as it grows, -1 it rises,
@@ -245,7 +252,7 @@ def _limit(inp: Inputs, name: str) -> DesignLimit:
             record[key] = None
     if record["limit"] is not None:
         record["limit"] *= factor
-    if name == "end_tension" and inp.mission.gravity_gradient is not None and found.get("status") == "located":
+    if name == "end_tension" and inp.base.gravity_gradient is not None and found.get("status") == "located":
         record |= _end_masses(inp, found["limit"])
     return record
 
@@ -323,7 +330,7 @@ def _start(g: _Counted, name: str) -> float:
     w = spin["value"] if spin["value"] is not None else math.nan
     if not (math.isfinite(w) and w > 0):
         raise NoAnswer("the critical spin at the operating load was not located")
-    return math.log(w * scale(inp.base).scales.frequency / inp.required)
+    return math.log(scale(inp.base).scales.rad_s(w) / inp.required)
 
 
 def _bracket(g: _Counted, u0: float, slope: float) -> tuple[float, float] | None:
@@ -356,7 +363,7 @@ def _slope(g: _Counted, u: float) -> float:
 def _end_masses(inp: Inputs, tension: float) -> dict:
     """The common factor on both end masses whose gravity-gradient tension (its smallest, as the check uses)
     is ``tension`` N."""
-    gg = inp.mission.gravity_gradient
+    gg = inp.base.gravity_gradient
 
     def short(k: float) -> float:
         return replace(gg, upper_mass=k * gg.upper_mass, lower_mass=k * gg.lower_mass).minimum - tension

@@ -45,8 +45,9 @@ class Fidelity:
         return {"name": self.name, "tolerance": self.tolerance, "left_out": list(self.left_out)}
 
 
-def fidelity_of(mission_fidelity: str, tolerance: float) -> Fidelity:
-    """The fidelity a mission's ``[check] fidelity`` asks for (``tolerance``: its ``[check] tolerance``)."""
-    if mission_fidelity == "draft":
+def fidelity_of(draft: bool, tolerance: float) -> Fidelity:
+    """The precision a mission's ``[check]`` asks for: a ``draft`` or a sign-off (``tolerance``: its
+    ``[check] tolerance``)."""
+    if draft:
         return Fidelity("draft", max(tolerance, DRAFT_TOLERANCE), LEFT_OUT)
     return Fidelity("sign-off", tolerance)

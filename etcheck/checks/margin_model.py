@@ -273,10 +273,9 @@ def margin_model(mission, scene, scaled, chosen, margins, options: WhirlOptions 
     kinds = tuple(m.name for m in margins if m.name in known)
     nominal = {"EI1": scene.EI1, "EI2": scene.EI2, "torsional_stiffness": scene.GJ,
                "mass_per_length": scene.mass_per_length, "length": scene.length,
-               "current": float(mission.worst_current.to_value("A")),
-               "axial_field": float(mission.worst_field.to_value("T")), "spin_rate": scene.spin_rate,
+               "current": scene.current, "axial_field": scene.field.axial, "spin_rate": scene.spin_rate,
                "end_tension": scene.tension, "damping_time": scene.damping_time}
     gj_ratio = scene.GJ / (scene.EI1 + scene.EI2) if mission.poisson_ratio is not None else None
     at_nominal = {m.name: (math.inf if m.value is None else m.value) for m in margins}
-    return MarginModel(nominal, scene.P, scene.length, scene.f, gj_ratio, kinds, route, mission.required_margin,
+    return MarginModel(nominal, scene.P, scene.length, scene.f, gj_ratio, kinds, route, mission.check.required_margin,
                        options, at_nominal, p.gamma > 0, p.gamma, p.ends)

@@ -17,7 +17,7 @@ from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.input.mission import Mission
 from etcheck.rod.core.ends import describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.scaling import RPM, Scaled, Scene
+from etcheck.scaling import Scaled, Scene
 
 
 class Verdict(StrEnum):
@@ -108,7 +108,7 @@ def overall_verdict(margins: list[Margin], within_validity: bool = True) -> str:
 
 def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: StraightRodSection,
                      linear: LinearSection | None, damping: str = "") -> list[Margin]:
-    required = mission.required_margin
+    required = mission.check.required_margin
     first = static["critical_loads"][0]
     if linear is not None:
         return linear_margins(sc, scaled, required, linear, damping)
@@ -176,8 +176,8 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
                 "rpm",
                 spin,
                 spin["rpm"],
-                sc.spin_rate * RPM,
-                scaled.scales.frequency * RPM,
+                sc.spin_rpm,
+                scaled.scales.spin_rpm,
                 required,
                 "the straight tether first loses stability as the spin rate grows at the operating load",
                 "the straight tether is already unstable without spin at the operating load (statically buckled)"

@@ -1,45 +1,62 @@
-"""The check's orbit stage: the axial field of a mission with an ``[orbit]`` table.
+"""The check's orbit stage: the operating point of a mission, with the field over its ``[orbit]``.
 
 A mission read from a file holds its orbit as a specification only
-(:class:`etcheck.orbit.spec.OrbitSpec`); this stage evaluates the envelope of the
+(:class:`etcheck.orbit.spec.OrbitSpec`); :func:`resolve` evaluates the envelope of the
 axial field over the window once (:func:`etcheck.orbit.envelope.axial_field_envelope`,
-IGRF through ppigrf, SGP4) and returns the mission with its axial field set to the
-worst case (T) and the statement of where it occurs in its notes: the check's magnetic
-load is then the worst |current| times this field. The pipeline is
-input -> orbit -> scaling -> rungs; a mission with ``[operation] axial_field`` passes
-through unchanged. The envelope carries the seconds it took (``AxialFieldEnvelope.seconds``).
+IGRF through ppigrf, SGP4) and returns the :class:`Resolved` operating point: the scene
+with the worst axial field (T) and the largest field across the tether over the orbit,
+and the mission with that field echoed and the statement of where it occurs in its
+notes: the check's magnetic load is then the worst |current| times this field. The
+pipeline is input -> orbit -> scaling -> rungs; a mission with ``[operation] axial_field``
+is resolved by :func:`etcheck.scaling.scene` alone. The envelope carries the seconds it
+took (``AxialFieldEnvelope.seconds``).
 """
 
 from __future__ import annotations
 
 import math
 import time
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import astropy.units as u
 
 from etcheck.input.mission import Mission
+from etcheck.scaling import MagneticField, Scene, scene
 
 if TYPE_CHECKING:
     from etcheck.orbit.envelope import AxialFieldEnvelope
     from etcheck.orbit.spec import OrbitSpec
 
 
-def with_orbit_field(mission: Mission) -> Mission:
-    """``mission`` with the worst axial field over its orbit (a mission without an orbit, or one whose
-    field is already evaluated, is returned as it is)."""
-    if mission.orbit is None or mission.orbit_envelope is not None:
-        return mission
+@dataclass(frozen=True)
+class Resolved:
+    """A mission's operating point, the orbit stage's answer: ``mission`` as read (with an [orbit] table: its
+    axial field echoed as the worst over the orbit, and the statements of the orbit's field first in its notes),
+    ``scene`` its worst case in SI and ``envelope`` the field over the orbit (None without an [orbit] table)."""
+
+    mission: Mission
+    scene: Scene
+    envelope: AxialFieldEnvelope | None = None
+
+
+def resolve(mission: Mission) -> Resolved:
+    """The operating point of ``mission``: its field evaluated over its orbit where it has an [orbit] table."""
+    if mission.orbit is None:
+        return Resolved(mission, scene(mission))
     # imported here on purpose: IGRF and SGP4 load only for a mission with an [orbit] table
+    import numpy as np
+
     from etcheck.orbit.envelope import axial_field_envelope
 
     started = time.perf_counter()
     env = axial_field_envelope(mission.orbit, source=mission.file)
     env = replace(env, seconds=time.perf_counter() - started)
     worst = env.worst * u.T
-    return replace(mission, axial_field=(worst, worst), orbit_envelope=env,
-                   notes=(*orbit_notes(mission.orbit, env), *mission.notes))
+    s = env.series  # across a tether on the local vertical: sqrt(|B|^2 - (B.up)^2), its largest over the window
+    across = float(np.max(np.sqrt(np.maximum(s.b_magnitude**2 - s.axial_nominal**2, 0.0))))
+    resolved = replace(mission, axial_field=(worst, worst), notes=(*orbit_notes(mission.orbit, env), *mission.notes))
+    return Resolved(resolved, scene(resolved, MagneticField(float(env.worst), across)), env)
 
 
 def statement(env: AxialFieldEnvelope) -> str:
@@ -78,4 +95,4 @@ def past_leap_seconds(spec: OrbitSpec) -> bool:
     return frames.past_leap_second_table(end)
 
 
-__all__ = ["orbit_notes", "past_leap_seconds", "statement", "with_orbit_field"]
+__all__ = ["Resolved", "orbit_notes", "past_leap_seconds", "resolve", "statement"]

@@ -24,9 +24,8 @@ import math
 import numpy as np
 
 from etcheck.checks.margins import Margin
-from etcheck.checks.orbit_field import statement
+from etcheck.checks.orbit_field import Resolved, statement
 from etcheck.checks.sections import OrbitSection, OrbitSeries
-from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none
 
 #: Most samples of the whole-window series written to results.json.
@@ -57,19 +56,20 @@ def _series(s, idx: np.ndarray, current: float, critical: float | None) -> Orbit
     }
 
 
-def orbit_results(mission: Mission, margins: list[Margin]) -> OrbitSection | None:
-    """The field and the load margin along the mission's orbit (None without an [orbit] table)."""
-    env = mission.orbit_envelope
+def orbit_results(resolved: Resolved, margins: list[Margin]) -> OrbitSection | None:
+    """The field and the load margin along the mission's orbit (None without an [orbit] table) at the scene's
+    worst current."""
+    env = resolved.envelope
     if env is None:
         return None
     from etcheck.orbit.envelope import orbital_period
 
     s = env.series
     n = len(s)
-    current = float(mission.worst_current.to_value("A"))
+    current = resolved.scene.current
     m = load_margin(margins)
     critical = m.critical if m is not None else None
-    period = orbital_period(mission.orbit)
+    period = orbital_period(resolved.mission.orbit)
     first = np.flatnonzero(s.time <= period * (1 + 1e-9))
     stride = max(1, math.ceil(n / (MAX_SERIES - 1)))
     k = int(np.argmax(s.axial_worst))

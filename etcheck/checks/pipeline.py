@@ -32,7 +32,7 @@ from etcheck.checks.margins import (
     overall_verdict,
     straight_margins,
 )
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.orbit_load import orbit_results
 from etcheck.checks.plan import (
     DRAFT_BOUND,
@@ -68,7 +68,7 @@ from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.parallel import ahead
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.scaling import Scaled, Scene, scale, scene
+from etcheck.scaling import Scaled, Scene, scale
 
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1, OUTSIDE: 1}
 N_LOADS = 5
@@ -104,17 +104,17 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     elif isinstance(mission, dict):
         mission = mission_from_dict(mission)
     started = time.perf_counter()
-    mission = with_orbit_field(mission)
-    sc = scene(mission)
+    resolved = resolve(mission)
+    mission, sc = resolved.mission, resolved.scene
     scaled = scale(sc)
-    along = modelled_along(sc, mission.fidelity)
-    chosen = plan(scaled.params, mission.fidelity, along)
+    along = modelled_along(sc, mission.check.draft)
+    chosen = plan(scaled.params, mission.check.model, along)
     if along != varies_along(sc):
         chosen = replace(chosen, reason=f"{chosen.reason}; {DRAFT_BOUND}")
-    fid = fidelity_of(mission.fidelity, mission.tolerance)
+    fid = fidelity_of(mission.check.draft, mission.check.tolerance)
     rung0 = static_buckling(scaled)
-    static: StraightRodSection = {**rung0, "limits": static_limits(rung0, mission, sc)}
-    options = replace(options, N=mission.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
+    static: StraightRodSection = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
+    options = replace(options, N=mission.check.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=(), time_budget=None)
     # the report's extras not computed by then are skipped (the margins never are)
@@ -132,7 +132,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     margins = with_alternatives(margins, alts)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
     if post and post.get("computed"):
-        margins += buckled_margins(post, sc, scaled, mission.required_margin)
+        margins += buckled_margins(post, sc, scaled, mission.check.required_margin)
     margins_s = time.perf_counter() - started
     study = None
     if mission.uncertainty is not None and profiles is not None:
@@ -150,7 +150,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     margin_records = [m.as_dict() for m in margins]
     results: CheckResults = {
         **results_header(mission),
-        "scene": scene_section(mission, sc),
+        "scene": scene_section(sc),
         "scaled": cast(ScaledSection, asdict(scaled.params)),
         "scales": {
             "length_m": scaled.scales.length,
@@ -174,7 +174,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         "design_limits": limits,
         "flight": flight(mission, verdict, margins, scope),
         "validity": validity(mission, scaled, chosen, post),
-        "orbit": orbit_results(mission, margins),  # None without an [orbit] table
+        "orbit": orbit_results(resolved, margins),  # None without an [orbit] table
         "elapsed_s": time.perf_counter() - started,
         "resources": {"memory_budget_bytes": memory.budget(), "time_budget_s": options.time_budget,
                       "skipped": skipped, "margins_s": margins_s},
@@ -200,8 +200,7 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         from etcheck.checks.profiles import profile_stability, stability_map
 
         tol = max(options.tol, options.eig_tol)
-        linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None,
-                                                   float(mission.worst_current.to_value("A")), tol=tol,
+        linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None, tol=tol,
                                                    draft=options.draft, beside=other_ends)
         if not options.draft:  # the report's extra, within the sign-off's time budget
             linear["stability_map"] = Extras(skipped, deadline, options.time_budget)(
@@ -256,7 +255,7 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
     if profiles is not None:
         crit = linear["critical_load"] if linear else None
         B_c = crit["value"] if crit else None
-        if B_c is None or not needs_postbuckling(p.B, B_c, mission.required_margin):
+        if B_c is None or not needs_postbuckling(p.B, B_c, mission.check.required_margin):
             return None
         return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c if B_c else None,
                 "reason": profiles["post_buckling"]}
@@ -266,7 +265,7 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
         B_c = crit["value"] if kind.located else (0.0 if kind == CriticalKind.UNSTABLE_AT_START else None)
     else:
         B_c = static["critical_loads"][0]["B"] if p.omega == 0 and p.T == 0 else None
-    if B_c is None or not needs_postbuckling(p.B, B_c, mission.required_margin):
+    if B_c is None or not needs_postbuckling(p.B, B_c, mission.check.required_margin):
         return None
     if B_c == 0.0:
         return {"computed": False, "B_c": 0.0, "load_ratio": None,
@@ -286,17 +285,17 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
     from etcheck.checks.buckled import postbuckling_check
 
     try:
-        return postbuckling_check(p, scaled.scales, B_c, mission.required_margin)
+        return postbuckling_check(p, scaled.scales, B_c, mission.check.required_margin)
     except OverBudget as exc:  # rungs 2-3 need more memory than the budget: not answered, with the reason
         return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c, "reason": str(exc)}
 
 
-def scene_section(mission: Mission, sc: Scene) -> SceneSection:
+def scene_section(sc: Scene) -> SceneSection:
     """The ``scene`` section of a check's results: the worst-case operating point in SI (the tension the minimum
     of a gravity-gradient profile, which is given beside it)."""
     return {
-        "worst_current_A": float(mission.worst_current.to_value("A")),
-        "worst_field_T": float(mission.worst_field.to_value("T")),
+        "worst_current_A": sc.current,
+        "worst_field_T": sc.field.axial,
         "length_m": sc.length,
         "EI1_N_m2": sc.EI1,
         "EI2_N_m2": sc.EI2,
@@ -307,7 +306,7 @@ def scene_section(mission: Mission, sc: Scene) -> SceneSection:
         "spin_rate_rad_s": sc.spin_rate,
         "tension_N": sc.tension,
         # tether.end_masses: the gravity-gradient profile (N), which rung 1v uses; tension_N is its minimum (a bound)
-        "tension_profile": None if mission.gravity_gradient is None else mission.gravity_gradient.as_dict(),
+        "tension_profile": None if sc.gravity_gradient is None else sc.gravity_gradient.as_dict(),
         "damping_time_s": sc.damping_time,
         "f": sc.f,
     }

@@ -71,8 +71,8 @@ def straight_route(params: RodParameters) -> str:
     return SPECTRAL
 
 
-def _plan_profiles(fidelity: str, profiles: str) -> Plan:
-    if fidelity == "analytic":
+def _plan_profiles(model: str, profiles: str) -> Plan:
+    if model == "analytic":
         return Plan(0, f"the mission has {profiles} along the tether, which rung 0 (one current, no tension) does "
                     "not model; fidelity = analytic was requested, so the check is incomplete", complete=False)
     return Plan(1, f"the mission has {profiles} along the tether: the straight tether's linear stability with "
@@ -94,17 +94,18 @@ DRAFT_BOUND = ("a draft takes the gravity-gradient tension at its smallest value
                "the profile (rung 1v)")
 
 
-def modelled_along(sc, fidelity: str) -> str:
-    """What varies along the tether that a check of ``fidelity`` models (:func:`varies_along`): a draft takes a
-    tension profile under one current at its smallest value (:data:`DRAFT_BOUND`), a current along the tether
-    never (one current is no bound for a circulatory load)."""
-    if fidelity == "draft" and sc.current_profile is None:
+def modelled_along(sc, draft: bool) -> str:
+    """What varies along the tether that a check models (:func:`varies_along`): a ``draft`` takes a tension
+    profile under one current at its smallest value (:data:`DRAFT_BOUND`), a current along the tether never (one
+    current is no bound for a circulatory load)."""
+    if draft and sc.current_profile is None:
         return ""
     return varies_along(sc)
 
 
-def plan(params: RodParameters, fidelity: str = "auto", profiles: str = "") -> Plan:
-    """Pick the cheapest rung that answers the straight-tether question exactly.
+def plan(params: RodParameters, model: str = "auto", profiles: str = "") -> Plan:
+    """Pick the cheapest rung that answers the straight-tether question exactly (``model``: which model the
+    mission asks for, :data:`etcheck.input.mission.MODELS`).
 
     Rung 0 is exact for the static problem (omega = 0, T = 0; damping does not
     move static loads). Spin or end tension needs rung 1. A current or a tension
@@ -112,9 +113,9 @@ def plan(params: RodParameters, fidelity: str = "auto", profiles: str = "") -> P
     rung 1v (docs/model.md section 10).
     """
     if profiles:
-        return _plan_profiles(fidelity, profiles)
+        return _plan_profiles(model, profiles)
     static = params.omega == 0 and params.T == 0
-    if static and fidelity in ("auto", "draft", "analytic"):
+    if static and model in ("auto", "analytic"):
         if is_welded(params.ends):
             return Plan(0, "no spin and no end tension: the static buckling loads of chi(beta) are exact")
         return Plan(0, f"no spin and no end tension: the static buckling loads of the tether {describe(params.ends)} "
@@ -127,7 +128,7 @@ def plan(params: RodParameters, fidelity: str = "auto", profiles: str = "") -> P
     if params.T != 0:
         why.append("end tension")
     moving = " and ".join(why)
-    if fidelity == "analytic":
+    if model == "analytic":
         return Plan(
             0,
             f"the mission has {moving}, which rung 0 (static, tension-free) does not model; "

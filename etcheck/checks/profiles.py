@@ -45,7 +45,7 @@ from etcheck.rod.straight.circulatory import (
 )
 from etcheck.rod.straight.profiles import Tether
 from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.scaling import RPM, Scaled
+from etcheck.scaling import Scaled, Scales
 
 #: Dimensionless damping of the map, as fractions of the largest the mission allows (0 is computed apart).
 DAMPING_FRACTIONS = (1e-3, 1e-2, 1e-1, 0.3, 1.0)
@@ -68,21 +68,21 @@ def _record(c: Crossing, tol: float) -> CriticalPoint:
             "N": c.N, "within_tolerance": within}
 
 
-def _load_point(c: Crossing, tol: float, load: float) -> dict:
+def _load_point(c: Crossing, tol: float, scales: Scales) -> dict:
     out = dict(_record(c, tol))
-    out["IB0_N_per_m"] = None if out["value"] is None else out["value"] * load
+    out["IB0_N_per_m"] = None if out["value"] is None else scales.line_load(out["value"])
     return out
 
 
-def _mode(c: Crossing, wc: float) -> ProfileMode | None:
+def _mode(c: Crossing, scales: Scales) -> ProfileMode | None:
     if c.mode is None:
         return None
     s, u, v = c.mode
     return {"s": s.tolist(), "u_re": u.real.tolist(), "u_im": u.imag.tolist(), "v_re": v.real.tolist(),
-            "v_im": v.imag.tolist(), "kind": str(c.kind), "frequency_Hz": abs(c.eigenvalue.imag) * wc / (2 * math.pi)}
+            "v_im": v.imag.tolist(), "kind": str(c.kind), "frequency_Hz": scales.hz(abs(c.eigenvalue.imag))}
 
 
-def _damping_map(gammas: tuple[float, ...], survey: list[Crossing], wc: float, load: float, undamped: Crossing,
+def _damping_map(gammas: tuple[float, ...], survey: list[Crossing], scales: Scales, undamped: Crossing,
                  least: Callable[[], Crossing | None]) -> tuple[list[DampingPoint], Crossing]:
     """The map's points from the critical load at each damping ``gammas`` (``survey``: one mesh), and the least
     favourable crossing: the undamped one where no point of the map lies below it, else the lowest point located
@@ -91,8 +91,8 @@ def _damping_map(gammas: tuple[float, ...], survey: list[Crossing], wc: float, l
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
     for g, c in zip(gammas, survey):
         value = c.value if CriticalKind(c.kind).located else None
-        points.append({"gamma": g, "damping_time_s": g / wc, "B": value,
-                       "IB0_N_per_m": None if value is None else value * load, "kind": str(c.kind),
+        points.append({"gamma": g, "damping_time_s": scales.damping_time(g), "B": value,
+                       "IB0_N_per_m": None if value is None else scales.line_load(value), "kind": str(c.kind),
                        "destabilised": bool(value is not None and value < ref * (1 - 1e-6))})
     lowest = _lowest(gammas, survey)
     if lowest is None or (CriticalKind(undamped.kind).located and undamped.value <= lowest[1].value):
@@ -100,7 +100,7 @@ def _damping_map(gammas: tuple[float, ...], survey: list[Crossing], wc: float, l
     worst = least()
     for q in points:  # the map shows the verdict's value where it was located again
         if q["gamma"] == lowest[0] and CriticalKind(worst.kind).located:
-            q["B"], q["IB0_N_per_m"] = worst.value, worst.value * load
+            q["B"], q["IB0_N_per_m"] = worst.value, scales.line_load(worst.value)
     return points, worst
 
 
@@ -167,23 +167,22 @@ def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
         return None
     uniform = Tether(scaled.params.with_(gamma=gamma), t.current)
     c = critical(uniform, tol=BOUND_TOLERANCE, mode=False, check=False)  # a bound: one mesh, no error estimate
-    return _load_point(c, BOUND_TOLERANCE, scaled.scales.load)
+    return _load_point(c, BOUND_TOLERANCE, scaled.scales)
 
 
-def _samples(scaled: Scaled, current_A: float) -> tuple[dict | None, dict | None]:
-    t = scaled.tether
+def _samples(scaled: Scaled) -> tuple[dict | None, dict | None]:
+    t, sc = scaled.tether, scaled.scales
     s = np.linspace(0.0, 1.0, 101)
-    L = scaled.scales.length
     current = None if t.current.uniform_value is not None else {
-        "s": s.tolist(), "height_m": (s * L).tolist(), "fraction": t.current(s).tolist(),
-        "current_A": (current_A * t.current(s)).tolist()}
+        "s": s.tolist(), "height_m": sc.distance(s).tolist(), "fraction": t.current(s).tolist(),
+        "current_A": (sc.worst_current * t.current(s)).tolist()}
     tension = None if t.tension.uniform_value is not None else {
-        "s": s.tolist(), "height_m": (s * L).tolist(),
-        "tension_N": (t.params.T * scaled.scales.force * t.tension(s)).tolist()}
+        "s": s.tolist(), "height_m": sc.distance(s).tolist(),
+        "tension_N": (sc.tension(t.params.T) * t.tension(s)).tolist()}
     return current, tension
 
 
-def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, draft: bool = False):
+def _damping_policy(t: Tether, fixed: bool, tol: float, scales: Scales, draft: bool = False):
     """(undamped crossing or None, damping map, the crossing the verdict uses or None, why) of a circulatory load
     (a conservative one: the mission's damping, the crossing computed with the other parts of the check).
     ``draft``: the undamped threshold on one mesh unless the verdict uses it (then on two, as every crossing a
@@ -204,7 +203,7 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, wc: float, load: float, 
         return undamped, [], None if p.gamma > 0 else undamped, (
             f"the mission fixes the damping (tether.damping_time: gamma = {p.gamma:.4g}); the undamped threshold is "
             "reported beside it")
-    points, worst = _damping_map(gammas, survey, wc, load, undamped, least)
+    points, worst = _damping_map(gammas, survey, scales, undamped, least)
     if worst is undamped and draft:  # the verdict's: on two meshes (the first one's search reused)
         worst = undamped = critical(t.with_(gamma=0.0), tol=tol, mode=False)
     where = "undamped" if worst is undamped else f"at gamma = {worst_gamma(points, worst):.4g}"
@@ -219,20 +218,18 @@ def worst_gamma(points: list[DampingPoint], worst: Crossing) -> float:
     return min(points, key=lambda q: abs((q["B"] if q["B"] is not None else math.inf) - worst.value))["gamma"]
 
 
-def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol: float = 1e-8,
+def profile_stability(scaled: Scaled, damping_fixed: bool, tol: float = 1e-8,
                       draft: bool = False, beside: Callable[[float], Any] | None = None
                       ) -> tuple[LinearSection, ProfilesSection, Any]:
     """Rung 1v's answers for the scene (``scaled.tether`` set): the linear section the margins read (critical
     load at the operating spin, critical spin at the operating load), the profiles section the report shows,
     and ``beside(gamma)`` (None without it): work at the damping the verdict uses (the margins under another
     attachment of the ends), done together with this function's own once that damping is known, on both cores
-    where there are two. ``damping_fixed``: whether the mission gives its damping time; ``current_A`` the largest
-    current."""
+    where there are two. ``damping_fixed``: whether the mission gives its damping time."""
     t = scaled.tether
     sc = scaled.scales
-    wc, load = sc.frequency, sc.load
     p = t.params
-    undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, wc, load, draft)
+    undamped, points, verdict, why = _damping_policy(t, damping_fixed, tol, sc, draft)
     gamma = verdict_gamma(p.gamma, points, verdict, undamped)
     tg = t.with_(gamma=gamma)
     # independent of each other once the damping is known: heaviest first, shared between the cores
@@ -244,17 +241,17 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
     done = dict(zip(names, split_map(lambda k: jobs[k](), names)))
     verdict = crossing_mode(tg, verdict if verdict is not None else done["verdict"])  # the verdict's mode only
     linear = _linear(scaled, tg, verdict, done.get("spin"), tol)
-    current, tension = _samples(scaled, current_A)
+    current, tension = _samples(scaled)
     section: ProfilesSection = {
         "model": MODEL,
         "circulatory": t.circulatory,
         "current": current,
         "tension": tension,
-        "damping": {"fixed": damping_fixed or p.gamma == 0, "gamma": gamma, "damping_time_s": gamma / wc,
+        "damping": {"fixed": damping_fixed or p.gamma == 0, "gamma": gamma, "damping_time_s": sc.damping_time(gamma),
                     "why": why, "map": points},
-        "undamped": None if undamped is None else _load_point(undamped, tol, load),
+        "undamped": None if undamped is None else _load_point(undamped, tol, sc),
         "uniform_tension_bound": done.get("bound"),
-        "mode": _mode(verdict, wc),
+        "mode": _mode(verdict, sc),
         "post_buckling": _after(verdict),
     }
     return linear, section, done.get("beside")
@@ -263,20 +260,20 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, current_A: float, tol
 def _linear(scaled: Scaled, t: Tether, verdict: Crossing, spin: Crossing | None, tol: float) -> LinearSection:
     """The linear section the margins read: the crossing along the load (``verdict``) and, with spin, the critical
     spin of ``t`` at its load (``spin``)."""
-    p, wc, load = t.params, scaled.scales.frequency, scaled.scales.load
-    load_point = _load_point(verdict, tol, load)
+    p, sc = t.params, scaled.scales
+    load_point = _load_point(verdict, tol, sc)
     stable = bool(verdict.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) or
                   (load_point["value"] is not None and p.B < load_point["value"]))
     spin_point = dict(_record(spin, tol)) if spin else {
         "value": None, "kind": str(CriticalKind.NOT_LOCATED), "bracket": [0.0, 0.0], "error": None,
         "message": "no spin: the critical spin is not asked", "N": 0, "within_tolerance": True}
-    spin_point["rad_s"] = None if spin_point["value"] is None else spin_point["value"] * wc
-    spin_point["rpm"] = None if spin_point["value"] is None else spin_point["value"] * wc * RPM
+    spin_point["rad_s"] = None if spin_point["value"] is None else sc.rad_s(spin_point["value"])
+    spin_point["rpm"] = None if spin_point["value"] is None else sc.rpm(spin_point["value"])
     return {
         "model": MODEL, "route": "profiles", "threshold": THRESHOLD, "operating_stable": stable,
         "operating_spectrum": None, "critical_load": load_point, "critical_spin": spin_point, "spin_windows": [],
         "spin_windows_scanned_to_rpm": None,
-        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * load, "spin_rpm": p.omega * wc * RPM},
+        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": sc.line_load(p.B), "spin_rpm": sc.rpm(p.omega)},
         "campbell": None, "stability_map": None,
     }
 
@@ -290,7 +287,6 @@ def stability_map(scaled: Scaled, linear: LinearSection, gamma: float, tol: floa
     (the map would be wrong there): the report then draws none."""
     t = scaled.tether.with_(gamma=gamma)
     p, sc = t.params, scaled.scales
-    wc = sc.frequency
     load = linear["critical_load"]
     B_hi, w_hi = picture_ranges(p, linear)
     omegas = np.linspace(0.0, w_hi, MAP_ROWS)
@@ -309,11 +305,11 @@ def stability_map(scaled: Scaled, linear: LinearSection, gamma: float, tol: floa
         if kind == CriticalKind.UNSTABLE_AT_START or value == 0:
             intervals = []
         else:
-            intervals = [[0.0, float(min(value if value is not None else B_hi, B_hi)) * sc.load]]
-        stable.append({"omega": float(w), "spin_rpm": float(w * wc * RPM), "IB0_N_per_m": intervals})
+            intervals = [[0.0, sc.line_load(float(min(value if value is not None else B_hi, B_hi)))]]
+        stable.append({"omega": float(w), "spin_rpm": float(sc.rpm(w)), "IB0_N_per_m": intervals})
     B = np.linspace(0.0, B_hi, 2)
-    return {"B": B.tolist(), "omega": omegas.tolist(), "IB0_N_per_m": (B * sc.load).tolist(),
-            "spin_rpm": (omegas * wc * RPM).tolist(), "max_growth": None, "stable_rows": stable,
+    return {"B": B.tolist(), "omega": omegas.tolist(), "IB0_N_per_m": sc.line_load(B).tolist(),
+            "spin_rpm": sc.rpm(omegas).tolist(), "max_growth": None, "stable_rows": stable,
             "static_points": {"IB0_N_per_m": [], "spin_rpm": []}}
 
 

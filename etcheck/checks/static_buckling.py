@@ -20,10 +20,9 @@ from etcheck.checks.sections import (
     StaticCriticalLoad,
     StaticLimits,
 )
-from etcheck.input.mission import Mission
 from etcheck.rod.core.ends import describe
 from etcheck.rod.straight import analytic
-from etcheck.scaling import Scaled, Scene
+from etcheck.scaling import Scaled, Scales, Scene
 
 #: critical loads listed (and chi zeros located)
 N_LOADS = 5
@@ -47,7 +46,7 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
                 "k": r.k,
                 "beta": r.beta,
                 "B": B,
-                "IB0_N_per_m": B * scales.load,
+                "IB0_N_per_m": scales.line_load(B),
                 "multiplicity": r.kernel_dimension,
                 "chi_residual": r.residual,
                 "chi_curvature": r.curvature,
@@ -84,30 +83,30 @@ def _natural_frequencies(p, scales) -> NaturalFrequencies:
              "Sec. VI B with T); torsion does not feel the tension")
     if p.T < 0:
         model += "; the end force is compressive: these are the frequencies without it (under it they are lower)"
-    wc, ends = scales.frequency, p.ends
-    return {"model": model, "tension_N": T * scales.force,
-            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak", ends, T), wc),
-            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff", ends, T), wc),
-            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5, ends), wc)}
+    ends = p.ends
+    return {"model": model, "tension_N": scales.tension(T),
+            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak", ends, T), scales),
+            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff", ends, T), scales),
+            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5, ends), scales)}
 
 
-def _frequencies(mus, wc: float) -> list[NaturalFrequency]:
-    """The finite dimensionless frequencies mu (units of the reference frequency ``wc``, rad/s) in rad/s and Hz."""
-    return [{"mu": float(m), "rad_s": float(m * wc), "Hz": float(m * wc / (2 * math.pi))} for m in mus
+def _frequencies(mus, scales: Scales) -> list[NaturalFrequency]:
+    """The finite dimensionless frequencies mu (units of the reference frequency omega_c) in rad/s and Hz."""
+    return [{"mu": float(m), "rad_s": float(scales.rad_s(m)), "Hz": float(scales.hz(m))} for m in mus
             if math.isfinite(m)]
 
 
-def static_limits(static: StaticBuckling, mission: Mission, sc: Scene) -> StaticLimits:
+def static_limits(static: StaticBuckling, sc: Scene, scales: Scales) -> StaticLimits:
     """Critical current at the worst field and critical length at the operating load.
 
     Static buckling (omega = T = 0): B ∝ L^3 and the static loads do not
     depend on P, so L_c = L (B_1 / B)^(1/3). SI; None where the operating
     value is zero (no limit).
     """
-    critical = static["critical_loads"][0]["IB0_N_per_m"]
-    field = mission.worst_field.to_value("T")
+    first = static["critical_loads"][0]
+    critical = first["IB0_N_per_m"]
     return {
         "critical_IB0_N_per_m": critical,
-        "critical_current_A": critical / field if field else None,
+        "critical_current_A": scales.current(first["B"]) if sc.field.axial else None,
         "critical_length_m": sc.length * (critical / sc.load) ** (1 / 3) if sc.load else None,
     }

@@ -35,7 +35,7 @@ from etcheck.rod.straight.spectral import THRESHOLD, CriticalKind, campbell, cri
 from etcheck.rod.straight.spectral import CriticalPoint as StabilityPoint
 from etcheck.rod.straight.static_map import stable_rows, static_curves
 from etcheck.rod.straight.undamped import undamped_critical
-from etcheck.scaling import RPM, Scaled
+from etcheck.scaling import Scaled, Scales
 
 
 @dataclass(frozen=True)
@@ -209,7 +209,7 @@ def _exact_undamped(p, options: WhirlOptions, windows: bool, spin: bool, extra: 
     return got if got is not None else undamped_critical(p, tol=options.tol, windows=False, spin=spin)
 
 
-def _operating_spectrum(op, wc: float) -> OperatingSpectrum:
+def _operating_spectrum(op, sc: Scales) -> OperatingSpectrum:
     lam = op.eigenvalues
     return {
         "N": op.N,
@@ -220,8 +220,8 @@ def _operating_spectrum(op, wc: float) -> OperatingSpectrum:
                 "re": float(z.real),
                 "im": float(z.imag),
                 "error": float(e),
-                "frequency_Hz": float(abs(z.imag) * wc / (2 * math.pi)),
-                "growth_rate_per_s": float(z.real * wc),
+                "frequency_Hz": float(sc.hz(abs(z.imag))),
+                "growth_rate_per_s": float(sc.rad_s(z.real)),
                 "damping_ratio": float(-z.real / abs(z)) if abs(z) > 0 else None,
             }
             for z, e in zip(lam, op.errors)
@@ -340,7 +340,6 @@ def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: i
     """The rung-1 section without its pictures: critical load and spin, spin windows, the operating point."""
     exact = route == EXACT
     p, sc = scaled.params, scaled.scales
-    wc = sc.frequency
     damped = p.gamma > 0
     windows: list = []
     scanned_to = None
@@ -358,19 +357,19 @@ def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: i
         "route": route,
         "threshold": THRESHOLD,
         "operating_stable": bool(stable),
-        "operating_spectrum": _operating_spectrum(op, wc) if op else None,
+        "operating_spectrum": _operating_spectrum(op, sc) if op else None,
         "critical_load": load
-        | {"IB0_N_per_m": None if load["value"] is None else load["value"] * sc.load},
+        | {"IB0_N_per_m": None if load["value"] is None else sc.line_load(load["value"])},
         "critical_spin": spin
         | {
-            "rad_s": None if spin["value"] is None else spin["value"] * wc,
-            "rpm": None if spin["value"] is None else spin["value"] * wc * RPM,
+            "rad_s": None if spin["value"] is None else sc.rad_s(spin["value"]),
+            "rpm": None if spin["value"] is None else sc.rpm(spin["value"]),
         },
         "spin_windows": [
-            {"omega": [a, b], "rpm": [a * wc * RPM, b * wc * RPM]} for a, b in windows
+            {"omega": [a, b], "rpm": [sc.rpm(a), sc.rpm(b)]} for a, b in windows
         ],
-        "spin_windows_scanned_to_rpm": None if scanned_to is None else scanned_to * wc * RPM,
-        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": p.B * sc.load, "spin_rpm": p.omega * wc * RPM},
+        "spin_windows_scanned_to_rpm": None if scanned_to is None else sc.rpm(scanned_to),
+        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": sc.line_load(p.B), "spin_rpm": sc.rpm(p.omega)},
         "campbell": None,
         "stability_map": None,
     }
@@ -391,19 +390,18 @@ def _pictures(scaled: Scaled, options: WhirlOptions, route: str, op, N: int, out
               extra: Extras) -> dict:
     """The Campbell diagram and the stability map (each through ``extra``: skipped past the deadline)."""
     p, sc = scaled.params, scaled.scales
-    wc = sc.frequency
     B_hi, w_hi = picture_ranges(p, out)
     w_rows = np.linspace(0.0, w_hi, options.row_points)
     campbell_data = None
     if route != EXACT:
         omegas = np.linspace(0.0, w_hi, options.campbell_points)
-        campbell_data = extra("Campbell diagram", lambda: _campbell(p, omegas, options, N, op, wc))
+        campbell_data = extra("Campbell diagram", lambda: _campbell(p, omegas, options, N, op, sc))
     grid = extra("stability map", lambda: _map(p, options, route, N, B_hi, w_hi, w_rows))
     if grid is None:
         return {"campbell": campbell_data}
     B_grid, w_grid, growth, cuts, curve_B, curve_w = grid
     rows = None if cuts is None else [
-        {"omega": float(w), "spin_rpm": float(w * wc * RPM), "IB0_N_per_m": [[a * sc.load, b * sc.load] for a, b in iv]}
+        {"omega": float(w), "spin_rpm": float(sc.rpm(w)), "IB0_N_per_m": [[sc.line_load(a), sc.line_load(b)] for a, b in iv]}
         for w, iv in zip(w_rows, cuts)
     ]
     return {
@@ -411,29 +409,29 @@ def _pictures(scaled: Scaled, options: WhirlOptions, route: str, op, N: int, out
         "stability_map": {
             "B": B_grid.tolist(),
             "omega": w_grid.tolist(),
-            "IB0_N_per_m": (B_grid * sc.load).tolist(),
-            "spin_rpm": (w_grid * wc * RPM).tolist(),
+            "IB0_N_per_m": sc.line_load(B_grid).tolist(),
+            "spin_rpm": sc.rpm(w_grid).tolist(),
             "max_growth": growth,  # undamped only: dimensionless, shape (omega, B)
             "stable_rows": rows,
             "static_points": {
-                "IB0_N_per_m": (curve_B * sc.load).tolist(),
-                "spin_rpm": (curve_w * wc * RPM).tolist(),
+                "IB0_N_per_m": sc.line_load(curve_B).tolist(),
+                "spin_rpm": sc.rpm(curve_w).tolist(),
             },
         },
     }
 
 
-def _campbell(p, omegas: np.ndarray, options: WhirlOptions, N: int, op, wc: float) -> dict:
+def _campbell(p, omegas: np.ndarray, options: WhirlOptions, N: int, op, sc: Scales) -> dict:
     """The Campbell diagram at one resolution, checked at the operating spectrum's finer one on a few spins."""
     cd = campbell(p, omegas, k=options.k, N=N, N_check=op.N if op.N > N else None)
     return {
         "omega": omegas.tolist(),
-        "spin_rpm": (omegas * wc * RPM).tolist(),
-        "frequency_Hz": finite_or_none(np.abs(cd.frequencies) * wc / (2 * math.pi)),
-        "growth_rate_per_s": finite_or_none(cd.growth_rates * wc),
+        "spin_rpm": sc.rpm(omegas).tolist(),
+        "frequency_Hz": finite_or_none(sc.hz(np.abs(cd.frequencies))),
+        "growth_rate_per_s": finite_or_none(sc.rad_s(cd.growth_rates)),
         "N": cd.N,
         "N_check": cd.N_check,
-        "checked_spin_rpm": (omegas[cd.checked] * wc * RPM).tolist(),
+        "checked_spin_rpm": sc.rpm(omegas[cd.checked]).tolist(),
         "error": finite_or_none(cd.error),
     }
 

@@ -120,21 +120,21 @@ def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> Ma
     draft check, none of its other answers), at the study's margin tolerance: for scripts and tests that ask
     for probabilities on their own (:func:`etcheck.checks.probability.failure_probability`)."""
     from etcheck.checks.margins import straight_margins
-    from etcheck.checks.orbit_field import with_orbit_field
+    from etcheck.checks.orbit_field import resolve
     from etcheck.checks.plan import plan, varies_along
     from etcheck.checks.static_buckling import static_buckling, static_limits
     from etcheck.checks.straight import linear_stability
-    from etcheck.scaling import scale, scene
+    from etcheck.scaling import scale
 
-    mission = with_orbit_field(mission)
-    sc = scene(mission)
+    resolved = resolve(mission)
+    mission, sc = resolved.mission, resolved.scene
     scaled = scale(sc)
     if varies_along(sc):
         raise ValueError(f"no margin model with {varies_along(sc)} along the tether: its margins take rung 1v "
                          "(seconds each), and the check computes no uncertainty study for it")
-    chosen = plan(scaled.params, mission.fidelity)
+    chosen = plan(scaled.params, mission.check.model)
     rung0 = static_buckling(scaled)
-    static = {**rung0, "limits": static_limits(rung0, mission, sc)}
+    static = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
     linear = linear_stability(scaled, replace(options, draft=True), chosen.route) \
         if chosen.rung == 1 and chosen.complete else None
     margins = [m for m in straight_margins(mission, sc, scaled, chosen, static, linear) if m.verdict != INCOMPLETE]

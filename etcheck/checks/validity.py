@@ -90,33 +90,27 @@ def tension_for_bow(load: float, length: float, stiffness: float, bow: float, cl
     return brentq(lambda t: mid_span_bow(load, length, t, stiffness, clamped) - bow, 0.0, hi, rtol=1e-10)
 
 
-def cross_field(mission: Mission) -> tuple[float, str, bool]:
-    """The field across the tether (T) for its bow, where it comes from, and whether it is an assumption.
+def cross_field_source(mission: Mission) -> tuple[str, bool]:
+    """Where the field across the tether (the scene's ``field.cross``, etcheck.scaling) comes from, and whether
+    it is an assumption: the mission's provenance, for the report.
 
     Stated (``operation.cross_field``), else from the orbit (the largest √(|B|² - (B·up)²) over the window:
     the field across a tether on the local vertical), else etcheck's default: the worst field along the
     tether (a field of that size may as well lie across it).
     """
     if mission.cross_field is not None:
-        value = float(mission.worst_cross_field.to_value("T"))
-        return value, "operation.cross_field", mission.is_assumed("operation.cross_field")
-    env = mission.orbit_envelope
-    if env is not None:
-        import numpy as np
-
-        s = env.series
-        across = np.sqrt(np.maximum(s.b_magnitude**2 - s.axial_nominal**2, 0.0))
-        return (float(np.max(across)), "the largest over the orbit (IGRF, tether on the local vertical)",
-                mission.is_assumed("orbit"))
-    worst = float(mission.worst_field.to_value("T"))
-    return (worst, "not given: taken equal to the worst axial field (a field of that size may lie across the "
+        return "operation.cross_field", mission.is_assumed("operation.cross_field")
+    if mission.orbit is not None:
+        return "the largest over the orbit (IGRF, tether on the local vertical)", mission.is_assumed("orbit")
+    return ("not given: taken equal to the worst axial field (a field of that size may lie across the "
             "tether); give [operation] cross_field or an [orbit] table", True)
 
 
 def lateral_load(mission: Mission, sc: Scene) -> LateralLoad:
-    """The Lorentz load across the tether and the bow it implies (SI)."""
-    b_perp, source, assumed = cross_field(mission)
-    current = float(mission.worst_current.to_value("A"))
+    """The Lorentz load across the tether and the bow it implies (SI); the mission for where the field across it
+    comes from (:func:`cross_field_source`)."""
+    source, assumed = cross_field_source(mission)
+    b_perp, current = sc.field.cross, sc.current
     q = current * b_perp
     clamped = all(end.holds_slope for end in Ends.of(sc.ends).conditions)  # a pinned end lets it bow more: both taken pinned then
     bow = mid_span_bow(q, sc.length, sc.tension, sc.EI2, clamped)
@@ -145,7 +139,7 @@ def model_validity(mission: Mission, sc: Scene) -> ModelValidity:
     """Straightness, slenderness and extensibility of the scene against the model's limits (module docstring);
     ``within`` False with the reasons where any is exceeded."""
     lat = lateral_load(mission, sc)
-    checks = [_straightness(lat), _slenderness(sc.P), _extensibility(mission, sc)]
+    checks = [_straightness(lat), _slenderness(sc.P), _extensibility(sc)]
     reasons = [c["summary"] for c in checks if c["within"] is False]
     return {"within": not reasons, "reasons": reasons, "checks": checks, "lateral": lat}
 
@@ -189,17 +183,16 @@ def _slenderness(P: float) -> ValidityCheck:
             "summary": f"the tether is too short (or thick) for rod theory (P = {P:.3g}, the model's limit {P_LIMIT:g})"}
 
 
-def _extensibility(mission: Mission, sc: Scene) -> ValidityCheck:
+def _extensibility(sc: Scene) -> ValidityCheck:
     base = {"name": "inextensible", "quantity": "strain T / (E A)", "limit": STRAIN_LIMIT,
             "summary": f"the tether stretches past the inextensible model's limit (strain above {100 * STRAIN_LIMIT:g} %)"}
-    if mission.youngs_modulus is None or mission.cross_section_area is None:
+    ea = sc.axial_stiffness
+    if ea is None:
         return {**base, "value": None, "within": None,
                 "detail": "not checked: the mission gives no youngs_modulus and cross_section_area"}
-    ea = float((mission.youngs_modulus * mission.cross_section_area).to_value("N"))
-    gg = mission.gravity_gradient
-    tension = gg.maximum if gg is not None else sc.tension
+    tension = sc.largest_tension
     strain = tension / ea
-    where = "the largest tension, at the centre of mass" if gg is not None else "the end tension"
+    where = "the largest tension, at the centre of mass" if sc.gravity_gradient is not None else "the end tension"
     within = strain <= STRAIN_LIMIT
     return {**base, "value": strain, "within": within,
             "detail": f"strain {strain:.2g} under {where} ({tension:.3g} N, E A = {ea:.3g} N; limit {100 * STRAIN_LIMIT:g} %)"}

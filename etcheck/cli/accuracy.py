@@ -45,13 +45,13 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
     def action():
         # imported here so that `etcheck --help` does not load astropy and scipy
-        from etcheck.checks.orbit_field import with_orbit_field
+        from etcheck.checks.orbit_field import resolve
         from etcheck.input.mission import load_mission
-        from etcheck.scaling import scale, scene
+        from etcheck.scaling import scale
         from etcheck.studies.accuracy import rung1_accuracy, rung2_accuracy
 
-        mission = with_orbit_field(load_mission(args.mission))
-        scaled = scale(scene(mission))
+        resolved = resolve(load_mission(args.mission))
+        mission, scaled = resolved.mission, scale(resolved.scene)
         rows, auto = rung1_accuracy(scaled, args.N, args.pairs)
         _print_rung1(mission.name, scaled.params, args.pairs, rows, auto)
         if args.rung2:

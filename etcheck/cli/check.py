@@ -47,7 +47,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
         mission = load_mission(args.mission)
         if args.draft:
-            mission = replace(mission, fidelity="draft")
+            mission = mission.with_fidelity("draft")
         if sys.stderr.isatty():
             print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
         # while a report process loads the report stack, the accuracy table's timed solves run after the rest

@@ -79,14 +79,14 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
     def action(render):
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
         from etcheck.checks.buckled import DiagramOptions
-        from etcheck.checks.orbit_field import with_orbit_field
+        from etcheck.checks.orbit_field import resolve
         from etcheck.input.mission import load_mission
         from etcheck.report import write_reports
-        from etcheck.scaling import scale, scene
+        from etcheck.scaling import scale
         from etcheck.studies.diagram import diagram_study, folder_name
 
-        mission = with_orbit_field(load_mission(args.mission))
-        scales = scale(scene(mission)).scales
+        resolved = resolve(load_mission(args.mission))
+        mission, scales = resolved.mission, scale(resolved.scene).scales
         omega = _spin(args.spin, scales.frequency)
         options = DiagramOptions(branches=args.branches, B_max=args.B_max, N=args.N, stability=not args.no_stability,
                                  paths=paths)

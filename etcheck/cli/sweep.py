@@ -61,7 +61,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         mission = load_mission(args.mission)
         axes = load_axes_or_table(mission, [parse_option(o, getattr(args, o)) for o in OPTIONS if getattr(args, o)])
         folder = Path(args.out) / mission.slug / "sweep"
-        options = SweepOptions(tol=args.tolerance or mission.tolerance, workers=args.workers,
+        options = SweepOptions(tol=args.tolerance or mission.check.tolerance, workers=args.workers,
                                scheduler=args.scheduler, cache=None if args.no_cache else folder / "cache",
                                buckled=args.buckled)
         results = sweep(mission, axes, options, progress=ProgressBar(f"etcheck sweep {mission.name}"))

@@ -14,7 +14,7 @@ import hashlib
 import math
 import re
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -34,7 +34,6 @@ from etcheck.rod.core.ends import KINDS as END_KINDS
 from etcheck.rod.core.parameters import F_CLAMPED
 
 if TYPE_CHECKING:  # etcheck.orbit (IGRF, SGP4) is imported only for missions with an [orbit] table
-    from etcheck.orbit.envelope import AxialFieldEnvelope
     from etcheck.orbit.spec import OrbitSpec
 
 #: Dimensionless damping gamma assumed when a mission gives no damping_time:
@@ -42,6 +41,9 @@ if TYPE_CHECKING:  # etcheck.orbit (IGRF, SGP4) is imported only for missions wi
 DEFAULT_GAMMA = 0.04375
 
 FIDELITIES = ("auto", "draft", "analytic", "linear")
+#: which model answers (``[check] fidelity`` but "draft") and how precisely (sign-off or draft)
+MODELS = ("auto", "analytic", "linear")
+PRECISIONS = ("sign-off", "draft")
 
 
 @dataclass(frozen=True)
@@ -115,6 +117,39 @@ SCHEMA: dict[str, dict[str, Field]] = {
 
 
 @dataclass(frozen=True)
+class CheckSettings:
+    """The ``[check]`` table: what a check must show and how it computes.
+
+    ``model`` says which model answers ("auto": the plan's choice; "analytic": rung 0 only, incomplete where it
+    cannot answer; "linear": rung 1 even where rung 0 is exact) and ``precision`` how precisely ("sign-off", or
+    "draft": the margins only, at a looser tolerance). The file's one field ``fidelity`` sets both
+    (:func:`check_settings`: "draft" is the automatic model at draft precision).
+    """
+
+    required_margin: float = 2.0
+    model: str = "auto"
+    precision: str = "sign-off"
+    resolution: int | None = None
+    tolerance: float = 1e-8
+    scaling_constant: float = F_CLAMPED
+
+    @property
+    def fidelity(self) -> str:
+        """``[check] fidelity`` as the file says it (one of :data:`FIDELITIES`)."""
+        return "draft" if self.precision == "draft" else self.model
+
+    @property
+    def draft(self) -> bool:
+        return self.precision == "draft"
+
+
+def check_settings(fidelity: str = "auto", **settings: Any) -> CheckSettings:
+    """The check settings of a ``[check] fidelity`` (one of :data:`FIDELITIES`) and the table's other fields."""
+    draft = fidelity == "draft"
+    return CheckSettings(model="auto" if draft else fidelity, precision="draft" if draft else "sign-off", **settings)
+
+
+@dataclass(frozen=True)
 class Mission:
     """A validated mission in physical units (astropy Quantities, SI).
 
@@ -139,21 +174,16 @@ class Mission:
     poisson_ratio: float | None = None
     youngs_modulus: u.Quantity | None = None
     cross_section_area: u.Quantity | None = None
-    required_margin: float = 2.0
-    fidelity: str = "auto"
-    resolution: int | None = None
-    tolerance: float = 1e-8
-    scaling_constant: float = F_CLAMPED
+    check: CheckSettings = CheckSettings()  # the [check] table
     source: str = ""
     file: str = "mission"
     sha256: str = ""
     notes: tuple[str, ...] = field(default_factory=tuple)
     sweep: tuple[Axis, ...] = ()  # the [sweep] table: default axes of `etcheck sweep`
     uncertainty: Uncertainty | None = None  # the [uncertainty] table (etcheck.input.uncertainty)
-    # the [orbit] table as read, and its envelope once the check's orbit stage (etcheck.checks.orbit_field) has
-    # evaluated it: axial_field is then (env.worst, env.worst) T, the worst axial field over the orbit and libration
+    # the [orbit] table as read; the field over it is the check's orbit stage (etcheck.checks.orbit_field.resolve),
+    # whose mission echoes axial_field as (worst, worst) T, the worst axial field over the orbit and libration
     orbit: OrbitSpec | None = None
-    orbit_envelope: AxialFieldEnvelope | None = field(default=None, compare=False, repr=False)
     # tether.end_masses + orbit rate: the tension profile; end_tension is then its minimum (conservative)
     gravity_gradient: GravityGradient | None = None
     # [operation] cross_field: the field across the undeformed tether (its bow under the Lorentz load); None: not
@@ -175,25 +205,31 @@ class Mission:
         return max(abs(self.current[0]), abs(self.current[1]))
 
     @property
-    def worst_field(self) -> u.Quantity:
-        if self.axial_field is None:
-            raise ValueError("the axial field of a mission with an [orbit] table is evaluated by the check's orbit "
-                             "stage: pass the mission through etcheck.checks.orbit_field.with_orbit_field first")
-        return max(abs(self.axial_field[0]), abs(self.axial_field[1]))
+    def current_range_A(self) -> tuple[float, float]:
+        """operation.current as given, (low, high) in A: plain floats for the report's statements."""
+        lo, hi = (float(x.to_value(u.A)) for x in self.current)
+        return lo, hi
+
+    @property
+    def axial_field_range_uT(self) -> tuple[float, float]:
+        """operation.axial_field as given, (low, high) in µT: plain floats for the report's statements."""
+        lo, hi = (float(x.to_value(u.uT)) for x in self.axial_field)
+        return lo, hi
 
     @property
     def worst_cross_field(self) -> u.Quantity | None:
         """The largest |field across the tether| given (None where not given)."""
         return None if self.cross_field is None else max(abs(self.cross_field[0]), abs(self.cross_field[1]))
 
+    def with_fidelity(self, fidelity: str) -> Mission:
+        """The mission checked at another ``[check] fidelity`` (one of :data:`FIDELITIES`), its other settings kept."""
+        c = self.check
+        return replace(self, check=check_settings(fidelity, required_margin=c.required_margin, resolution=c.resolution,
+                                                  tolerance=c.tolerance, scaling_constant=c.scaling_constant))
+
     def is_assumed(self, *fields: str) -> bool:
         """Whether the mission marks any of ``fields`` ("table.field", or "table" for a whole table) as assumed."""
         return any(f == a or a.startswith(f + ".") for f in fields for a in self.assumed)
-
-    @property
-    def operating_load(self) -> u.Quantity:
-        """Worst-case magnetic load per length |I| |B0| [N/m]."""
-        return (self.worst_current * self.worst_field).to(u.N / u.m)
 
     def echo(self) -> MissionEcho:
         """The inputs as JSON-able {field: "value unit"} for reports."""
@@ -236,11 +272,11 @@ class Mission:
                 "gravity_gradient": None if self.gravity_gradient is None else self.gravity_gradient.as_dict(),
             },
             "check": {
-                "required_margin": self.required_margin,
-                "fidelity": self.fidelity,
-                "scaling_constant": self.scaling_constant,
-                "resolution": self.resolution,
-                "tolerance": self.tolerance,
+                "required_margin": self.check.required_margin,
+                "fidelity": self.check.fidelity,
+                "scaling_constant": self.check.scaling_constant,
+                "resolution": self.check.resolution,
+                "tolerance": self.check.tolerance,
             },
             "notes": list(self.notes),
             "assumed": list(self.assumed),
@@ -336,7 +372,7 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
         axial_field=bfield,
         spin_rate=spin,
         end_tension=tension,
-        **settings,
+        check=check_settings(**settings),
         file=source,
         sha256=sha256,
         notes=notes,

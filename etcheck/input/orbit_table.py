@@ -36,7 +36,7 @@ from etcheck.errors import MissionError
 from etcheck.input.units import QuantityProblem, to_quantity
 from etcheck.orbit import frames
 from etcheck.orbit.elements import KeplerianElements, TleError, TwoLineElements
-from etcheck.orbit.field import DEFAULT_MODEL, igrf_validity
+from etcheck.orbit.models import DEFAULT_MODEL, igrf_validity
 from etcheck.orbit.spec import (
     DEFAULT_DURATION,
     ELEMENT_KEYS,
@@ -262,7 +262,7 @@ def _check_model_validity(table: Mapping, start: Time, duration: float, source: 
     """The window [start, start + duration s] lies within the field model's validity."""
     lo, hi = igrf_validity(DEFAULT_MODEL)
     with frames.quiet():
-        outside = bool(start < lo or start + duration * u.s > hi)
+        outside = bool(start < lo) or frames.ends_after(start, duration, hi)
     if outside:
         key = "epoch" if "epoch" in table else "tle"
         raise _err(source, key,

@@ -19,11 +19,27 @@ the exact worst case), ``envelope`` (series, envelope, convergence), ``spec``
 Nothing here reads a mission file or imports the input layer.
 """
 
-from etcheck.orbit.attitude import axial_component, tether_direction, worst_axial
-from etcheck.orbit.elements import KeplerianElements, Trajectory, TwoLineElements, trajectory
-from etcheck.orbit.envelope import AxialFieldEnvelope, AxialFieldSeries, axial_field_envelope, axial_field_series
-from etcheck.orbit.field import CentredDipole, LocalField, field_along, igrf_itrs, igrf_validity
-from etcheck.orbit.spec import OrbitSpec
+# Lazy (PEP 562): reading a mission's [orbit] table (etcheck.orbit.spec, .models, .elements, .frames) must not
+# load what evaluates the field (ppigrf and pandas, SGP4)
+_EXPORTS = {
+    "axial_component": "attitude", "tether_direction": "attitude", "worst_axial": "attitude",
+    "KeplerianElements": "elements", "Trajectory": "elements", "TwoLineElements": "elements",
+    "trajectory": "elements",
+    "AxialFieldEnvelope": "envelope", "AxialFieldSeries": "envelope", "axial_field_envelope": "envelope",
+    "axial_field_series": "envelope",
+    "CentredDipole": "field", "LocalField": "field", "field_along": "field", "igrf_itrs": "field",
+    "igrf_validity": "models",
+    "OrbitSpec": "spec",
+}
+
+
+def __getattr__(name: str):
+    if name in _EXPORTS:
+        import importlib
+
+        return getattr(importlib.import_module(f"etcheck.orbit.{_EXPORTS[name]}"), name)
+    raise AttributeError(f"module 'etcheck.orbit' has no attribute {name!r}")
+
 
 __all__ = [
     "AxialFieldEnvelope",

@@ -32,12 +32,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 from astropy.time import Time
-from sgp4.api import SGP4_ERRORS, WGS72, Satrec
 
 from etcheck.orbit import frames
+
+if TYPE_CHECKING:  # SGP4 loads where a TLE is read or propagated: orbital elements need none of it
+    from sgp4.api import Satrec
 
 #: Earth's gravitational parameter (m^3/s^2, IERS 2010 / EGM2008).
 MU_EARTH = 3.986004418e14
@@ -192,8 +195,10 @@ class TwoLineElements:
                 raise TleError(f"line {k} fails its checksum (last digit {line[68]!r}, computed {tle_checksum(line)})")
         if self.line1[2:7] != self.line2[2:7]:
             raise TleError(f"satellite numbers differ ({self.line1[2:7]!r} and {self.line2[2:7]!r})")
+        from sgp4.api import SGP4_ERRORS
+
         try:
-            sat = Satrec.twoline2rv(self.line1.rstrip(), self.line2.rstrip(), WGS72)
+            sat = self.satrec
         except Exception as exc:  # sgp4 raises ValueError or IndexError on bad fields
             raise TleError(f"SGP4 cannot read it ({exc})") from None
         if sat.error:
@@ -201,6 +206,8 @@ class TwoLineElements:
 
     @cached_property
     def satrec(self) -> Satrec:
+        from sgp4.api import WGS72, Satrec
+
         return Satrec.twoline2rv(self.line1.rstrip(), self.line2.rstrip(), WGS72)
 
     @property
@@ -221,6 +228,8 @@ class PropagationError(RuntimeError):
 
 def tle_state(tle: TwoLineElements, start: Time, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """SGP4 position (m) and velocity (m/s) in TEME, shape (n, 3), at ``start + t``."""
+    from sgp4.api import SGP4_ERRORS
+
     jd1, jd2 = frames.utc_jd(start, t)
     err, r, v = tle.satrec.sgp4_array(jd1, jd2)
     if np.any(err):

@@ -25,12 +25,12 @@ from ppigrf.ppigrf import read_shc, shc_fn_igrf13, shc_fn_igrf14
 
 from etcheck.orbit import frames
 from etcheck.orbit.elements import Trajectory
+from etcheck.orbit.models import DEFAULT_MODEL
 
 #: IGRF reference radius (m).
 IGRF_RADIUS = 6371.2e3
 #: Coefficient files shipped by ppigrf.
 IGRF_MODELS = {"IGRF-14": shc_fn_igrf14, "IGRF-13": shc_fn_igrf13}
-DEFAULT_MODEL = "IGRF-14"
 _BLOCK_SECONDS = 43200.0
 _BLOCK_SAMPLES = 20000
 _NT = 1e-9
@@ -39,12 +39,6 @@ _NT = 1e-9
 @lru_cache(maxsize=4)
 def _coefficients(model: str):
     return read_shc(IGRF_MODELS[model])
-
-
-def igrf_validity(model: str = DEFAULT_MODEL) -> tuple[Time, Time]:
-    """First and last instant covered by the model's coefficient file (UTC)."""
-    g, _ = _coefficients(model)
-    return frames.parse_utc(g.index[0].to_pydatetime()), frames.parse_utc(g.index[-1].to_pydatetime())
 
 
 def _datetime(t: Time) -> datetime:

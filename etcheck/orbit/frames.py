@@ -107,6 +107,14 @@ def utc_jd(start: Time, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return jd1, jd2
 
 
+def ends_after(start: Time, seconds: float, t: Time) -> bool:
+    """Whether ``start + seconds`` lies after the UTC instant ``t``, on UTC Julian dates (as :func:`utc_jd`: a
+    leap second inside the window ignored): no time-scale conversion, so no leap-second table is consulted."""
+    (jd1,), (jd2,) = utc_jd(start, np.array([seconds]))
+    t = t.utc
+    return bool((jd1 - float(t.jd1)) + (jd2 - float(t.jd2)) > 0)
+
+
 def tt_minus_utc(start: Time) -> float:
     """TT - UTC in seconds at ``start`` (32.184 s + leap seconds)."""
     with quiet():

@@ -28,9 +28,12 @@ Altitudes are above the equatorial radius 6378.137 km. SI units.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from etcheck.orbit.elements import KeplerianElements, TwoLineElements
-from etcheck.orbit.field import DEFAULT_MODEL, IGRF_MODELS
+from etcheck.orbit.models import DEFAULT_MODEL
+
+if TYPE_CHECKING:
+    from etcheck.orbit.elements import KeplerianElements, TwoLineElements
 
 #: Lowest perigee accepted: below it the atmosphere decays the orbit in days.
 MIN_ALTITUDE = 150e3
@@ -65,4 +68,4 @@ class OrbitSpec:
     model: str = DEFAULT_MODEL
 
 
-__all__ = ["DEFAULT_DURATION", "ELEMENT_KEYS", "IGRF_MODELS", "KEYS", "MAX_DURATION", "MAX_SAMPLES", "MAX_TLE_AGE_DAYS", "MIN_ALTITUDE", "OrbitSpec"]
+__all__ = ["DEFAULT_DURATION", "ELEMENT_KEYS", "KEYS", "MAX_DURATION", "MAX_SAMPLES", "MAX_TLE_AGE_DAYS", "MIN_ALTITUDE", "OrbitSpec"]

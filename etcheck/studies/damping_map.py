@@ -9,7 +9,6 @@ its eigenvalue paths (the paper's Hopf test, Sec. VII B). Dimensionless work in
 
 from __future__ import annotations
 
-import math
 import time
 from dataclasses import replace
 from typing import Any
@@ -17,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from etcheck.checks.coil import eigenvalue_paths, path_spectra, secondary_pitchfork_at
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.results import results_header
 from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
@@ -29,7 +28,7 @@ from etcheck.rod.buckled.secondary import b1_spin_branch
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution
 from etcheck.rod.straight.spectral import THRESHOLD, divergence_loads
-from etcheck.scaling import RPM, Scales, scale, scene
+from etcheck.scaling import Scales, scale
 from etcheck.studies.diagram import refuse_outside_limit
 
 
@@ -71,7 +70,6 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
     t_curve += sum(c[1] for c in columns)  # seconds of work (the spins' share summed over both cores)
     m = _joined(B, w, gammas, N, [c[2] for c in columns])
     spin_reasons = [c[3] for c in columns]
-    wc = scales.frequency
     zeta = m.zeta
     # unstable as the stability module defines it (max Re lambda above its threshold, not merely > 0), and
     # by more than the two-resolution error of max Re lambda; a point above the threshold by less than that
@@ -104,18 +102,18 @@ def damping_study(params: RodParameters, scales: Scales, gammas=HOPF_GAMMAS, B_m
         "model": "rungs 2-3: b1 (whirling equilibria) and the lowest eigenvalues about each state",
         "params": {k: getattr(params, k) for k in ("P", "R", "Gamma", "f", "T")},
         "gammas": list(m.gammas),
-        "damping_time_s": [g / wc for g in m.gammas],
+        "damping_time_s": [scales.damping_time(g) for g in m.gammas],
         "B": B.tolist(), "omega": w.tolist(),
-        "IB0_N_per_m": (B * scales.load).tolist(), "spin_rpm": (w * wc * RPM).tolist(),
+        "IB0_N_per_m": scales.line_load(B).tolist(), "spin_rpm": scales.rpm(w).tolist(),
         "secondary_pitchfork_B": [c["B"] for c in curve],
         "secondary_pitchfork_error": [c["error"] for c in curve],
         "secondary_pitchfork_reason": [c["reason"] for c in curve],
-        "secondary_pitchfork_IB0_N_per_m": [None if c["B"] is None else c["B"] * scales.load for c in curve],
+        "secondary_pitchfork_IB0_N_per_m": [None if c["B"] is None else scales.line_load(c["B"]) for c in curve],
         "curve_time_s": t_curve,
         "primary_pitchfork_B": finite_or_none(m.primary_B),
-        "max_real": finite_or_none(m.max_real), "decay_rate_per_s": finite_or_none(-m.max_real * wc),
+        "max_real": finite_or_none(m.max_real), "decay_rate_per_s": finite_or_none(scales.rad_s(-m.max_real)),
         "damping_ratio": finite_or_none(zeta), "log_decrement": finite_or_none(m.log_decrement),
-        "frequency_Hz": finite_or_none(m.frequency * wc / (2 * math.pi)), "error": finite_or_none(m.error),
+        "frequency_Hz": finite_or_none(scales.hz(m.frequency)), "error": finite_or_none(m.error),
         "spin_not_answered": spin_reasons,
         "unstable_points": int(np.count_nonzero(unstable)),
         "unresolved_points": int(np.count_nonzero(unresolved)),
@@ -186,8 +184,8 @@ def _curve_point(params: RodParameters, omega: float, N: int, B_ref: float, fail
 def damping_results(mission: Mission, gammas=HOPF_GAMMAS, B_max: float | None = None, omega_max: float = 4.0,
                     n_B: int = 14, n_omega: int = 12, N: int = 24) -> dict[str, Any]:
     """:func:`damping_study` of the mission's tether (its P, R, Gamma, tension), as a results file."""
-    mission = with_orbit_field(mission)
-    scaled = scale(scene(mission))
+    resolved = resolve(mission)
+    mission, scaled = resolved.mission, scale(resolved.scene)
     at_rest = scaled.params.with_(omega=0.0)
     # the thinnest boundary layers are at the fastest spin of the map; refused before any solve
     refuse_outside_limit(mission, at_rest, "the damping map")

@@ -10,7 +10,7 @@ from __future__ import annotations
 from typing import Any
 
 from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
 from etcheck.checks.results import results_header
 from etcheck.errors import MissionError
@@ -18,7 +18,7 @@ from etcheck.input.mission import Mission
 from etcheck.rod.buckled import pitchforks
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.scaling import RPM, scale, scene
+from etcheck.scaling import scale
 
 
 def postbuckling_limit(params: RodParameters) -> str | None:
@@ -77,7 +77,7 @@ def diagram_study(mission: Mission, omega: float | None = None, R: float | None 
                   options: DiagramOptions | None = None) -> dict[str, Any]:
     """Branches of the mission's tether at dimensionless spin ``omega`` (default: the mission's)
     and stiffness ratio ``R`` (default: the mission's); JSON-able with SI scales."""
-    scaled = scale(scene(with_orbit_field(mission)))
+    scaled = scale(resolve(mission).scene)
     params = scaled.params if omega is None else scaled.params.with_(omega=omega)
     if R is not None:
         params = params.with_(R=R)
@@ -89,9 +89,9 @@ def diagram_study(mission: Mission, omega: float | None = None, R: float | None 
     op = scaled.params
     here = "" if op.omega == params.omega else f"; the mission spins at ω = {op.omega:.3g}"
     return results_header(mission) | {
-        "spin_rpm": params.omega * scaled.scales.frequency * RPM,
+        "spin_rpm": scaled.scales.rpm(params.omega),
         "R_override": R,
-        "operating": {"B": op.B, "omega": op.omega, "IB0_N_per_m": op.B * scaled.scales.load,
+        "operating": {"B": op.B, "omega": op.omega, "IB0_N_per_m": scaled.scales.line_load(op.B),
                       "label": f"mission operating load, straight tether{here}"},
         "scales": {"length_m": scaled.scales.length, "load_N_per_m": scaled.scales.load,
                    "force_N": scaled.scales.force},

@@ -43,10 +43,10 @@ from typing import Any
 import numpy as np
 
 from etcheck import __version__
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.plan import EXACT, straight_route
 from etcheck.checks.results import results_header
-from etcheck.checks.validity import BOW_LIMIT, cross_field, mid_span_bow
+from etcheck.checks.validity import BOW_LIMIT, mid_span_bow
 from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.gravity_gradient import circular_rate
 from etcheck.input.mission import Mission
@@ -60,7 +60,7 @@ from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.damped_critical import first_root
 from etcheck.rod.straight.exact import first_exact_root
 from etcheck.rod.straight.undamped import has_real_pair
-from etcheck.scaling import RPM, Scene, scale, scene, with_length
+from etcheck.scaling import Scene, scale, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 from etcheck.studies.sweep_point import (
     STATUS_FAILED,
@@ -121,11 +121,11 @@ DEFAULT_SWEEP = SweepOptions()
 # --------------------------------------------------------------------------- points
 
 
-def point_scene(base: Scene, current: float, field: float, values: dict[str, float]) -> Scene:
+def point_scene(base: Scene, values: dict[str, float]) -> Scene:
     """The mission's worst-case scene with the swept quantities replaced (SI floats).
 
-    ``current`` [A] and ``field`` [T] are the mission's worst-case values;
-    ``values`` maps axis names to SI values.
+    ``values`` maps axis names to SI values; the current [A] and the axial field [T] not swept are the
+    scene's worst case.
     """
     s = base
     if "length" in values:
@@ -134,9 +134,9 @@ def point_scene(base: Scene, current: float, field: float, values: dict[str, flo
         gg = replace(s.gravity_gradient, orbit_rate=circular_rate(values["altitude"]),
                      rate_source=f"circular at {values['altitude'] / 1e3:.6g} km (the sweep's altitude), mean motion")
         s = replace(s, gravity_gradient=gg, tension=gg.minimum)
-    I_ = values.get("current", current)
-    B0 = values.get("axial_field", field)
-    changes: dict[str, float] = {"load": abs(I_) * abs(B0)}
+    I_ = abs(values.get("current", s.current))
+    B0 = abs(values.get("axial_field", s.field.axial))
+    changes: dict[str, Any] = {"load": I_ * B0, "current": I_, "field": replace(s.field, axial=B0)}
     if "spin_rate" in values:
         changes["spin_rate"] = values["spin_rate"]
     if "end_tension" in values:
@@ -147,8 +147,7 @@ def point_scene(base: Scene, current: float, field: float, values: dict[str, flo
 # --------------------------------------------------------------------------- critical length
 
 
-def critical_length(base: Scene, current: float, field: float, values: dict[str, float], lo: float, hi: float,
-                    tol: float) -> dict[str, Any]:
+def critical_length(base: Scene, values: dict[str, float], lo: float, hi: float, tol: float) -> dict[str, Any]:
     """Shortest length in [lo, hi] m at which the straight tether is no longer stable.
 
     ``lo`` must be a stable and ``hi`` an unstable length (from the grid).
@@ -162,7 +161,7 @@ def critical_length(base: Scene, current: float, field: float, values: dict[str,
     """
 
     def at(L: float) -> RodParameters:
-        return scale(point_scene(base, current, field, values | {"length": L})).params
+        return scale(point_scene(base, values | {"length": L})).params
 
     def h(L: float) -> float:
         return _length_margin(at(L), L, tol)
@@ -356,10 +355,8 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
     """
     started = time.perf_counter()
     axes = tuple(sorted(axes, key=lambda a: a.name != "length"))
-    mission = with_orbit_field(mission)
-    base = scene(mission)
-    current = float(mission.worst_current.to_value("A"))
-    field = float(mission.worst_field.to_value("T"))
+    resolved = resolve(mission)
+    mission, base = resolved.mission, resolved.scene
     grids = [a.values for a in axes]
     shape = tuple(len(g) for g in grids)
     cache = Cache(options.cache)
@@ -371,7 +368,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
         values = {a.name: float(g[i]) for a, g, i in zip(axes, grids, idx)}
         if orbit is not None:
             values["axial_field"] = orbit.field(values)
-        sc = point_scene(base, current, field, values)
+        sc = point_scene(base, values)
         scaled = scale(sc)
         kind = "point+buckled" if options.buckled else "point"
         points.append((idx, values, sc, scaled, point_key(scaled.params, options.tol, kind, scaled.tether, fixed)))
@@ -399,7 +396,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
     try:
         _run(_solve_chunk, _chunks(todo, options.chunk), options, arrived)
         grid = _assemble(points, results, axes, shape, mission)
-        lengths = _critical_lengths(points, results, axes, shape, base, current, field, options, cache)
+        lengths = _critical_lengths(points, results, axes, shape, base, options, cache)
     except KeyboardInterrupt as stop:
         raise SweepInterrupted(f"sweep {stop_words(stop)}: {len(results)} of {total} points are saved"
                                + (f" in {cache.folder}; run the same command again to resume" if cache.folder else
@@ -412,8 +409,8 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
         "axes": [a.as_dict() for a in axes],
         "tolerance": options.tol,
         "buckled_assessed": options.buckled,
-        "required_margin": mission.required_margin,
-        "operating": _operating(base, current, field) | (orbit.operating if orbit else {}),
+        "required_margin": mission.check.required_margin,
+        "operating": _operating(base) | (orbit.operating if orbit else {}),
         "grid": grid,
         "critical_length": lengths,
         "orbit": orbit.as_dict() if orbit else None,
@@ -441,14 +438,15 @@ def _cached_point(cache: Cache, key: str) -> PointResult | None:
         return None
 
 
-def _operating(base: Scene, current: float, field: float) -> dict[str, float]:
-    return {"length": base.length, "spin_rate": base.spin_rate, "current": current, "axial_field": field,
-            "end_tension": base.tension, "load_N_per_m": base.load, "spin_rpm": base.spin_rate * RPM}
+def _operating(base: Scene) -> dict[str, float]:
+    return {"length": base.length, "spin_rate": base.spin_rate, "current": base.current,
+            "axial_field": base.field.axial, "end_tension": base.tension, "load_N_per_m": base.load,
+            "spin_rpm": base.spin_rpm}
 
 
 def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     """Per-point SI data as arrays of the grid shape (lists, JSON-able)."""
-    required = mission.required_margin
+    required = mission.check.required_margin
     fields = ("load_N_per_m", "critical_load_N_per_m", "load_margin", "load_error", "spin_rpm", "critical_spin_rpm",
               "spin_margin", "spin_error", "critical_spin_at_rest_rpm", "B", "omega", "T", "gamma", "P", "N",
               "buckled_deflection_m", "bow_over_length")
@@ -457,20 +455,19 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
     meets = np.zeros(shape, dtype=bool)
     for (idx, _, sc, scaled, key), bow in zip(points, _bows(points, mission)):
         r, p, scales = results[key], scaled.params, scaled.scales
-        wc, load_scale = scales.frequency, scales.load
-        d = {"load_N_per_m": sc.load, "spin_rpm": sc.spin_rate * RPM, "B": p.B, "omega": p.omega, "T": p.T,
+        d = {"load_N_per_m": sc.load, "spin_rpm": sc.spin_rpm, "B": p.B, "omega": p.omega, "T": p.T,
              "gamma": p.gamma, "P": p.P, "N": r.N or np.nan, "bow_over_length": bow}
         ok = r.status == STATUS_OK
         if ok:
             Bc, wrest = r.B_c, r.omega_rest
             wcrit = np.nan if r.omega_c is None else r.omega_c  # None: not asked (rung 1v without spin)
-            d |= {"critical_load_N_per_m": Bc * load_scale, "critical_spin_rpm": wcrit * wc * RPM,
+            d |= {"critical_load_N_per_m": scales.line_load(Bc), "critical_spin_rpm": scales.rpm(wcrit),
                   "load_error": r.B_c_error, "spin_error": r.omega_c_error,
-                  "critical_spin_at_rest_rpm": np.nan if wrest is None else wrest * wc * RPM,
+                  "critical_spin_at_rest_rpm": np.nan if wrest is None else scales.rpm(wrest),
                   "load_margin": Bc / p.B if p.B > 0 else np.inf,
                   "spin_margin": wcrit / p.omega if p.omega > 0 else np.inf}
             if r.buckled_deflection is not None:
-                d["buckled_deflection_m"] = r.buckled_deflection * scales.length
+                d["buckled_deflection_m"] = scales.distance(r.buckled_deflection)
         for f, v in d.items():
             data[f][idx] = v
         text["status"][idx] = r.status.value
@@ -505,18 +502,16 @@ def _bows(points, mission: Mission) -> list[float]:
     """The bow at mid-span over the length of each point under the lateral Lorentz load
     (:func:`etcheck.checks.validity.mid_span_bow`): the field across the tether as the mission states it, else
     the point's own axial field where the sweep sets one (field or orbit axes), else the check's."""
-    current = float(mission.worst_current.to_value("A"))
-    stated = mission.worst_cross_field
-    fixed = float(stated.to_value("T")) if stated is not None else cross_field(mission)[0]
+    stated = mission.cross_field is not None
     out = []
     for _, values, sc, _, _ in points:
-        b_perp = fixed if stated is not None else values.get("axial_field", fixed)
-        q = abs(values.get("current", current)) * b_perp
+        b_perp = sc.field.cross if stated else values.get("axial_field", sc.field.cross)
+        q = sc.current * b_perp
         out.append(mid_span_bow(q, sc.length, sc.tension, sc.EI2) / sc.length)
     return out
 
 
-def _critical_lengths(points, results, axes, shape, base, current, field, options, cache) -> list[dict] | None:
+def _critical_lengths(points, results, axes, shape, base, options, cache) -> list[dict] | None:
     """Exact critical length for each value of the other axis (length swept only; not with profiles along the
     tether, whose grid points answer where it lies)."""
     if axes[0].name != "length" or base.profiles:
@@ -526,7 +521,7 @@ def _critical_lengths(points, results, axes, shape, base, current, field, option
     tasks, rows = [], []
     for j in range(shape[1] if other else 1):
         col = [by_idx[(i, j) if other else (i,)] for i in range(shape[0])]
-        row, task = _length_row(col, other, axes[0], (base, current, field), options, cache)
+        row, task = _length_row(col, other, axes[0], base, options, cache)
         rows.append(row)
         if task is not None:
             tasks.append(task)
@@ -544,7 +539,7 @@ def _critical_lengths(points, results, axes, shape, base, current, field, option
     return rows
 
 
-def _length_row(col: list, other: Axis | None, length: Axis, mission_scene: tuple, options: SweepOptions,
+def _length_row(col: list, other: Axis | None, length: Axis, base: Scene, options: SweepOptions,
                 cache: Cache) -> tuple[dict, tuple | None]:
     """The critical-length row of one column of the grid (points in order of length) and the
     task that locates it (None when the column says where it is without one, or from the cache)."""
@@ -562,7 +557,7 @@ def _length_row(col: list, other: Axis | None, length: Axis, mission_scene: tupl
                       + col[first_bad][1].reason}, None
     values = {k: v for k, v in col[0][0].items() if k != "length"}
     lo, hi = col[first_bad - 1][0]["length"], col[first_bad][0]["length"]
-    args = (*mission_scene, values, lo, hi, options.tol)
+    args = (base, values, lo, hi, options.tol)
     key = hashlib.sha256(json.dumps(["critical_length", repr(args), options.tol, __version__]).encode()).hexdigest()
     row |= {"key": key, "bracket_m": [lo, hi]}
     hit = cache.get(key)

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -21,8 +20,8 @@ SMALL = WhirlOptions(map_points=4, row_points=4, campbell_points=4, accuracy_N=(
 def test_draft_margins_equal_sign_off_within_their_errors(name):
     mission = load_mission(MISSIONS / name)
     sign = check(mission, SMALL).results
-    draft = check(replace(mission, fidelity="draft")).results
-    assert sign["fidelity"] == {"name": "sign-off", "tolerance": mission.tolerance, "left_out": []}
+    draft = check(mission.with_fidelity("draft")).results
+    assert sign["fidelity"] == {"name": "sign-off", "tolerance": mission.check.tolerance, "left_out": []}
     assert draft["fidelity"]["name"] == "draft" and draft["fidelity"]["tolerance"] == DRAFT_TOLERANCE
     assert draft["fidelity"]["left_out"] == list(LEFT_OUT)
     assert draft["verdict"] == sign["verdict"]
@@ -38,7 +37,7 @@ def test_draft_margins_equal_sign_off_within_their_errors(name):
 
 
 def test_draft_leaves_out_the_pictures_and_says_so():
-    draft = check(replace(load_mission(MISSIONS / "set.toml"), fidelity="draft")).results
+    draft = check(load_mission(MISSIONS / "set.toml").with_fidelity("draft")).results
     lin = draft["linear"]
     assert lin["campbell"] is None and lin["stability_map"] is None and draft["accuracy"] is None
     assert draft["postbuckling"] is None
@@ -51,7 +50,7 @@ def test_a_draft_report_is_marked_on_its_title_verdict_and_every_page():
     """An engineer who finds a printed page of a draft sees that it is one: the title, the verdict box and every
     page's footer say so; a sign-off report carries none of those marks."""
     mission = load_mission(MISSIONS / "set-static.toml")
-    draft = " ".join(render(check(replace(mission, fidelity="draft")).results, ("html",))["html"].decode().split())
+    draft = " ".join(render(check(mission.with_fidelity("draft")).results, ("html",))["html"].decode().split())
     sign = " ".join(render(check(mission).results, ("html",))["html"].decode().split())
     assert '<span class="draft-mark">DRAFT</span></h1>' in draft and "(DRAFT)</title>" in draft
     assert "Draft verdict, not for signature" in draft

@@ -6,7 +6,6 @@ profiles and recompute the gravity-gradient tension at every length."""
 from __future__ import annotations
 
 import copy
-import dataclasses
 import math
 
 import pytest
@@ -140,7 +139,7 @@ def test_a_draft_of_a_tether_that_flutters_at_any_load_undamped_skips_the_map():
     """Undamped, a round wire with a varying current flutters at any load: no damping can be less favourable, so a
     draft computes no damping map; the verdict (0, on two meshes) is the sign-off's."""
     wire = _mission(tether={"bending_stiffness": "38 N m2"})
-    draft = check(dataclasses.replace(wire, fidelity="draft")).results
+    draft = check(wire.with_fidelity("draft")).results
     signoff = check(wire).results
     assert draft["profiles"]["damping"]["map"] == [] and "not computed in a draft" in draft["profiles"]["damping"]["why"]
     assert len(signoff["profiles"]["damping"]["map"]) == 5
@@ -162,11 +161,11 @@ def test_a_draft_takes_a_tension_profile_under_one_current_at_its_smallest_value
     root = Path(__file__).resolve().parents[2]
     signed = json.loads((root / "reports" / "pmg" / "results.json").read_text())
     bound = signed["profiles"]["uniform_tension_bound"]["value"] / signed["scaled"]["B"]
-    draft = check(dataclasses.replace(load_mission(root / "missions" / "pmg.toml"), fidelity="draft")).results
+    draft = check(load_mission(root / "missions" / "pmg.toml").with_fidelity("draft")).results
     assert draft["plan"]["route"] != PROFILES and DRAFT_BOUND in draft["plan"]["reason"]
     assert draft["margins"][0]["value"] == pytest.approx(bound, rel=1e-6)
     assert draft["margins"][0]["value"] < signed["margins"][0]["value"]  # conservative
-    tape = check(dataclasses.replace(load_mission(root / "missions" / "tape-tether.toml"), fidelity="draft")).results
+    tape = check(load_mission(root / "missions" / "tape-tether.toml").with_fidelity("draft")).results
     assert tape["plan"]["route"] == PROFILES
 
 
@@ -178,7 +177,7 @@ def test_a_check_with_profiles_on_two_cores_answers_as_on_one(bare, fidelity):
     from etcheck.numerics.parallel import serial
     from etcheck.rod.straight.circulatory import forget
 
-    mission = dataclasses.replace(_mission(), fidelity=fidelity)
+    mission = _mission().with_fidelity(fidelity)
     forget()
     two = bare if fidelity == "auto" else check(mission).results
     forget()
@@ -217,5 +216,5 @@ def test_a_sign_off_with_profiles_maps_the_load_and_spin_plane_on_rung_1v(bare):
         else:
             end = row["IB0_N_per_m"][0][1] / load
             assert end == pytest.approx(min(own.value, sm["B"][-1]), rel=1e-6)
-    draft = check(dataclasses.replace(_mission(), fidelity="draft")).results
+    draft = check(_mission().with_fidelity("draft")).results
     assert draft["linear"]["stability_map"] is None

@@ -19,7 +19,7 @@ from scipy.optimize import brentq
 
 from etcheck import check, mission_from_dict
 from etcheck.checks.margins import LOAD_AT_REST, LOAD_AT_SPIN, SPIN
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.plan import EXACT
 from etcheck.checks.probability import FLOOR, failure_probability
 from etcheck.checks.sensitivity import sensitivities
@@ -199,7 +199,7 @@ def test_one_input_on_the_exact_determinant_route_against_its_margin_root():
     model = study_model(m)
     assert model.route == EXACT
     p = failure_probability(model, LOAD_AT_SPIN, m.uncertainty)
-    sc = scene(with_orbit_field(m))
+    sc = resolve(m).scene
 
     def margin(L):
         s = replace(sc, length=L, P=sc.P * (sc.length / L) ** 2)
@@ -377,7 +377,7 @@ def test_elasticities_match_an_independent_physical_difference():
 def test_torsion_provably_does_not_move_the_critical_values():
     """GJ is an inert input on every rung-1 route (torsion decouples from bending about the straight tether)."""
     for name, route in (("set.toml", "spectral"), (tape(current_profile=False, end_masses=False), EXACT)):
-        p = scale(scene(with_orbit_field(mission(name)))).params
+        p = scale(resolve(mission(name)).scene).params
         for q in (p, p.with_(gamma=0.0)):
             a, b = (critical_values(x, DEFAULT_OPTIONS, route) for x in (q, q.with_(Gamma=3.7 * q.Gamma)))
             assert b[0]["value"] == pytest.approx(a[0]["value"], rel=1e-13)

@@ -221,7 +221,7 @@ def test_sweep_regressions(s, load):
     mission = mission_from_dict(mission_dict(s, B=load))
     results = check(mission).results
     margin = results["margins"][0]
-    point = solve_point(scale(scene(mission)).params, mission.tolerance)
+    point = solve_point(scale(scene(mission)).params, mission.check.tolerance)
     assert point.status == "ok" and margin["critical"] is not None
     B_c = margin["critical"] / results["scales"]["load_N_per_m"]
     assert point.B_c == pytest.approx(B_c, rel=point.B_c_error + margin["error"], abs=1e-300)

@@ -145,7 +145,7 @@ def test_shipped_missions_carry_gravity_gradient_tension(name, at, lo, hi):
     g = m.gravity_gradient
     assert g is not None and g.minimum_at == at and lo < m.end_tension.to_value("N") == g.minimum < hi
     assert g.maximum > g.minimum
-    sd = scene_section(m, scene(m))
+    sd = scene_section(scene(m))
     assert sd["tension_N"] == g.minimum and sd["tension_profile"]["minimum_N"] == g.minimum
 
 

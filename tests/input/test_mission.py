@@ -12,6 +12,7 @@ import pytest
 from helpers import set_like
 
 from etcheck import Mission, MissionError, load_mission, mission_from_dict
+from etcheck.scaling import scene
 
 MISSIONS = Path(__file__).resolve().parents[2] / "missions"
 
@@ -243,16 +244,16 @@ def test_set_mission_values():
     assert [q.to_value(u.N * u.m**2) for q in m.bending_stiffness] == pytest.approx([38.0, 21.0])
     assert m.rotary_inertia_ratio == pytest.approx(0.001)
     assert m.worst_current.to_value(u.A) == pytest.approx(1.0)
-    assert m.worst_field.to_value(u.T) == pytest.approx(70e-6)
-    assert m.operating_load.to_value(u.N / u.m) == pytest.approx(70e-6)
+    assert scene(m).field.axial == pytest.approx(70e-6)
+    assert scene(m).load == pytest.approx(70e-6)
     # spin: the paper's omega = 0.25 with the assumed mass per length (commented in the file)
     assert m.spin_rate.to_value(u.cycle / u.min) == pytest.approx(0.1041)
     assert m.end_tension.to_value(u.N) == 0
     # Gamma = 2 GJ / (EI1 + EI2) = 1 / (1 + nu) = 1/1.3
     GJ = m.torsional_stiffness.to_value(u.N * u.m**2)
     assert 2 * GJ / (38.0 + 21.0) == pytest.approx(1 / 1.3, rel=1e-14)
-    assert m.required_margin == 2
-    assert m.fidelity == "auto"
+    assert m.check.required_margin == 2
+    assert m.check.fidelity == "auto"
 
 
 def test_rotary_inertia_from_section():
@@ -270,7 +271,7 @@ def test_ranges_worst_case():
     m = load_mission(MISSIONS / "proseds.toml")
     assert m.current[0] < m.current[1]
     assert m.worst_current.to_value(u.A) == pytest.approx(1.5)
-    assert m.worst_field.to_value(u.T) == pytest.approx(40e-6)
+    assert scene(m).field.axial == pytest.approx(40e-6)
     assert any("worst case" in note for note in m.notes)
 
 
@@ -316,13 +317,13 @@ def test_optional_fields(tmp_path):
     assert m.damping_time.to_value(u.s) == pytest.approx(0.02)
     assert m.spin_rate.to_value(u.rad / u.s) == pytest.approx(2 * 2 * math.pi / 60)
     assert m.end_tension.to_value(u.N) == pytest.approx(500.0)
-    assert m.fidelity == "analytic"
+    assert m.check.fidelity == "analytic"
 
 
 def test_defaults(tmp_path):
     m = load_mission(write_mission(tmp_path, {("check", "required_margin"): None}))
-    assert m.required_margin == 2
-    assert m.fidelity == "auto"
+    assert m.check.required_margin == 2
+    assert m.check.fidelity == "auto"
     assert m.spin_rate.to_value(u.rad / u.s) == 0
     assert m.end_tension.to_value(u.N) == 0
 
@@ -431,7 +432,7 @@ def test_astropy_quantities_accepted():
         set_like(length=0.1 * u.km, axial_field=70 * u.uT, bending_stiffness=[38 * u.N * u.m**2, "21 N m2"])
     )
     assert m.length.to_value(u.m) == pytest.approx(100.0)
-    assert m.worst_field.to_value(u.T) == pytest.approx(70e-6)
+    assert scene(m).field.axial == pytest.approx(70e-6)
 
 
 def test_pint_quantities_accepted():
@@ -450,7 +451,7 @@ def test_pint_quantities_accepted():
     assert m.length.unit == u.m and m.length.value == pytest.approx(100.0)
     assert m.mass_per_length.to_value(u.kg / u.m) == pytest.approx(0.1)
     assert m.worst_current.to_value(u.A) == pytest.approx(1.0)
-    assert m.worst_field.to_value(u.T) == pytest.approx(70e-6)
+    assert scene(m).field.axial == pytest.approx(70e-6)
     assert m.spin_rate.to_value(u.rad / u.s) == pytest.approx(0.20944, rel=1e-5)
     m2 = mission_from_dict(set_like(spin_rate=ureg("1 Hz")))
     assert m2.spin_rate.to_value(u.rad / u.s) == pytest.approx(2 * math.pi, rel=1e-14)

@@ -15,13 +15,14 @@ import numpy as np
 import pytest
 from helpers import set_like
 
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.pipeline import check
 from etcheck.errors import MissionError
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.input.orbit_table import parse_orbit
 from etcheck.input.sweep_axes import parse_option
 from etcheck.orbit import axial_field_envelope
+from etcheck.scaling import scene
 from etcheck.studies.orbit_sweep import SWEEP_STEP
 from etcheck.studies.sweep import SweepOptions, sweep
 
@@ -59,23 +60,24 @@ def results(mission):
 def test_loading_an_orbit_mission_only_reads_it(mission):
     """The mission holds the orbit's specification; nothing is propagated or evaluated at load."""
     assert mission.orbit == parse_orbit(ORBIT)
-    assert mission.axial_field is None and mission.orbit_envelope is None
+    assert mission.axial_field is None
     echo = mission.echo()
     assert echo["operation"]["axial_field"] is None
     assert echo["orbit"]["inclination_deg"] == pytest.approx(51.6) and echo["orbit"]["period_s"] == pytest.approx(5677, rel=1e-3)
     assert "statement" not in echo["orbit"] and not any("worst case over the orbit" in n for n in mission.notes)
-    with pytest.raises(ValueError, match="orbit stage"):
-        _ = mission.worst_field
+    with pytest.raises(ValueError, match="orbit stage"):  # its field is the orbit stage's, not the file's
+        scene(mission)
 
 
 def test_orbit_mission_takes_the_envelopes_worst_case(mission, envelope, results):
-    resolved = with_orbit_field(mission)
-    assert with_orbit_field(resolved) is resolved  # a stage applied once
-    assert resolved.orbit_envelope.worst == envelope.worst and resolved.orbit_envelope.seconds > 0
+    operating = resolve(mission)
+    resolved = operating.mission
+    assert operating.envelope.worst == envelope.worst and operating.envelope.seconds > 0
     assert 20e-6 < envelope.worst < 60e-6  # LEO at 51.6 deg
     lo, hi = resolved.axial_field
     assert lo.to_value("T") == hi.to_value("T") == envelope.worst
-    assert resolved.operating_load.to_value("N/m") == pytest.approx(1.0 * envelope.worst, rel=1e-15)
+    assert operating.scene.field.axial == envelope.worst
+    assert operating.scene.load == pytest.approx(1.0 * envelope.worst, rel=1e-15)
     assert resolved.echo()["operation"]["axial_field"] == [f"{envelope.worst * 1e6:.6g} µT"]
     stated = results["orbit"]["statement"]
     assert stated.startswith("axial field: worst case over the orbit, ")
@@ -98,8 +100,8 @@ def test_mission_stays_immutable_and_comparable(mission):
 
 def test_missions_without_orbit_are_unchanged():
     m = mission_from_dict(set_like())
-    assert m.orbit is None and m.orbit_envelope is None and "orbit" not in m.echo()
-    assert m.worst_field.to_value("uT") == pytest.approx(70.0)
+    assert m.orbit is None and "orbit" not in m.echo()
+    assert scene(m).field.axial == pytest.approx(70e-6)
 
 
 @pytest.mark.parametrize("case", ["both", "neither"])
@@ -162,11 +164,12 @@ def test_shipped_orbit_mission_loads_with_assumptions_marked():
     orbit_table = text.split("[orbit]")[1].split("[check]")[0]
     for line in orbit_table.strip().splitlines():  # every orbit value says where it comes from
         assert "ASSUMPTION" in line or "Johnson" in line or "one day" in line, line
-    m = with_orbit_field(load_mission(ROOT / "missions" / "proseds-orbit.toml"))
-    assert m.orbit is not None and m.orbit_envelope.converged
+    operating = resolve(load_mission(ROOT / "missions" / "proseds-orbit.toml"))
+    m = operating.mission
+    assert m.orbit is not None and operating.envelope.converged
     assert math.degrees(m.orbit.orbit.inclination) == pytest.approx(28.5)
     # a 28.5 deg, 360 km orbit: the worst axial field lies in the South Atlantic-Indian band, 30-60 uT
-    assert 30e-6 < m.orbit_envelope.worst < 60e-6
+    assert 30e-6 < operating.envelope.worst < 60e-6
 
 
 # --- the check ------------------------------------------------------------------------------------
@@ -201,7 +204,7 @@ def test_margin_along_the_orbit(results, envelope):
 def test_long_series_are_downsampled_with_the_worst_sample_kept():
     m = mission_from_dict(orbit_mission(ORBIT | {"duration": "2 d", "step": "30 s"}))
     o = check(m).results["orbit"]
-    env = with_orbit_field(m).orbit_envelope
+    env = resolve(m).envelope
     n = len(env.series)
     assert n == 5761 and o["sampling"]["samples"] == n
     assert len(o["series"]["time_s"]) <= 3000 and "every 2th" in o["series_note"]
@@ -311,6 +314,6 @@ def test_a_window_past_the_leap_second_table_prints_nothing_on_stderr_and_says_s
 
 
 def test_a_window_within_the_leap_second_table_has_no_such_note(mission):
-    notes = with_orbit_field(mission).notes
+    notes = resolve(mission).mission.notes
     assert any("worst case over the orbit" in n for n in notes)
     assert not any("leap-second" in n for n in notes)

@@ -16,10 +16,10 @@ from pathlib import Path
 
 import pytest
 
-from etcheck.checks.orbit_field import with_orbit_field
+from etcheck.checks.orbit_field import resolve
 from etcheck.checks.static_buckling import static_buckling
 from etcheck.input.mission import load_mission
-from etcheck.scaling import scale, scene
+from etcheck.scaling import scale
 
 ROOT = Path(__file__).resolve().parents[2]
 REPORTS = ROOT / "reports"
@@ -52,8 +52,8 @@ def test_committed_check_agrees_with_a_fresh_run(mission):
     assert old["mission"]["sha256"] == hashlib.sha256(mission.read_bytes()).hexdigest(), \
         f"{mission.name} changed since its example report was made; {REGENERATE}"
     if old["elapsed_s"] > SLOW_S:  # the buckled tether: its rung-0 margin (rungs 2-3, seconds, are tested in tests/checks/test_buckled.py)
-        m = with_orbit_field(load_mission(mission))  # an [orbit] table's field is the check's orbit stage
-        fresh = static_buckling(scale(scene(m)))["critical_loads"][0]
+        sc = resolve(load_mission(mission)).scene  # an [orbit] table's field is the check's orbit stage
+        fresh = static_buckling(scale(sc))["critical_loads"][0]
         committed = old["straight_rod"]["critical_loads"][0]
         _agree(committed["IB0_N_per_m"], fresh["IB0_N_per_m"], committed["relative_error"], fresh["relative_error"],
                f"{mission.name}: first critical load")

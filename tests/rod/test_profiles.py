@@ -368,11 +368,11 @@ def test_a_slow_flutter_reports_the_eigenvalue_that_crosses():
     that eigenvalue, on the axis there (not the one nearest 0: another mode, its frequency and shape)."""
     from helpers import tape
 
-    from etcheck.checks.orbit_field import with_orbit_field
+    from etcheck.checks.orbit_field import resolve
     from etcheck.input.mission import mission_from_dict
-    from etcheck.scaling import scale, scene
+    from etcheck.scaling import scale
 
-    t = scale(scene(with_orbit_field(mission_from_dict(tape())))).tether.with_(gamma=4.375e-5, omega=0.00256)
+    t = scale(resolve(mission_from_dict(tape())).scene).tether.with_(gamma=4.375e-5, omega=0.00256)
     c = critical(t, mode=False)
     assert c.kind == CriticalKind.FLUTTER
     assert abs(c.eigenvalue.real) <= 1e-9 * abs(c.eigenvalue)

@@ -189,7 +189,7 @@ def test_undamped_critical_length_at_the_onset_of_a_real_pair():
 
     m = replace(load_mission(ROOT / "missions" / "set.toml"), damping_time=0 * u.s)
     sc, spin = scene(m), 2 * 2 * math.pi / 60
-    row = critical_length(sc, m.worst_current.value, m.worst_field.value, {"spin_rate": spin}, 50.0, 160.0, 1e-8)
+    row = critical_length(sc, {"spin_rate": spin}, 50.0, 160.0, 1e-8)
     assert row["status"] == "ok" and "real pair" in row["reason"]
     for f, stable in ((1 - 1e-6, True), (1 + 1e-6, False)):
         p = scale(scene_with(m, row["length_m"] * f, spin)).params
@@ -199,8 +199,7 @@ def test_undamped_critical_length_at_the_onset_of_a_real_pair():
 def scene_with(m, length, spin):
     from etcheck.studies.sweep import point_scene
 
-    sc = scene(m)
-    return point_scene(sc, m.worst_current.value, m.worst_field.value, {"length": length, "spin_rate": spin})
+    return point_scene(scene(m), {"length": length, "spin_rate": spin})
 
 
 # --- files --------------------------------------------------------------------------------------------
