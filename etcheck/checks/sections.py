@@ -836,9 +836,10 @@ class MarginSensitivityRecord:
     swings: tuple[SwingRecord, ...]
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
-class CrossCheckRecord:
-    """FORM and SORM (Breitung) at the design point (:class:`etcheck.checks.probability.CrossCheck`)."""
+@dataclass(frozen=True, slots=True)
+class CrossCheck:
+    """FORM and SORM (Breitung) at the design point (asymptotic approximations, for comparison with the
+    probability of :mod:`etcheck.checks.probability`)."""
 
     JSON_SCHEMA: ClassVar[dict] = {
         "description": "FORM and SORM (Breitung) at the design point (etcheck.checks.probability.CrossCheck)"
@@ -853,9 +854,19 @@ class CrossCheckRecord:
     )
 
 
-@dataclass(frozen=True, slots=True, kw_only=True)
-class ProbabilityRecord:
-    """P(margin < required), its stated error or 95 % interval, or a bound (:class:`etcheck.checks.probability.Probability`)."""
+@dataclass(frozen=True, slots=True)
+class Probability:
+    """P(margin < required) (dimensionless) and how good it is (:func:`etcheck.checks.probability.failure_probability`).
+
+    ``value``: the estimate (None when below FLOOR, then ``bound`` holds P < bound, or when not answered);
+    ``low``, ``high``: the 95 % interval (sampling) or value -+ the stated error (exact, quadrature);
+    ``error``: relative: the stated error bound (exact, quadrature) or the 95 % half-width (sampling);
+    ``method``: exact, quadrature, sampling or not answered; ``how``: what was done, in words;
+    ``evaluations``: margin evaluations by the check's route (closed-form ones counted too);
+    ``points``: points at which the conditional probability was evaluated (quadrature nodes or samples);
+    ``conditioned_on``: the input integrated exactly;
+    ``inputs``: the uncertain inputs that move the margin; ``inert``: those that provably do not.
+    """
 
     JSON_SCHEMA: ClassVar[dict] = {
         "description": "P(margin < required) of one margin with its stated error or 95 % interval, or a bound (etcheck.checks.probability.Probability)"
@@ -896,11 +907,11 @@ class ProbabilityRecord:
     inputs: tuple[str, ...] = key("uncertain inputs that move this margin")
     inert: tuple[str, ...] = key("uncertain inputs that provably do not move it")
     model: str = key("the route that computed each margin (the check's)")
-    cross_check: CrossCheckRecord | None = key(
-        "asymptotic cross-check for probabilities at or below 1e-4 (null otherwise)"
+    cross_check: CrossCheck | None = key(
+        "asymptotic cross-check for probabilities at or below 1e-4 (null otherwise)", default=None
     )
-    note: str
-    elapsed_s: float = key("time of this probability (s)", minimum=0)
+    note: str = ""
+    elapsed_s: float = key("time of this probability (s)", minimum=0, default=0.0)
 
 
 @dataclass(frozen=True, slots=True, kw_only=True)
@@ -917,7 +928,7 @@ class UncertaintySection:
     nominal_inputs_SI: dict[str, float | None]
     inputs: UncertaintyInputs
     margins: tuple[MarginSensitivityRecord, ...] = key("one entry per margin")
-    probabilities: tuple[ProbabilityRecord, ...] = key(
+    probabilities: tuple[Probability, ...] = key(
         "probability of falling short per margin (empty without probabilities)"
     )
     sensitivity_time_s: float

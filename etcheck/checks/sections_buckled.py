@@ -243,8 +243,8 @@ class PostbucklingSection:
 
     B_c: float | None = key("dimensionless first critical load", minimum=0)
     load_ratio: float | None = key("operating / critical load (dimensionless)", minimum=0)
-    reason: str | Omitted = key("why (not) computed", default=OMITTED)
     computed: bool = key("whether the buckled branch was computed")
+    reason: str | Omitted = key("why (not) computed", default=OMITTED)
     diagram: BifurcationDiagram | Omitted = key(default=OMITTED)
     secondary_pitchfork_B: float | None | Omitted = key(default=OMITTED)
     secondary_pitchfork_error: float | None | Omitted = key(default=OMITTED)
