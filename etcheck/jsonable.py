@@ -5,6 +5,7 @@ fields (:func:`to_json`, the one serializer of a check's results)."""
 from __future__ import annotations
 
 import math
+import sys
 import types
 import typing
 from dataclasses import MISSING, Field, field, fields, is_dataclass
@@ -12,13 +13,13 @@ from enum import Enum
 from functools import cache
 from typing import TypeVar
 
-import numpy as np
-
 T = TypeVar("T")
 
 
 def finite_or_none(a) -> list:
     """Nested lists of floats with None wherever ``a`` is not finite (same shape as ``a``)."""
+    import numpy as np
+
     a = np.asarray(a, dtype=float)
     return np.where(np.isfinite(a), a, None).tolist()
 
@@ -26,6 +27,8 @@ def finite_or_none(a) -> list:
 def jsonable(x):
     """``x`` as JSON-able data: arrays as (nested) lists, complex arrays as {"real", "imag"}, numpy scalars as
     Python numbers, non-finite floats as None; tuples, lists and dicts converted item by item."""
+    import numpy as np
+
     if isinstance(x, np.ndarray):
         if np.iscomplexobj(x):
             return {"real": jsonable(x.real), "imag": jsonable(x.imag)}
@@ -87,7 +90,8 @@ def to_json(x):
         return [to_json(v) for v in x]
     if isinstance(x, Enum):
         return x.value
-    if isinstance(x, (np.generic, np.ndarray)):
+    np = sys.modules.get("numpy")  # not loaded: no numpy value to convert (the records load without numpy)
+    if np is not None and isinstance(x, (np.generic, np.ndarray)):
         return x.tolist()
     return x
 
