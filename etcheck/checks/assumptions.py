@@ -73,9 +73,9 @@ def _ends(mission: Mission, others: tuple[AlternativeMargin, ...]) -> Assumption
     else:
         source, flag = "not given: welded, as in the paper", DEFAULT
     alt = others[0] if others else None
-    alternatives = "; ".join(f"{_short(a['ends'])}: {_value(a['value'])}" for a in others[1:])
+    alternatives = "; ".join(f"{_short(a.ends)}: {_value(a.value)}" for a in others[1:])
     return _record("ends", "end attachment", describe(ends), source, flag, alternatives, None, "",
-                   _short(alt["ends"]) if alt else None, alt["value"] if alt else None)
+                   _short(alt.ends) if alt else None, alt.value if alt else None)
 
 
 def _short(ends: list[str]) -> str:

@@ -72,8 +72,8 @@ def alternatives(mission: Mission, sc: Scene, scaled: Scaled, options: WhirlOpti
 
 
 def _record(alt: Alternative, margin: Margin) -> AlternativeMargin:
-    return {"ends": list(alt.ends), "described": describe(alt.ends), "critical": margin.critical,
-            "value": margin.value, "verdict": str(margin.verdict), "error": margin.error, "model": margin.model}
+    return AlternativeMargin(ends=tuple(alt.ends), described=describe(alt.ends), critical=margin.critical,
+                             value=margin.value, verdict=str(margin.verdict), error=margin.error, model=margin.model)
 
 
 def with_alternatives(margins: list[Margin], alts: tuple[Alternative, ...]) -> list[Margin]:

@@ -33,9 +33,9 @@ def flight(mission: Mission, verdict: str, margins: list[Margin], validity: Mode
 
 def _ends(mission: Mission, smallest: Margin | None) -> str:
     """The attachment as checked, and the smallest margin under the other attachments where they were computed."""
-    others = "; ".join(f"with both ends {a['ends'][0]} {a['value']:.3g}" for a in (smallest.alternatives if smallest
+    others = "; ".join(f"with both ends {a.ends[0]} {a.value:.3g}" for a in (smallest.alternatives if smallest
                                                                                        else ())
-                       if a["value"] is not None and a["ends"][0] == a["ends"][1])
+                       if a.value is not None and a.ends[0] == a.ends[1])
     return (f"the end attachment: the check holds the tether {describe(mission.end_conditions)}, on its axis"
             + (f" (the smallest margin {others})" if others else "") + "; a real end turns, slides or slackens")
 

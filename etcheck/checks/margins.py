@@ -2,17 +2,11 @@
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, replace
+from dataclasses import replace
 from enum import StrEnum
-from typing import cast
 
-from etcheck.checks.plan import PROFILES, Plan, route_model
-from etcheck.checks.sections import (
-    AlternativeMargin,
-    LinearSection,
-    MarginRecord,
-    StraightRodSection,
-)
+from etcheck.checks.plan import PROFILES, Plan
+from etcheck.checks.sections import LinearSection, Margin, StraightRodSection
 from etcheck.checks.sections_buckled import PostbucklingSection
 from etcheck.input.mission import Mission
 from etcheck.rod.core.ends import describe, is_welded
@@ -36,38 +30,6 @@ LOAD_AT_REST = "magnetic load |I B0|"
 LOAD_AT_SPIN = "magnetic load |I B0| at the operating spin and tension"
 SPIN = "spin rate at the operating load"
 BUCKLED = "buckled tether (b1): load to its secondary pitchfork"
-
-
-@dataclass(frozen=True)
-class Margin:
-    """One design margin: critical / operating, judged against the required margin.
-
-    ``critical`` and ``operating`` are in ``unit`` (SI); ``value`` is their
-    ratio (None when the operating value is zero: an unlimited margin, or when
-    the check is incomplete); ``error`` is the estimated relative numerical
-    error of ``value``; ``rung`` the model that answered; ``alternatives`` the
-    same margin under other attachments of the ends (:mod:`etcheck.checks.attachment`).
-    """
-
-    name: str
-    unit: str
-    critical: float | None
-    operating: float
-    value: float | None
-    required: float
-    verdict: str
-    rung: int
-    error: float | None
-    why: str
-    route: str = ""
-    alternatives: tuple[AlternativeMargin, ...] = ()
-
-    @property
-    def model(self) -> str:
-        return route_model(self.rung, self.route)
-
-    def as_dict(self) -> MarginRecord:
-        return cast(MarginRecord, asdict(self) | {"model": self.model, "alternatives": list(self.alternatives)})
 
 
 def ratio_margin(

@@ -10,9 +10,9 @@ import math
 import time
 from collections.abc import Callable
 from contextlib import nullcontext
-from dataclasses import asdict, dataclass, replace
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
-from typing import cast
+from typing import TypeVar
 
 from etcheck.checks.assumptions import assumptions
 from etcheck.checks.attachment import Alternative, alternatives, attachment_section, with_alternatives
@@ -46,23 +46,32 @@ from etcheck.checks.plan import (
     plan,
     varies_along,
 )
-from etcheck.checks.results import results_header
+from etcheck.checks.results import header_fields, results_header
 from etcheck.checks.sections import (
-    AssumptionsSection,
+    AccuracyRow,
+    AttachmentSection,
     CheckResults,
-    DesignLimitsSection,
+    FidelitySection,
     LinearSection,
+    OrbitSection,
+    PlanSection,
     ProfilesSection,
+    ResourcesSection,
     ScaledSection,
+    ScalesSection,
     SceneSection,
     SkippedPart,
     StraightRodSection,
+    UncertaintySection,
 )
 from etcheck.checks.sections_buckled import PostbucklingSection
+from etcheck.checks.sections_verdict import AssumptionsSection, DesignLimitsSection, FlightSection, ModelValidity
 from etcheck.checks.static_buckling import static_buckling, static_limits
 from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
 from etcheck.checks.validity import model_validity, validity
+from etcheck.input.echo import TensionProfile
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
+from etcheck.jsonable import OMITTED, from_json, to_json
 from etcheck.numerics import memory
 from etcheck.numerics.memory import OverBudget
 from etcheck.numerics.parallel import ahead
@@ -71,15 +80,17 @@ from etcheck.rod.straight.spectral import CriticalKind
 from etcheck.scaling import Scaled, Scene, scale
 
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1, OUTSIDE: 1}
+T = TypeVar("T")
 N_LOADS = 5
 
 
 @dataclass(frozen=True)
 class CheckResult:
-    """What a check produced: JSON-able ``results`` (typed section by section in
-    :mod:`etcheck.checks.sections`) and the CLI exit code."""
+    """What a check produced: its ``results`` as plain JSON data (the JSON form of
+    :class:`etcheck.checks.sections.CheckResults`, written once by :func:`etcheck.jsonable.to_json`) and the CLI
+    exit code."""
 
-    results: CheckResults
+    results: dict
 
     @property
     def verdict(self) -> str:
@@ -113,7 +124,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         chosen = replace(chosen, reason=f"{chosen.reason}; {DRAFT_BOUND}")
     fid = fidelity_of(mission.check.draft, mission.check.tolerance)
     rung0 = static_buckling(scaled)
-    static: StraightRodSection = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
+    static = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
     options = replace(options, N=mission.check.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=(), time_budget=None)
@@ -124,8 +135,8 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     def other_ends(damping: float | None = None) -> tuple[Alternative, ...]:
         return () if fid.draft else alternatives(mission, sc, scaled, options, damping)
 
-    linear, profiles, accuracy_rows, skipped, alts = _straight_answers(mission, scaled, chosen, options, deadline,
-                                                                       None if fid.draft else other_ends)
+    answers = _straight_answers(mission, scaled, chosen, options, deadline, None if fid.draft else other_ends)
+    linear, profiles, skipped, alts = answers.linear, answers.profiles, answers.skipped, answers.alternatives
     margins = straight_margins(mission, sc, scaled, chosen, static, linear,
                                profiles["damping"]["why"] if profiles else "")
     alts = other_ends() if alts is None else alts
@@ -147,54 +158,64 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     extras = Extras(skipped, deadline, options.time_budget)
     decides, limits = _what_decides(mission, sc, margins, chosen.complete and not fid.draft, options, extras,
                                     profiles)
-    margin_records = [m.as_dict() for m in margins]
-    results: CheckResults = {
-        **results_header(mission),
-        "scene": scene_section(sc),
-        "scaled": cast(ScaledSection, asdict(scaled.params)),
-        "scales": {
-            "length_m": scaled.scales.length,
-            "reference_frequency_rad_s": scaled.scales.frequency,
-            "force_N": scaled.scales.force,
-            "load_N_per_m": scaled.scales.load,
-        },
-        "plan": {"rung": chosen.rung, "model": chosen.model, "reason": chosen.reason, "complete": chosen.complete,
-                 "route": chosen.route},
-        "fidelity": fid.as_dict(),
-        "straight_rod": static,
-        "linear": linear,
-        "profiles": profiles,
-        "postbuckling": post,
-        "accuracy": accuracy_rows,
-        "margins": margin_records,
-        "verdict": verdict,
-        "attachment": attachment_section(scaled, alts),
-        "model_validity": scope,
-        "assumptions": decides,
-        "design_limits": limits,
-        "flight": flight(mission, verdict, margins, scope),
-        "validity": validity(mission, scaled, chosen, post),
-        "orbit": orbit_results(resolved, margins),  # None without an [orbit] table
-        "elapsed_s": time.perf_counter() - started,
-        "resources": {"memory_budget_bytes": memory.budget(), "time_budget_s": options.time_budget,
-                      "skipped": skipped, "margins_s": margins_s},
-    }
-    if study is not None:
-        results["uncertainty"] = study
-    return CheckResult(results=results)
+    sections = CheckResults(
+        **header_fields(results_header(mission)),
+        scene=scene_section(sc),
+        scaled=from_json(ScaledSection, asdict(scaled.params)),
+        scales=ScalesSection(length_m=scaled.scales.length, reference_frequency_rad_s=scaled.scales.frequency,
+                             force_N=scaled.scales.force, load_N_per_m=scaled.scales.load),
+        plan=PlanSection(rung=chosen.rung, model=chosen.model, reason=chosen.reason, complete=chosen.complete,
+                         route=chosen.route),
+        fidelity=from_json(FidelitySection, fid.as_dict()),
+        straight_rod=from_json(StraightRodSection, static),
+        linear=_record(LinearSection, answers.linear),
+        profiles=_record(ProfilesSection, answers.profiles),
+        postbuckling=_record(PostbucklingSection, post),
+        accuracy=None if answers.accuracy is None else tuple(from_json(AccuracyRow, r) for r in answers.accuracy),
+        margins=tuple(margins),
+        verdict=verdict,
+        attachment=from_json(AttachmentSection, attachment_section(scaled, alts)),
+        model_validity=from_json(ModelValidity, scope),
+        assumptions=_record(AssumptionsSection, decides),
+        design_limits=_record(DesignLimitsSection, limits),
+        flight=_record(FlightSection, flight(mission, verdict, margins, scope)),
+        validity=tuple(validity(mission, scaled, chosen, post)),
+        orbit=_record(OrbitSection, orbit_results(resolved, margins)),  # None without an [orbit] table
+        elapsed_s=time.perf_counter() - started,
+        resources=ResourcesSection(memory_budget_bytes=memory.budget(), time_budget_s=options.time_budget,
+                                   skipped=tuple(from_json(SkippedPart, p) for p in skipped), margins_s=margins_s),
+        uncertainty=OMITTED if study is None else from_json(UncertaintySection, study),
+    )
+    return CheckResult(results=to_json(sections))
+
+
+def _record(record: type[T], data: dict | None) -> T | None:
+    """The section ``record`` from a builder's JSON-able dict (None: not answered)."""
+    return None if data is None else from_json(record, data)
+
+
+@dataclass(frozen=True)
+class StraightAnswers:
+    """The straight tether's answers past rung 0 (:func:`_straight_answers`), as their builders write them:
+    rung 1's ``linear`` section, or rung 1v's ``linear`` and ``profiles`` (None each where the plan stops before
+    them), rung 1's ``accuracy`` table, the extras ``skipped`` for the time budget (the check adds to them), and
+    with profiles the margins under the other ``alternatives`` of the ends (None: not computed here)."""
+
+    linear: dict | None = None
+    profiles: dict | None = None
+    accuracy: list | None = None
+    skipped: list[dict] = field(default_factory=list)
+    alternatives: tuple[Alternative, ...] | None = None
 
 
 def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: WhirlOptions, deadline: float | None,
-                      other_ends: Callable[[float], tuple[Alternative, ...]] | None = None
-                      ) -> tuple[LinearSection | None, ProfilesSection | None, list | None, list[SkippedPart],
-                                 tuple[Alternative, ...] | None]:
+                      other_ends: Callable[[float], tuple[Alternative, ...]] | None = None) -> StraightAnswers:
     """The straight tether's answers past rung 0: rung 1v with profiles along the tether, else rung 1 and its
-    accuracy table (None each where the plan stops before them), the extras skipped for the time budget, and,
-    with profiles, ``other_ends(gamma)`` at the damping the verdict uses (computed beside rung 1v's parts; none
-    without ``other_ends``), else None (not computed here)."""
-    skipped: list[SkippedPart] = []
-    if not chosen.complete:
-        return None, None, None, skipped, None
+    accuracy table (:class:`StraightAnswers`); with profiles, ``other_ends(gamma)`` at the damping the verdict
+    uses (computed beside rung 1v's parts; none without ``other_ends``)."""
+    skipped: list[dict] = []
+    if not chosen.complete or (chosen.route != PROFILES and chosen.rung != 1):
+        return StraightAnswers(skipped=skipped)
     if chosen.route == PROFILES:
         # imported here on purpose: rung 1v (scipy.sparse) loads only for a mission with profiles
         from etcheck.checks.profiles import profile_stability, stability_map
@@ -205,9 +226,7 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         if not options.draft:  # the report's extra, within the sign-off's time budget
             linear["stability_map"] = Extras(skipped, deadline, options.time_budget)(
                 "stability map", lambda: stability_map(scaled, linear, profiles["damping"]["gamma"], tol))
-        return linear, profiles, None, skipped, () if alts is None else alts  # none in a draft
-    if chosen.rung != 1:
-        return None, None, None, skipped, None
+        return StraightAnswers(linear, profiles, None, skipped, () if alts is None else alts)  # none in a draft
 
     # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
     # nothing from the rest: where a core is free a helper computes it meanwhile
@@ -220,8 +239,8 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         later = ahead(table) if options.accuracy_beside else nullcontext(table)
     with later as accuracy_later:
         linear, skipped = linear_answers(scaled, options, chosen.route, deadline)
-        return (linear, None, Extras(skipped, deadline, options.time_budget)("accuracy table", accuracy_later), skipped,
-                None)
+        return StraightAnswers(linear, None, Extras(skipped, deadline, options.time_budget)("accuracy table",
+                                                                                            accuracy_later), skipped)
 
 
 def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bool, options: WhirlOptions,
@@ -248,9 +267,11 @@ def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bo
             extras("design limits", lambda: design_limits(mission, sc, options)))
 
 
-def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
-                  linear: LinearSection | None, profiles: ProfilesSection | None = None) -> PostbucklingSection | None:
-    """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load."""
+def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict | None,
+                  profiles: dict | None = None) -> dict | None:
+    """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load
+    (the JSON form of :class:`etcheck.checks.sections_buckled.PostbucklingSection`; the sections read here are
+    their builders' JSON forms)."""
     p = scaled.params
     if profiles is not None:
         crit = linear["critical_load"] if linear else None
@@ -293,22 +314,21 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection,
 def scene_section(sc: Scene) -> SceneSection:
     """The ``scene`` section of a check's results: the worst-case operating point in SI (the tension the minimum
     of a gravity-gradient profile, which is given beside it)."""
-    return {
-        "worst_current_A": sc.current,
-        "worst_field_T": sc.field.axial,
-        "length_m": sc.length,
-        "EI1_N_m2": sc.EI1,
-        "EI2_N_m2": sc.EI2,
-        "GJ_N_m2": sc.GJ,
-        "mass_per_length_kg_per_m": sc.mass_per_length,
-        "P": sc.P,
-        "load_N_per_m": sc.load,
-        "spin_rate_rad_s": sc.spin_rate,
-        "tension_N": sc.tension,
+    profile = sc.gravity_gradient
+    return SceneSection(
+        worst_current_A=sc.current,
+        worst_field_T=sc.field.axial,
+        length_m=sc.length,
+        EI1_N_m2=sc.EI1,
+        EI2_N_m2=sc.EI2,
+        GJ_N_m2=sc.GJ,
+        mass_per_length_kg_per_m=sc.mass_per_length,
+        P=sc.P,
+        load_N_per_m=sc.load,
+        spin_rate_rad_s=sc.spin_rate,
+        tension_N=sc.tension,
         # tether.end_masses: the gravity-gradient profile (N), which rung 1v uses; tension_N is its minimum (a bound)
-        "tension_profile": None if sc.gravity_gradient is None else sc.gravity_gradient.as_dict(),
-        "damping_time_s": sc.damping_time,
-        "f": sc.f,
-    }
-
-
+        tension_profile=None if profile is None else from_json(TensionProfile, profile.as_dict()),
+        damping_time_s=sc.damping_time,
+        f=sc.f,
+    )

@@ -35,13 +35,14 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from etcheck.checks.limit_state import Coordinate, LimitState, NotAnswered
 from etcheck.checks.margin_model import MarginModel
 from etcheck.checks.sampling import REPLICATES, SMALL_FORM, design_point, sample
+from etcheck.checks.sections import CrossCheck, Probability
 from etcheck.checks.sensitivity import MarginSensitivity
 from etcheck.input.uncertainty import Uncertainty
 from etcheck.numerics.quadrature import CAP, normal_integrals
@@ -63,49 +64,6 @@ SECONDS = 5.0
 #: Points per replicate for sampling a closed-form margin (32 x 2^15: ~1e6 points, about a second).
 CLOSED_POINTS = 2**15
 EXACT, QUADRATURE, SAMPLING, NOT_ANSWERED = "exact", "quadrature", "sampling", "not answered"
-
-
-@dataclass(frozen=True)
-class CrossCheck:
-    """FORM and SORM at the design point (asymptotic approximations, for comparison)."""
-
-    beta: float
-    form: float
-    sorm: float | None
-
-
-@dataclass(frozen=True)
-class Probability:
-    """P(margin < required) (dimensionless) and how good it is.
-
-    ``value``: the estimate (None when below FLOOR, then ``bound`` holds P < bound, or when not answered);
-    ``low``, ``high``: the 95 % interval (sampling) or value -+ the stated error (exact, quadrature);
-    ``error``: relative: the stated error bound (exact, quadrature) or the 95 % half-width (sampling);
-    ``method``: exact, quadrature, sampling or not answered; ``how``: what was done, in words;
-    ``evaluations``: margin evaluations by the check's route (closed-form ones counted too);
-    ``points``: points at which the conditional probability was evaluated (quadrature nodes or samples);
-    ``conditioned_on``: the input integrated exactly;
-    ``inputs``: the uncertain inputs that move the margin; ``inert``: those that provably do not.
-    """
-
-    margin: str
-    required: float
-    value: float | None
-    bound: float | None
-    low: float | None
-    high: float | None
-    error: float | None
-    method: str
-    how: str
-    evaluations: int
-    points: int
-    conditioned_on: str | None
-    inputs: tuple[str, ...]
-    inert: tuple[str, ...]
-    model: str
-    cross_check: CrossCheck | None = None
-    note: str = ""
-    elapsed_s: float = 0.0
 
 
 def failure_probability(model: MarginModel, kind: str, unc: Uncertainty, sens: MarginSensitivity | None = None,

@@ -19,11 +19,12 @@ from etcheck.checks.margin_model import LABELS, MarginModel, margin_model
 from etcheck.checks.margins import INCOMPLETE, Margin
 from etcheck.checks.plan import Plan
 from etcheck.checks.probability import BUDGET, NOT_ANSWERED, Probability, failure_probability
-from etcheck.checks.sections import MarginSensitivityRecord, ProbabilityRecord, UncertaintySection
+from etcheck.checks.sections import MarginSensitivityRecord, UncertaintySection
 from etcheck.checks.sensitivity import STEP, MarginSensitivity, sensitivities, swings
 from etcheck.checks.straight import DEFAULT_OPTIONS, WhirlOptions
 from etcheck.input.echo import UncertaintyInputs
 from etcheck.input.mission import Mission
+from etcheck.jsonable import jsonable, to_json
 from etcheck.numerics.blas import single_blas_thread
 from etcheck.scaling import Scaled, Scene
 
@@ -78,14 +79,9 @@ def _num(x) -> float | None:
     return None if x is None or not math.isfinite(x) else float(x)
 
 
-def _probability_record(p: Probability) -> ProbabilityRecord:
-    cross = None if p.cross_check is None else {"beta": _num(p.cross_check.beta), "form": _num(p.cross_check.form),
-                                                "sorm": _num(p.cross_check.sorm)}
-    return {"margin": p.margin, "required": p.required, "value": _num(p.value), "bound": _num(p.bound),
-            "low": _num(p.low), "high": _num(p.high), "error": _num(p.error), "method": p.method, "how": p.how,
-            "evaluations": p.evaluations, "points": p.points, "conditioned_on": p.conditioned_on,
-            "inputs": list(p.inputs), "inert": list(p.inert), "model": p.model, "cross_check": cross,
-            "note": p.note, "elapsed_s": p.elapsed_s}
+def _probability_record(p: Probability) -> dict:
+    """The probability as written to results.json (a number not finite as null)."""
+    return jsonable(to_json(p))
 
 
 @single_blas_thread

@@ -20,7 +20,7 @@ from etcheck.checks.orbit_field import resolve
 from etcheck.checks.results import results_header
 from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
-from etcheck.jsonable import finite_or_none
+from etcheck.jsonable import finite_or_none, to_json
 from etcheck.numerics.parallel import split_map
 from etcheck.rod.buckled import pitchforks
 from etcheck.rod.buckled.damping_map import HOPF_GAMMAS, DampingMap, damping_map
@@ -192,6 +192,6 @@ def damping_results(mission: Mission, gammas=HOPF_GAMMAS, B_max: float | None = 
     refuse_outside_limit(mission, at_rest.with_(omega=omega_max), f"the damping map up to spin {omega_max:g}",
                          "--spin-max")
     study = damping_study(scaled.params, scaled.scales, gammas, B_max, omega_max, n_B, n_omega, N)
-    return results_header(mission) | {"mission_gamma": scaled.params.gamma,
+    return to_json(results_header(mission)) | {"mission_gamma": scaled.params.gamma,
                                       "operating": {"B": scaled.params.B, "omega": scaled.params.omega},
                                       "study": study}

@@ -15,6 +15,7 @@ from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
 from etcheck.checks.results import results_header
 from etcheck.errors import MissionError
 from etcheck.input.mission import Mission
+from etcheck.jsonable import to_json
 from etcheck.rod.buckled import pitchforks
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.core.parameters import RodParameters
@@ -88,7 +89,7 @@ def diagram_study(mission: Mission, omega: float | None = None, R: float | None 
     d = bifurcation_diagram(params, scaled.scales, options)
     op = scaled.params
     here = "" if op.omega == params.omega else f"; the mission spins at ω = {op.omega:.3g}"
-    return results_header(mission) | {
+    return to_json(results_header(mission)) | {
         "spin_rpm": scaled.scales.rpm(params.omega),
         "R_override": R,
         "operating": {"B": op.B, "omega": op.omega, "IB0_N_per_m": scaled.scales.line_load(op.B),

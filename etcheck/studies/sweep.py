@@ -51,7 +51,7 @@ from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.gravity_gradient import circular_rate
 from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
-from etcheck.jsonable import finite_or_none
+from etcheck.jsonable import finite_or_none, to_json
 from etcheck.numerics.blas import one_blas_thread
 from etcheck.numerics.lifetime import die_with_parent, stop_words
 from etcheck.numerics.optimize import brentq
@@ -405,7 +405,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
     solved = [r for k, r in results.items() if k in queued]
     cpu = sum(r.time_s or 0.0 for r in solved)
     return {
-        **results_header(mission, SWEEP_SCHEMA),
+        **to_json(results_header(mission, SWEEP_SCHEMA)),
         "axes": [a.as_dict() for a in axes],
         "tolerance": options.tol,
         "buckled_assessed": options.buckled,

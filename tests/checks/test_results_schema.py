@@ -1,11 +1,11 @@
 """docs/results.schema.json (issue 12): the documented layout of a check's results.json.
 
-The schema and the TypedDicts of etcheck/checks/sections*.py describe the same
-records (with the echo of the inputs in etcheck/input/echo.py): same keys, same
-required keys, compatible value types, and every object of the schema has its type. Fresh results (draft and sign-off of the SET mission, the static SET mission, the
-tensioned and orbit missions, an [uncertainty] study) validate as written (strict
-JSON, no NaN); the schema rejects a bad verdict, a mistyped number and a stale
-schema version, and its enums are the code's.
+The schema is made from the records of the results (etcheck/checks/sections*.py, etcheck/input/echo.py) by
+etcheck.checks.results_schema: the committed file is that one (regenerate it with
+``python -m etcheck.checks.results_schema`` after changing a record). Fresh results (draft and sign-off of the
+SET mission, the static SET mission, the tensioned and orbit missions, an [uncertainty] study) validate as
+written (strict JSON, no NaN); the schema rejects a bad verdict, a mistyped number and a stale schema version,
+and its enums are the code's.
 """
 
 from __future__ import annotations
@@ -14,8 +14,6 @@ import copy
 import json
 import math
 import tomllib
-import types
-import typing
 from pathlib import Path
 
 import jsonschema
@@ -24,13 +22,12 @@ import pytest
 from etcheck.checks import fidelity as fidelity_module
 from etcheck.checks import margins as margins_module
 from etcheck.checks import plan as plan_module
-from etcheck.checks import sections as S
-from etcheck.checks import sections_buckled as B
-from etcheck.checks import sections_verdict as V
 from etcheck.checks.pipeline import check
 from etcheck.checks.results import SCHEMA_VERSION
-from etcheck.input import echo as E
+from etcheck.checks.results_schema import SCHEMA_PATH, results_schema, schema_text
+from etcheck.checks.sections import CheckResults
 from etcheck.input.mission import load_mission, mission_from_dict
+from etcheck.jsonable import from_json, to_json
 from etcheck.report import render
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -39,163 +36,40 @@ VALIDATOR = jsonschema.Draft202012Validator(SCHEMA, format_checker=jsonschema.Dr
 MISSIONS = ROOT / "missions"
 
 
-#: schema location (dotted keys, [] for the items of an array) -> the TypedDict of the object there
-SECTIONS = {
-    "": S.CheckResults,
-    "mission": E.MissionEcho,
-    "mission.tether": E.TetherEcho,
-    "mission.operation": E.OperationEcho,
-    "mission.operation.gravity_gradient": E.TensionProfile,
-    "mission.operation.current_profile": E.CurrentProfileEcho,
-    "mission.operation.current_profile.collection": E.CollectionEcho,
-    "mission.check": E.CheckEcho,
-    "mission.orbit": E.OrbitEcho,
-    "mission.flight": E.FlightEcho,
-    "scene": S.SceneSection,
-    "scene.tension_profile": E.TensionProfile,
-    "scaled": S.ScaledSection,
-    "scales": S.ScalesSection,
-    "plan": S.PlanSection,
-    "fidelity": S.FidelitySection,
-    "straight_rod": S.StraightRodSection,
-    "straight_rod.critical_loads[]": S.StaticCriticalLoad,
-    "straight_rod.first_mode": S.ModeShape,
-    "straight_rod.chi_curve": S.ChiCurve,
-    "straight_rod.natural_frequencies": S.NaturalFrequencies,
-    "straight_rod.natural_frequencies.bending_weak[]": S.NaturalFrequency,
-    "straight_rod.natural_frequencies.bending_stiff[]": S.NaturalFrequency,
-    "straight_rod.natural_frequencies.torsion[]": S.NaturalFrequency,
-    "straight_rod.limits": S.StaticLimits,
-    "linear": S.LinearSection,
-    "linear.operating_spectrum": S.OperatingSpectrum,
-    "linear.operating_spectrum.modes[]": S.Mode,
-    "linear.critical_load": S.CriticalLoad,
-    "linear.critical_spin": S.CriticalSpin,
-    "linear.spin_windows[]": S.SpinWindow,
-    "linear.operating": S.OperatingPoint,
-    "linear.campbell": S.Campbell,
-    "linear.stability_map": S.StabilityMap,
-    "linear.stability_map.stable_rows[]": S.StableRow,
-    "linear.stability_map.static_points": S.StaticPoints,
-    "profiles": S.ProfilesSection,
-    "profiles.current": S.ProfileCurrent,
-    "profiles.tension": S.ProfileTension,
-    "profiles.damping": S.DampingSection,
-    "profiles.damping.map[]": S.DampingPoint,
-    "profiles.undamped": S.CriticalLoad,
-    "profiles.uniform_tension_bound": S.CriticalLoad,
-    "profiles.mode": S.ProfileMode,
-    "accuracy[]": S.AccuracyRow,
-    "postbuckling": B.PostbucklingSection,
-    "postbuckling.diagram": B.BifurcationDiagram,
-    "postbuckling.diagram.params": B.DiagramParameters,
-    "postbuckling.diagram.branches[]": B.BranchRecord,
-    "postbuckling.diagram.branches[].special[]": B.SpecialPoint,
-    "postbuckling.diagram.lifted_off[]": B.LiftedOff,
-    "postbuckling.operating": B.BuckledOperatingPoint,
-    "postbuckling.operating.damping_sensitivity[]": B.DampingSensitivity,
-    "postbuckling.operating.shape": B.Shape,
-    "postbuckling.operating.least_damped": B.LeastDamped,
-    "postbuckling.region": B.CoilRegion,
-    "postbuckling.region.rows[]": B.RegionRow,
-    "postbuckling.region.pitchfork_curve": B.RegionCurve,
-    "postbuckling.region.secondary_curve": B.SecondaryCurve,
-    "margins[]": S.MarginRecord,
-    "margins[].alternatives[]": S.AlternativeMargin,
-    "attachment": S.AttachmentSection,
-    "attachment.alternatives[]": S.AttachmentAlternative,
-    "resources": S.ResourcesSection,
-    "resources.skipped[]": S.SkippedPart,
-    "model_validity": V.ModelValidity,
-    "model_validity.checks[]": V.ValidityCheck,
-    "model_validity.lateral": V.LateralLoad,
-    "assumptions": V.AssumptionsSection,
-    "assumptions.rows[]": V.AssumptionRecord,
-    "design_limits": V.DesignLimitsSection,
-    "design_limits.limits[]": V.DesignLimit,
-    "flight": V.FlightSection,
-    "orbit": S.OrbitSection,
-    "orbit.sampling": S.OrbitSampling,
-    "orbit.worst": S.OrbitWorst,
-    "orbit.percentiles": S.OrbitPercentiles,
-    "orbit.histogram": S.OrbitHistogram,
-    "orbit.margin": S.OrbitMargin,
-    "orbit.first_orbit": S.OrbitSeries,
-    "orbit.series": S.OrbitSeries,
-    "uncertainty": S.UncertaintySection,
-    "uncertainty.inputs": E.UncertaintyInputs,
-    "uncertainty.inputs.inputs[]": E.DistributionRecord,
-    "uncertainty.margins[]": S.MarginSensitivityRecord,
-    "uncertainty.margins[].elasticities[]": S.ElasticityRecord,
-    "uncertainty.margins[].swings[]": S.SwingRecord,
-    "uncertainty.probabilities[]": S.ProbabilityRecord,
-    "uncertainty.probabilities[].cross_check": S.CrossCheckRecord,
-}
+def test_the_committed_schema_is_the_one_the_records_make():
+    """A record changed without regenerating the schema (or the schema edited by hand) fails here."""
+    assert SCHEMA_PATH == ROOT / "docs" / "results.schema.json"
+    assert SCHEMA_PATH.read_text(encoding="utf-8") == schema_text(), (
+        "docs/results.schema.json is not the schema of the records: run python -m etcheck.checks.results_schema")
 
 
-def branch(node: dict, key: str) -> dict:
-    """The branch of a nullable node (``oneOf``/``anyOf`` with null) that holds ``key``."""
-    return next((b for b in node.get("oneOf", []) + node.get("anyOf", []) if key in b), node)
+def test_every_object_of_the_schema_lists_its_keys():
+    """Each record of the results is an object that allows no other keys and requires only its own."""
+
+    def objects(node: dict):
+        if "properties" in node:
+            yield node
+        for sub in list(node.get("properties", {}).values()) + node.get("oneOf", []) + node.get("anyOf", []):
+            yield from objects(sub)
+        for key in ("items", "additionalProperties"):
+            if isinstance(node.get(key), dict):
+                yield from objects(node[key])
+
+    found = list(objects(results_schema()))
+    assert len(found) >= 90  # the 89 locations of the records and the shapes of a branch
+    assert all(node["additionalProperties"] is False and set(node["required"]) <= set(node["properties"])
+               for node in found)
 
 
-def locate(path: str) -> dict:
-    node = SCHEMA
-    for part in filter(None, path.split(".")):
-        node = branch(node, "properties")["properties"][part.removesuffix("[]")]
-        if part.endswith("[]"):
-            node = branch(node, "items")["items"]
-    return branch(node, "properties")
+def test_results_are_their_records_round_trip(set_sign_off):
+    """The JSON of a check read back into its records and written again is the same JSON, key order included."""
+    again = to_json(from_json(CheckResults, set_sign_off))
+    assert json.dumps(again) == json.dumps(set_sign_off)
 
 
-def schema_objects(node: dict, path: str = "") -> set[str]:
-    """Locations of every object with properties in the schema."""
-    found = {path} if "properties" in node else set()
-    for key, sub in node.get("properties", {}).items():
-        found |= schema_objects(sub, f"{path}.{key}" if path else key)
-    for branch in node.get("oneOf", []) + node.get("anyOf", []):
-        found |= schema_objects(branch, path)
-    if "items" in node:
-        found |= schema_objects(node["items"], path + "[]")
-    return found
-
-
-def annotation_types(annotation) -> set[str]:
-    """JSON types a value of this annotation may take (a float may be written as an integer)."""
-    origin = typing.get_origin(annotation)
-    if origin in (typing.Union, types.UnionType):
-        return set().union(*(annotation_types(a) for a in typing.get_args(annotation)))
-    if origin is list:
-        return {"array"}
-    if origin is dict or typing.is_typeddict(annotation):
-        return {"object"}
-    return {float: {"number", "integer"}, int: {"integer"}, bool: {"boolean"}, str: {"string"},
-            type(None): {"null"}}[annotation]
-
-
-def schema_types(node: dict) -> set[str]:
-    """JSON types a schema node admits (type, enum or const, and the branches of oneOf/anyOf)."""
-    if "type" in node:
-        return {node["type"]} if isinstance(node["type"], str) else set(node["type"])
-    values = node.get("enum", [node["const"]] if "const" in node else None)
-    if values is not None:
-        names = {str: "string", int: "integer", float: "number", bool: "boolean", type(None): "null"}
-        return {names[type(v)] for v in values}
-    return set().union(*(schema_types(b) for b in node.get("oneOf", []) + node.get("anyOf", [])))
-
-
-def test_every_object_of_the_schema_has_its_type():
-    assert schema_objects(SCHEMA) == set(SECTIONS)
-
-
-@pytest.mark.parametrize("path", list(SECTIONS), ids=lambda p: p or "results")
-def test_type_and_schema_list_the_same_keys(path):
-    node, typed = locate(path), SECTIONS[path]
-    hints = typing.get_type_hints(typed)
-    assert set(node["properties"]) == set(hints)
-    assert set(node["required"]) == set(typed.__required_keys__)
-    assert node["additionalProperties"] is False
-    for key, annotation in hints.items():
-        assert schema_types(node["properties"][key]) <= annotation_types(annotation), key
+def test_a_key_a_record_lacks_is_refused():
+    with pytest.raises(KeyError, match="extra"):
+        from_json(CheckResults, {"extra": 1})
 
 
 def as_written(results: dict) -> dict:

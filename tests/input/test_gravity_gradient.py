@@ -146,7 +146,7 @@ def test_shipped_missions_carry_gravity_gradient_tension(name, at, lo, hi):
     assert g is not None and g.minimum_at == at and lo < m.end_tension.to_value("N") == g.minimum < hi
     assert g.maximum > g.minimum
     sd = scene_section(scene(m))
-    assert sd["tension_N"] == g.minimum and sd["tension_profile"]["minimum_N"] == g.minimum
+    assert sd.tension_N == g.minimum and sd.tension_profile.minimum_N == g.minimum
 
 
 def test_tape_tether_mission_takes_its_rate_from_the_orbit():

@@ -35,9 +35,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar
 
-import numpy as np
+if TYPE_CHECKING:  # numpy loads with the first rows asked for: `etcheck --help` reads the kinds without it
+    import numpy as np
 
 __all__ = [
     "BUCKLED_WELDED_ONLY",
@@ -110,6 +111,8 @@ class EndCondition:
         j = d_j; ``m0`` (3,): the base contact moment there (needed only where :attr:`free_moments`). Row j of
         each free moment is replaced by no perturbed moment about d_j, (m + M0 x a) . d_j = m . d_j +
         a . (d_j x M0) = 0."""
+        import numpy as np
+
         rows = np.zeros((3, 6))
         rows[:, :3] = rotation
         for j in self.free_moments:
@@ -119,10 +122,14 @@ class EndCondition:
 
     def real_rows(self) -> np.ndarray:
         """Rows of the real scaled state (u, u'/ku, u''/ku^2, u'''/ku^3, v, ..) held at this end."""
+        import numpy as np
+
         return np.array([0, self.bending_order, 4, 4 + self.bending_order])
 
     def complex_rows(self) -> np.ndarray:
         """Rows of the complex scaled state (w, w'/kap, ..) held at this end."""
+        import numpy as np
+
         return np.array([0, self.bending_order])
 
     def real_values(self, u: np.ndarray, v: np.ndarray, k: np.ndarray, ku: np.ndarray, kv: np.ndarray) -> np.ndarray:
@@ -161,9 +168,13 @@ class Welded(EndCondition):
     holds_twist: ClassVar[bool] = True
 
     def real_values(self, u, v, k, ku, kv):
+        import numpy as np
+
         return np.stack([u, u * k / ku[:, None], v, v * k / kv[:, None]], axis=1)
 
     def complex_values(self, ms):
+        import numpy as np
+
         return np.stack([np.ones_like(ms), ms], axis=1)
 
 
@@ -180,9 +191,13 @@ class Pinned(EndCondition):
     holds_twist: ClassVar[bool] = True
 
     def real_values(self, u, v, k, ku, kv):
+        import numpy as np
+
         return np.stack([u, u * (k / ku[:, None]) ** 2, v, v * (k / kv[:, None]) ** 2], axis=1)
 
     def complex_values(self, ms):
+        import numpy as np
+
         return np.stack([np.ones_like(ms), ms**2], axis=1)
 
 
