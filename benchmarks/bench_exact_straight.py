@@ -21,7 +21,7 @@ import mpmath as mp
 from threadpoolctl import threadpool_limits
 
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
-from etcheck.rod.straight.exact import exact_critical, string_limit_load
+from etcheck.rod.straight.exact.roots import exact_critical, string_limit_load
 
 
 def tape(L: float, tension: float, IB0: float = 30e-6, EI1: float = 3.65, EI2: float = 9.3e-6,

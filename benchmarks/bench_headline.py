@@ -40,10 +40,10 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 from etcheck.checks.pipeline import check  # noqa: E402
 from etcheck.input.mission import load_mission  # noqa: E402
-from etcheck.numerics.heap import keep_freed_memory  # noqa: E402
+from etcheck.runtime.heap import keep_freed_memory  # noqa: E402
 from etcheck.scaling import scale, scene  # noqa: E402
 
-keep_freed_memory()  # as the CLI's process (etcheck.numerics.heap): the rows measure what a user of the CLI gets
+keep_freed_memory()  # as the CLI's process (etcheck.runtime.heap): the rows measure what a user of the CLI gets
 
 ROOT = Path(__file__).resolve().parents[1]
 SET = ROOT / "missions" / "set.toml"
@@ -168,7 +168,7 @@ def _damping_error(d: dict) -> float | None:
 DRAFT = """
 import json, time
 from dataclasses import replace
-from etcheck.numerics.heap import keep_freed_memory
+from etcheck.runtime.heap import keep_freed_memory
 keep_freed_memory()
 from etcheck.checks.pipeline import check
 from etcheck.input.mission import load_mission
@@ -194,7 +194,7 @@ def _draft_check():
 
 def _damped_root(axis: str):
     def measure():
-        from etcheck.rod.straight.damped_critical import first_root
+        from etcheck.rod.straight.collocation.damped_critical import first_root
 
         wall, root = _best_cold(lambda p: first_root(p, axis, 1e-8), _operating_point())
         return wall, root.error, f"{axis} = {root.value:.12g}, N = {root.N}"
@@ -203,7 +203,7 @@ def _damped_root(axis: str):
 
 def _undamped_windows():
     try:
-        from etcheck.rod.straight.undamped import undamped_critical
+        from etcheck.rod.straight.exact.undamped import undamped_critical
     except ImportError as exc:
         raise NotImplementedError(str(exc)) from None
     wall, c = _best_cold(lambda p: undamped_critical(p, 1e-8, windows=True), _operating_point().with_(gamma=0.0))
@@ -245,7 +245,7 @@ def _pitchfork_curve():
 SWEEP = """
 import json, sys, time
 from dataclasses import replace
-from etcheck.numerics.heap import keep_freed_memory
+from etcheck.runtime.heap import keep_freed_memory
 keep_freed_memory()
 import astropy.units as u
 from etcheck.input.mission import load_mission

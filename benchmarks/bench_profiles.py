@@ -31,9 +31,9 @@ from threadpoolctl import threadpool_limits
 
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
-from etcheck.rod.straight.circulatory import critical, forget
-from etcheck.rod.straight.exact import exact_critical
-from etcheck.rod.straight.profiles import Tether, mesh
+from etcheck.rod.straight.exact.roots import exact_critical
+from etcheck.rod.straight.varying.circulatory import critical, forget
+from etcheck.rod.straight.varying.profiles import Tether, mesh
 
 ROOT = Path(__file__).resolve().parents[1]
 TAPE = RodParameters(P=2.0857142857142857e-10, R=2.556164383561644e-06, Gamma=7.671213267830194e-06,
@@ -71,7 +71,7 @@ def part1() -> None:
         print()
 
 
-#: The parts of rung 1v's check timed in part 2 (functions of etcheck.checks.profiles, as this process sees them:
+#: The parts of rung 1v's check timed in part 2 (functions of etcheck.checks.rungs.profiles, as this process sees them:
 #: work on the other core is not seen apart): the whole of rung 1v, its damping policy, the verdict's mode and the
 #: stability map (a sign-off's extra); the rest of rung 1v is the work shared between the cores at the verdict's
 #: damping.
@@ -80,8 +80,8 @@ RUNS = 3
 
 
 def _timed_parts() -> dict[str, float]:
-    """Wrap the parts of etcheck.checks.profiles so that each call adds its time to the returned dict."""
-    import etcheck.checks.profiles as checks_profiles
+    """Wrap the parts of etcheck.checks.rungs.profiles so that each call adds its time to the returned dict."""
+    import etcheck.checks.rungs.profiles as checks_profiles
 
     spent: dict[str, float] = {}
     for name in PARTS:
@@ -143,7 +143,7 @@ def part2(quick: bool) -> None:
 
 
 if __name__ == "__main__":
-    from etcheck.numerics.parallel import serial
+    from etcheck.runtime.parallel import serial
 
     with threadpool_limits(limits=1), serial("--serial" in sys.argv):  # --serial: one core, every part in turn
         if "--checks" not in sys.argv:

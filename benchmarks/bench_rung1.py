@@ -6,7 +6,7 @@ of 3 after a warm-up (operator families and LUs are memoised per process, as in
 the check). For each part of the signed-off check:
 
 * static curves: the load roots on 61 spin rows and the spin roots at 60 loads
-  from one LU per family (:mod:`etcheck.rod.straight.static_map`) against the reduced QZ
+  from one LU per family (:mod:`etcheck.rod.straight.collocation.static_map`) against the reduced QZ
   pencil of every row and load; error: largest relative distance of the rows'
   first roots to those at N = 48;
 * damped rows: classified by crossing directions (no eigenvalue solve);
@@ -30,12 +30,12 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 import numpy as np  # noqa: E402
 from threadpoolctl import threadpool_limits  # noqa: E402
 
-from etcheck.checks.straight import linear_stability  # noqa: E402
+from etcheck.checks.rungs.straight import linear_stability  # noqa: E402
 from etcheck.input.mission import load_mission  # noqa: E402
 from etcheck.rod.core.spectrum import check_resolution, spectrum  # noqa: E402
-from etcheck.rod.straight.convergence import accuracy_table  # noqa: E402
-from etcheck.rod.straight.spectral import campbell, straight_family  # noqa: E402
-from etcheck.rod.straight.static_map import stable_rows, static_curves  # noqa: E402
+from etcheck.rod.straight.collocation.convergence import accuracy_table  # noqa: E402
+from etcheck.rod.straight.collocation.spectral import campbell, straight_family  # noqa: E402
+from etcheck.rod.straight.collocation.static_map import stable_rows, static_curves  # noqa: E402
 from etcheck.scaling import scale, scene  # noqa: E402
 
 ROWS, LOADS, SPINS = 61, 60, 41

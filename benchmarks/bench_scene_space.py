@@ -254,8 +254,8 @@ def routes(Ns: list[int]) -> None:
 
     from etcheck.rod.core.parameters import RodParameters
     from etcheck.rod.core.spectrum import lowest_eigenvalues, solve_bytes
-    from etcheck.rod.straight.exact import exact_critical
-    from etcheck.rod.straight.spectral import StraightFamily, family_bytes
+    from etcheck.rod.straight.collocation.spectral import StraightFamily, family_bytes
+    from etcheck.rod.straight.exact.roots import exact_critical
 
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, B=0.3, omega=0.25, T=0.0, gamma=0.04375)
 

@@ -19,7 +19,7 @@ from threadpoolctl import threadpool_limits
 from etcheck.input.mission import load_mission
 from etcheck.input.sweep_axes import parse_option
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.damped_critical import LADDER, _first_root, first_root
+from etcheck.rod.straight.collocation.damped_critical import LADDER, _first_root, first_root
 from etcheck.studies.sweep import SweepOptions, solve_point, sweep
 
 SET = RodParameters(P=1e-3, R=21 / 38, Gamma=0.76923, f=500.5639, gamma=0.04375)

@@ -26,7 +26,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from etcheck.checks.pipeline import check
-from etcheck.checks.straight import DEFAULT_OPTIONS
+from etcheck.checks.rungs.straight import DEFAULT_OPTIONS
 from etcheck.input.mission import mission_from_dict
 
 MISSIONS = Path(__file__).resolve().parents[1] / "missions"

@@ -2,9 +2,9 @@
 
 For each scene: the critical load at the operating spin, the critical spin
 at the operating load and the stable spin windows from
-:func:`etcheck.rod.straight.undamped.undamped_critical` (rung 1u), their
+:func:`etcheck.rod.straight.exact.undamped.undamped_critical` (rung 1u), their
 time, and the largest difference from the spectral scans of
-:mod:`etcheck.rod.straight.spectral` (``critical_load``, ``scan_line`` over the
+:mod:`etcheck.rod.straight.collocation.spectral` (``critical_load``, ``scan_line`` over the
 same spin range, bisected to 1e-10; their own error estimates are printed
 with them). One core (BLAS pinned); timings on a shared machine are noisy.
 
@@ -25,8 +25,8 @@ from pathlib import Path
 from threadpoolctl import threadpool_limits
 
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.spectral import critical_load, scan_line
-from etcheck.rod.straight.undamped import undamped_critical
+from etcheck.rod.straight.collocation.spectral import critical_load, scan_line
+from etcheck.rod.straight.exact.undamped import undamped_critical
 
 SET = dict(P=1e-3, R=21 / 38, Gamma=0.76923)
 

@@ -10,7 +10,7 @@ Public API::
 
 __version__ = "0.1.0"
 
-from .numpy_clone import install as _install_import_hook
+from .runtime.numpy_clone import install as _install_import_hook
 
 _install_import_hook()  # scipy's clone of numpy skips numpy's developer tools (~0.15 s of every cold start)
 

@@ -1,5 +1,5 @@
 """Numbers, arrays and typed records as JSON: a missing (NaN) or unbounded (inf) entry of an array becomes None,
-never NaN in a report; a record (a frozen dataclass of :mod:`etcheck.checks.sections`) becomes a dict of its
+never NaN in a report; a record (a frozen dataclass of :mod:`etcheck.checks.results.sections`) becomes a dict of its
 fields (:func:`to_json`, the one serializer of a check's results)."""
 
 from __future__ import annotations
@@ -66,7 +66,7 @@ def key(description: str = "", *, default=MISSING, init: bool = True, name: str 
     ``description`` and JSON Schema keywords (``minimum``, ``maxItems``, ...); ``name``: its JSON key where that
     is not a Python name; ``nullable``: how an ``X | None`` field that is not a plain number, string or bool
     admits null ("oneOf" or "anyOf" with a null branch, or "type" for a list of types)
-    (:mod:`etcheck.checks.results_schema`); ``default``, ``init``: as :func:`dataclasses.field`'s."""
+    (:mod:`etcheck.checks.results.schema`); ``default``, ``init``: as :func:`dataclasses.field`'s."""
     info = ({"description": description} if description else {}) | schema
     metadata = {"schema": info, "nullable": nullable} | ({"name": name} if name else {})
     return field(default=default, init=init, metadata=metadata)

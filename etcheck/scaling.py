@@ -29,7 +29,7 @@ from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
 
 if TYPE_CHECKING:  # rung 1v (scipy.sparse) is imported only for a mission with profiles
-    from etcheck.rod.straight.profiles import Tether
+    from etcheck.rod.straight.varying.profiles import Tether
 
 #: rad/s -> revolutions per minute
 RPM = 60.0 / (2.0 * math.pi)
@@ -255,7 +255,7 @@ def _tether(s: Scene, params: RodParameters, scales: Scales) -> Tether | None:
     """The problem with its profiles (T the largest tension, tau = T(s) / T_max), None without any."""
     if not s.profiles:
         return None
-    from etcheck.rod.straight.profiles import Tether
+    from etcheck.rod.straight.varying.profiles import Tether
 
     current = s.current_profile or Profile.uniform()
     gg = s.gravity_gradient

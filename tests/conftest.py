@@ -18,19 +18,19 @@ def pytest_configure(config):
 
 
 def pytest_sessionstart(session):
-    """Every test process reuses freed matrices as the CLI's does (etcheck.numerics.heap): the same numbers, sooner.
+    """Every test process reuses freed matrices as the CLI's does (etcheck.runtime.heap): the same numbers, sooner.
 
     The xdist workers are a pool that keeps every core busy: like a sweep's workers they fork no helpers
-    (etcheck.numerics.parallel.serial_here; the results are the same bytes either way). A helper forked from a
+    (etcheck.runtime.parallel.serial_here; the results are the same bytes either way). A helper forked from a
     worker of several hundred MB only oversubscribed the cores and copied pages: the suite took 176 s with
     them, 155 s without (measured back to back, fresh clone). The helpers are tested where they are the subject:
     tests/numerics/test_parallel.py and the comparisons that switch them on (the fixture ``forks_allowed``, or
     ``with parallel.serial(False)``)."""
-    from etcheck.numerics.heap import keep_freed_memory
+    from etcheck.runtime.heap import keep_freed_memory
 
     keep_freed_memory()
     if hasattr(session.config, "workerinput"):
-        from etcheck.numerics.parallel import serial_here
+        from etcheck.runtime.parallel import serial_here
 
         serial_here()
 
@@ -38,7 +38,7 @@ def pytest_sessionstart(session):
 @pytest.fixture
 def forks_allowed():
     """Forked helpers allowed in this test whatever the test process says (the suite's workers fork none)."""
-    from etcheck.numerics.parallel import serial
+    from etcheck.runtime.parallel import serial
 
     with serial(False):
         yield

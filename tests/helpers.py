@@ -89,9 +89,9 @@ def collocation_growth(p, N: int = 24) -> float:
     import numpy as np
     import scipy.linalg as sl
 
-    from etcheck.numerics.blas import one_blas_thread
     from etcheck.rod.core.base_state import straight
     from etcheck.rod.core.linear import linear_operator
+    from etcheck.runtime.blas import one_blas_thread
 
     A0, A1, A2 = (np.asarray(a.todense()) if hasattr(a, "todense") else np.asarray(a)
                   for a in linear_operator(p, straight(p), N))

@@ -193,7 +193,7 @@ def test_a_planted_layer_violation_is_found(tmp_path, planted):
 def test_relative_imports_resolve():
     """``from .. import x`` and ``from ..numerics.blas import y`` resolve to the modules they name."""
     graph = _import_graph()
-    assert "etcheck.numerics.blas" in graph["etcheck.numerics.eigen"]
+    assert "etcheck.runtime.blas" in graph["etcheck.numerics.eigen"]
 
 
 def _private(name: str) -> bool:
@@ -276,9 +276,9 @@ def test_tests_use_only_public_names():
 
 
 @pytest.mark.parametrize("planted, found", [
-    ("from etcheck.checks.straight import _critical\n", "import _critical"),
+    ("from etcheck.checks.rungs.straight import _critical\n", "import _critical"),
     ("from etcheck import numpy_clone as hook\nhook._HOOK\n", "hook._HOOK"),
-    ("import etcheck.numerics.parallel as par\ndef test_x(monkeypatch):\n"
+    ("import etcheck.runtime.parallel as par\ndef test_x(monkeypatch):\n"
      "    monkeypatch.setattr(par, '_SERIAL', False)\n", "setattr(par, '_SERIAL')"),
     ("from test_scene_space import assert_well_formed\n", "another test module"),
 ])
@@ -294,7 +294,7 @@ def test_a_planted_private_import_is_found(tmp_path):
 
     shutil.copytree(PACKAGE, tmp_path / "etcheck", ignore=shutil.ignore_patterns("__pycache__"))
     target = tmp_path / "etcheck" / "checks" / "plan.py"
-    target.write_text(target.read_text() + "\nfrom etcheck.rod.straight.spectral import _family_cached\n")
+    target.write_text(target.read_text() + "\nfrom etcheck.rod.straight.collocation.spectral import _family_cached\n")
     assert any("_family_cached" in b for b in _private_imports(tmp_path))
 
 

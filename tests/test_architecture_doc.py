@@ -1,5 +1,5 @@
 """Every module, function and file that docs/architecture.md names exists: a dotted name
-(``etcheck.checks.plan.plan``, ``etcheck.checks.sections.Margin.as_dict``) resolves to a module
+(``etcheck.checks.plan.plan``, ``etcheck.checks.results.sections.Margin.as_dict``) resolves to a module
 of the package and a name defined at its top level (then in its class), a path
 (``etcheck/checks/plan.py``, ``etcheck/report/templates/``) is a file or folder of the
 repository. Read from the source (nothing is imported)."""
@@ -89,10 +89,10 @@ def test_every_package_has_a_paragraph():
 def test_a_wrong_name_is_found():
     """The checker fails on a module, a function, a method and a file that do not exist."""
     assert missing_name("etcheck.checks.plan.plan") is None
-    assert missing_name("etcheck.checks.sections.Margin.as_dict") is None
+    assert missing_name("etcheck.checks.results.sections.Margin.as_dict") is None
     assert missing_name("etcheck.checks.plann.plan")  # a module misspelt: resolves to the package, which lacks it
     assert missing_name("etcheck.checks.plan.plan_route")
-    assert missing_name("etcheck.checks.margins.Margin.as_json")
+    assert missing_name("etcheck.checks.margins.margin.Margin.as_json")
     assert missing_name("etcheck.checks.plan.plan.route")  # a function has no attributes to name
     names, paths = quoted("`etcheck.checks.plan.plan` and `etcheck/checks/plan.py` but not `plan`")
     assert names == ["etcheck.checks.plan.plan"] and paths == ["etcheck/checks/plan.py"]

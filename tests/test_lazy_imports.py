@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from etcheck.numerics.blas import BLAS_THREAD_VARIABLES
+from etcheck.runtime.blas import BLAS_THREAD_VARIABLES
 
 ROOT = Path(__file__).resolve().parents[1]
 #: never needed to check a mission without [orbit] and write its results.json
@@ -26,9 +26,9 @@ import json, sys
 from etcheck.cli.main import main
 at_start = sorted(m for m in ("numpy", "scipy", "astropy") if m in sys.modules)
 code = main(["missions/set.toml", "--draft", "--format", "json", "--out", sys.argv[1]])
-from etcheck.numerics.blas import pinned_by_environment
+from etcheck.runtime.blas import pinned_by_environment
 import numpy, scipy._lib.array_api_compat.numpy as clone
-from etcheck.numpy_clone import installed
+from etcheck.runtime.numpy_clone import installed
 tools = {"numpy_tools": sorted(m for m in ("numpy.f2py", "charset_normalizer") if m in sys.modules),
          "numpy_restored": "testing" in dir(numpy) and numpy.__dict__["__dir__"].__name__ != "<lambda>",
          "hook_left": installed(),
@@ -100,7 +100,7 @@ def test_a_diagram_s_branches_are_drawn_without_scipy():
 def test_the_import_hook_hides_numpys_tools_only_while_the_clone_is_made(tmp_path, monkeypatch, fails):
     import numpy
 
-    from etcheck import numpy_clone as hook
+    from etcheck.runtime import numpy_clone as hook
 
     before = (list(numpy.__all__), dir(numpy))
     name = f"fake_clone_{int(fails)}"

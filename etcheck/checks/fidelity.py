@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from etcheck.checks.sections import FidelitySection
+from etcheck.checks.results.sections import FidelitySection
 
 #: relative two-resolution agreement of a draft's critical values and eigenvalues
 DRAFT_TOLERANCE = 1e-6

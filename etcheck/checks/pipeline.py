@@ -14,12 +14,9 @@ from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 from typing import TypeVar
 
-from etcheck.checks.assumptions import assumptions
-from etcheck.checks.attachment import Alternative, alternatives, attachment_section, with_alternatives
-from etcheck.checks.design_limits import design_limits
 from etcheck.checks.fidelity import fidelity_of
-from etcheck.checks.flight import flight
-from etcheck.checks.margins import (
+from etcheck.checks.margins.attachment import Alternative, alternatives, attachment_section, with_alternatives
+from etcheck.checks.margins.margin import (
     FAIL,
     INCOMPLETE,
     LOAD_AT_REST,
@@ -33,7 +30,6 @@ from etcheck.checks.margins import (
     straight_margins,
 )
 from etcheck.checks.orbit_field import resolve
-from etcheck.checks.orbit_load import orbit_results
 from etcheck.checks.plan import (
     DRAFT_BOUND,
     EXACT,
@@ -46,8 +42,8 @@ from etcheck.checks.plan import (
     plan,
     varies_along,
 )
-from etcheck.checks.results import header_fields, results_header
-from etcheck.checks.sections import (
+from etcheck.checks.results.header import header_fields, results_header
+from etcheck.checks.results.sections import (
     AccuracyRow,
     AttachmentSection,
     CheckResults,
@@ -64,19 +60,28 @@ from etcheck.checks.sections import (
     StraightRodSection,
     UncertaintySection,
 )
-from etcheck.checks.sections_buckled import PostbucklingSection
-from etcheck.checks.sections_verdict import AssumptionsSection, DesignLimitsSection, FlightSection, ModelValidity
-from etcheck.checks.static_buckling import static_buckling, static_limits
-from etcheck.checks.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
-from etcheck.checks.validity import model_validity, validity
+from etcheck.checks.results.sections_buckled import PostbucklingSection
+from etcheck.checks.results.sections_verdict import (
+    AssumptionsSection,
+    DesignLimitsSection,
+    FlightSection,
+    ModelValidity,
+)
+from etcheck.checks.rungs.static_buckling import static_buckling, static_limits
+from etcheck.checks.rungs.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
+from etcheck.checks.verdict.assumptions import assumptions
+from etcheck.checks.verdict.design_limits import design_limits
+from etcheck.checks.verdict.flight import flight
+from etcheck.checks.verdict.orbit_load import orbit_results
+from etcheck.checks.verdict.validity import model_validity, validity
 from etcheck.input.echo import TensionProfile
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
 from etcheck.jsonable import OMITTED, from_json, to_json
-from etcheck.numerics import memory
-from etcheck.numerics.memory import OverBudget
-from etcheck.numerics.parallel import ahead
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
-from etcheck.rod.straight.spectral import CriticalKind
+from etcheck.rod.straight.collocation.spectral import CriticalKind
+from etcheck.runtime import memory
+from etcheck.runtime.memory import OverBudget
+from etcheck.runtime.parallel import ahead
 from etcheck.scaling import Scaled, Scene, scale
 
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1, OUTSIDE: 1}
@@ -87,7 +92,7 @@ N_LOADS = 5
 @dataclass(frozen=True)
 class CheckResult:
     """What a check produced: its ``results`` as plain JSON data (the JSON form of
-    :class:`etcheck.checks.sections.CheckResults`, written once by :func:`etcheck.jsonable.to_json`) and the CLI
+    :class:`etcheck.checks.results.sections.CheckResults`, written once by :func:`etcheck.jsonable.to_json`) and the CLI
     exit code."""
 
     results: dict
@@ -107,7 +112,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     ``options`` sets the resolution of the rung-1 answers (tolerances, map
     and Campbell grids, accuracy table). A mission with an ``[uncertainty]``
     table also gets its uncertainty study (``results["uncertainty"]``:
-    :mod:`etcheck.checks.uncertainty`), its margins by the same route and
+    :mod:`etcheck.checks.margins.uncertainty`), its margins by the same route and
     tolerances.
     """
     if isinstance(mission, (str, Path)):
@@ -150,7 +155,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         skipped.append({"part": "uncertainty study", "why": "not computed with the current or tension along the "
                         "tether: its margins take rung 1v (seconds each) and the study needs hundreds"})
     elif mission.uncertainty is not None:  # [uncertainty]: the margins again at other inputs, by the same route
-        from etcheck.checks.uncertainty import uncertainty_study
+        from etcheck.checks.margins.uncertainty import uncertainty_study
 
         study = uncertainty_study(mission, sc, scaled, chosen, margins, options).as_dict()
     scope = model_validity(mission, sc)
@@ -218,7 +223,7 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         return StraightAnswers(skipped=skipped)
     if chosen.route == PROFILES:
         # imported here on purpose: rung 1v (scipy.sparse) loads only for a mission with profiles
-        from etcheck.checks.profiles import profile_stability, stability_map
+        from etcheck.checks.rungs.profiles import profile_stability, stability_map
 
         tol = max(options.tol, options.eig_tol)
         linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None, tol=tol,
@@ -270,7 +275,7 @@ def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bo
 def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict | None,
                   profiles: dict | None = None) -> dict | None:
     """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load
-    (the JSON form of :class:`etcheck.checks.sections_buckled.PostbucklingSection`; the sections read here are
+    (the JSON form of :class:`etcheck.checks.results.sections_buckled.PostbucklingSection`; the sections read here are
     their builders' JSON forms)."""
     p = scaled.params
     if profiles is not None:
@@ -303,7 +308,7 @@ def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict |
                 f"or a string-like weak axis, R = {p.R:.2g}) are thinner than their Chebyshev collocation resolves "
                 f"(they need layers wider than {LAYER_MIN:g} of the length and R >= {R_MIN_SPECTRAL:g})"}
     # imported here on purpose: rungs 2-3 (continuation, branch stability) load only for a scene that needs them
-    from etcheck.checks.buckled import postbuckling_check
+    from etcheck.checks.rungs.buckled import postbuckling_check
 
     try:
         return postbuckling_check(p, scaled.scales, B_c, mission.check.required_margin)

@@ -63,9 +63,9 @@ def boundary_layer(params: RodParameters) -> float:
 def straight_route(params: RodParameters) -> str:
     """How the straight tether's critical values are computed: "spectral" (Chebyshev collocation
     of rung 1) or "exact determinant" (the constant-coefficient characteristic determinant,
-    :mod:`etcheck.rod.straight.exact`) where the boundary layers are thinner than LAYER_MIN or the
+    :mod:`etcheck.rod.straight.exact.roots`) where the boundary layers are thinner than LAYER_MIN or the
     weak axis is nearly a string (R < R_MIN_SPECTRAL), with or without damping
-    (:mod:`etcheck.rod.straight.undamped` without). Both are exact where both apply (tested to 1e-9)."""
+    (:mod:`etcheck.rod.straight.exact.undamped` without). Both are exact where both apply (tested to 1e-9)."""
     if boundary_layer(params) < LAYER_MIN or params.R < R_MIN_SPECTRAL:
         return EXACT
     return SPECTRAL

@@ -40,7 +40,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
     def action(render):
         from etcheck.checks.pipeline import check
-        from etcheck.checks.straight import DEFAULT_OPTIONS
+        from etcheck.checks.rungs.straight import DEFAULT_OPTIONS
         from etcheck.input.mission import load_mission
         from etcheck.report import render as in_process
         from etcheck.report import write_reports

@@ -9,7 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from etcheck.errors import EtcheckError
-from etcheck.numerics.lifetime import requested, stop_words
+from etcheck.runtime.lifetime import requested, stop_words
 
 EXIT_TEXT = """exit codes:
   0  the run finished and every margin meets the required margin
@@ -64,7 +64,7 @@ def guarded(action: Callable[[], Any], interrupted: str):
 
 
 def stopped(exc: KeyboardInterrupt, interrupted: str) -> int:
-    """Say that the run was stopped (Ctrl-C or a stop signal, :mod:`etcheck.numerics.lifetime`); the shell's exit
+    """Say that the run was stopped (Ctrl-C or a stop signal, :mod:`etcheck.runtime.lifetime`); the shell's exit
     code for that signal, 128 + its number."""
     print(f"etcheck: {stop_words(exc)}; {interrupted}", file=sys.stderr)
     return 128 + getattr(exc, "signum", signal.SIGINT)

@@ -78,8 +78,8 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 
     def action(render):
         # imported here so that `etcheck --help` does not load astropy, scipy and the report stack
-        from etcheck.checks.buckled import DiagramOptions
         from etcheck.checks.orbit_field import resolve
+        from etcheck.checks.rungs.buckled import DiagramOptions
         from etcheck.input.mission import load_mission
         from etcheck.report import write_reports
         from etcheck.scaling import scale

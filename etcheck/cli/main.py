@@ -10,10 +10,10 @@ import sys
 from etcheck import __version__
 from etcheck.cli import accuracy, check, damping_map, diagram, sweep
 from etcheck.cli.common import EXIT_TEXT, stopped
-from etcheck.numerics import memory
-from etcheck.numerics.blas import pin_before_numpy
-from etcheck.numerics.heap import keep_freed_memory
-from etcheck.numerics.lifetime import stop_on_signals
+from etcheck.runtime import memory
+from etcheck.runtime.blas import pin_before_numpy
+from etcheck.runtime.heap import keep_freed_memory
+from etcheck.runtime.lifetime import stop_on_signals
 
 #: subcommand modules; each has ``add_parser(subparsers)`` that sets ``run(args, parser) -> int``
 COMMANDS = (check, sweep, diagram, damping_map, accuracy)
@@ -40,7 +40,7 @@ def parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     pin_before_numpy()  # small matrices, parallel processes: BLAS threads only cost time (and ~20 ms to limit)
-    keep_freed_memory()  # the solvers' matrices reuse freed memory instead of fresh pages (etcheck.numerics.heap)
+    keep_freed_memory()  # the solvers' matrices reuse freed memory instead of fresh pages (etcheck.runtime.heap)
     argv = list(sys.argv[1:] if argv is None else argv)
     names = {m.NAME for m in COMMANDS}
     if argv and argv[0] not in names and not argv[0].startswith("-"):

@@ -126,7 +126,7 @@ def oml_current(xi_L: float):
 
 @dataclass(frozen=True)
 class CurrentProfile:
-    """I(s) / I_max along the tether: ``profile`` as a dimensionless :class:`~etcheck.rod.straight.profiles.Profile`
+    """I(s) / I_max along the tether: ``profile`` as a dimensionless :class:`~etcheck.rod.straight.varying.profiles.Profile`
     of s, the fraction of the length from the lower end; ``at``, ``fraction`` the points given (or samples of
     the OML profile); ``collection`` the OML inputs (None for points); ``oml_current`` [A] the largest current
     OML predicts (None for points); ``notes`` what was assumed."""

@@ -1,7 +1,7 @@
 """The mission as read, as types: the records that :meth:`etcheck.input.mission.Mission.echo` and the
 uncertainty table write into a check's results (``results["mission"]``, ``results["uncertainty"]["inputs"]``).
 
-Records typed field by field (see :mod:`etcheck.checks.sections` for the rest of the results and
+Records typed field by field (see :mod:`etcheck.checks.results.sections` for the rest of the results and
 docs/results.schema.json for the same layout as a JSON Schema). Quantities are "value unit" text as written
 for the reader; numbers carry their unit in the key name.
 """

@@ -32,8 +32,9 @@ from functools import lru_cache
 import numpy as np
 import scipy.linalg as sla
 
-from .blas import single_blas_thread
-from .memory import WORKSPACE, matrix_bytes, require
+from etcheck.runtime.blas import single_blas_thread
+from etcheck.runtime.memory import WORKSPACE, matrix_bytes, require
+
 from .optimize import linear_sum_assignment
 
 __all__ = [

@@ -66,7 +66,7 @@ def write_reports(results: dict, folder: Path, formats: tuple[str, ...] = ("html
 
     ``renderer``: a function like :func:`render` (default), e.g. the report process of
     :func:`etcheck.report.background.renderer`, which is handed the text of results.json: plain JSON types (an
-    enum or a numpy value would make that process import the modules that define them; etcheck.checks.margins
+    enum or a numpy value would make that process import the modules that define them; etcheck.checks.margins.margin
     loads astropy and scipy: ~0.6 s of its time), serialised once.
     """
     names = {"sweep": SWEEP_FILENAMES, "diagram": DIAGRAM_FILENAMES, "damping": DAMPING_FILENAMES}.get(kind, FILENAMES)

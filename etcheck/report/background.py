@@ -27,9 +27,9 @@ import threading
 from collections.abc import Callable, Iterator
 
 from etcheck.errors import EtcheckError, ReportError
-from etcheck.numerics.lifetime import die_with_parent
 from etcheck.report import render
 from etcheck.report.figures.common import forking_allowed
+from etcheck.runtime.lifetime import die_with_parent
 
 #: the formats a report process is started for (JSON and data files need no report stack)
 DRAWN = ("html", "pdf")
@@ -95,7 +95,7 @@ def worth_a_process(formats: tuple[str, ...]) -> bool:
 
 def _serve(parent: int, conn, parent_end, formats: tuple[str, ...], kind: str) -> None:
     """The report process of ``parent``: load and warm the report stack, then render what the parent sends until it
-    closes; it ends with its parent (:func:`~etcheck.numerics.lifetime.die_with_parent`)."""
+    closes; it ends with its parent (:func:`~etcheck.runtime.lifetime.die_with_parent`)."""
     die_with_parent(parent)
     parent_end.close()
     if kind != "check":

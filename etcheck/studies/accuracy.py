@@ -2,7 +2,7 @@
 
 Rung 1: time of one solve and error of the lowest eigenvalue pairs and of the
 first static load versus the Chebyshev resolution N (reference N = 96 up to N = 64,
-48 up to N = 32: :func:`etcheck.rod.straight.convergence.reference_resolution`), and the
+48 up to N = 32: :func:`etcheck.rod.straight.collocation.convergence.reference_resolution`), and the
 automatic two-resolution solve as the check runs it. Rung 2: time and error of
 tracing b1 from its pitchfork to 4 times that load versus N (reference N = 48).
 BLAS on one thread.
@@ -14,12 +14,12 @@ import math
 import time
 from dataclasses import dataclass
 
-from etcheck.checks.straight import accuracy
-from etcheck.numerics.blas import single_blas_thread
+from etcheck.checks.rungs.straight import accuracy
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import pitchforks
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum
+from etcheck.runtime.blas import single_blas_thread
 from etcheck.scaling import Scaled
 
 

@@ -15,19 +15,19 @@ from typing import Any
 
 import numpy as np
 
-from etcheck.checks.coil import eigenvalue_paths, path_spectra, secondary_pitchfork_at
 from etcheck.checks.orbit_field import resolve
-from etcheck.checks.results import results_header
+from etcheck.checks.results.header import results_header
+from etcheck.checks.rungs.coil import eigenvalue_paths, path_spectra, secondary_pitchfork_at
 from etcheck.errors import SolverError
 from etcheck.input.mission import Mission
 from etcheck.jsonable import finite_or_none, to_json
-from etcheck.numerics.parallel import split_map
 from etcheck.rod.buckled import pitchforks
 from etcheck.rod.buckled.damping_map import HOPF_GAMMAS, DampingMap, damping_map
 from etcheck.rod.buckled.secondary import b1_spin_branch
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution
-from etcheck.rod.straight.spectral import THRESHOLD, divergence_loads
+from etcheck.rod.straight.collocation.spectral import THRESHOLD, divergence_loads
+from etcheck.runtime.parallel import split_map
 from etcheck.scaling import Scales, scale
 from etcheck.studies.diagram import refuse_outside_limit
 

@@ -1,6 +1,6 @@
 """Bifurcation diagram of a mission's tether: the post-buckling branches at a chosen spin (rungs 2-3).
 
-The branches, their stability and shapes come from :func:`etcheck.checks.buckled.bifurcation_diagram`;
+The branches, their stability and shapes come from :func:`etcheck.checks.rungs.buckled.bifurcation_diagram`;
 this study fixes the scene (the mission, a spin, optionally another stiffness ratio) and
 returns the JSON-able results the diagram report is rendered from, with SI scales.
 """
@@ -9,10 +9,10 @@ from __future__ import annotations
 
 from typing import Any
 
-from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
 from etcheck.checks.orbit_field import resolve
 from etcheck.checks.plan import LAYER_MIN, R_MIN_SPECTRAL, boundary_layer
-from etcheck.checks.results import results_header
+from etcheck.checks.results.header import results_header
+from etcheck.checks.rungs.buckled import DiagramOptions, bifurcation_diagram
 from etcheck.errors import MissionError
 from etcheck.input.mission import Mission
 from etcheck.jsonable import to_json

@@ -9,10 +9,10 @@ lowest rung that is exact for it:
 
 * rung 0 (chi roots) for the critical load at zero spin and tension;
 * rung 1 static pencils with damping (the Kelvin-Tait-Chetaev structure,
-  :mod:`etcheck.rod.straight.damped_critical`): critical load at the point's spin,
+  :mod:`etcheck.rod.straight.collocation.damped_critical`): critical load at the point's spin,
   critical spin at the point's load, one small pencil per resolution;
 * without damping (flutter windows are possible) the exact undamped
-  determinant (:mod:`etcheck.rod.straight.undamped`): divergence and
+  determinant (:mod:`etcheck.rod.straight.exact.undamped`): divergence and
   flutter points located exactly along the load and spin lines.
 
 Each point is an independent task keyed by its dimensionless parameters, the
@@ -45,21 +45,21 @@ import numpy as np
 from etcheck import __version__
 from etcheck.checks.orbit_field import resolve
 from etcheck.checks.plan import EXACT, straight_route
-from etcheck.checks.results import results_header
-from etcheck.checks.validity import BOW_LIMIT, mid_span_bow
+from etcheck.checks.results.header import results_header
+from etcheck.checks.verdict.validity import BOW_LIMIT, mid_span_bow
 from etcheck.errors import EtcheckError, MissionError
 from etcheck.input.gravity_gradient import circular_rate
 from etcheck.input.mission import Mission
 from etcheck.input.sweep_axes import Axis, check_axes
 from etcheck.jsonable import finite_or_none, to_json
-from etcheck.numerics.blas import one_blas_thread
-from etcheck.numerics.lifetime import die_with_parent, stop_words
 from etcheck.numerics.optimize import brentq
-from etcheck.numerics.parallel import serial
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.damped_critical import first_root
-from etcheck.rod.straight.exact import first_exact_root
-from etcheck.rod.straight.undamped import has_real_pair
+from etcheck.rod.straight.collocation.damped_critical import first_root
+from etcheck.rod.straight.exact.roots import first_exact_root
+from etcheck.rod.straight.exact.undamped import has_real_pair
+from etcheck.runtime.blas import one_blas_thread
+from etcheck.runtime.lifetime import die_with_parent, stop_words
+from etcheck.runtime.parallel import serial
 from etcheck.scaling import Scene, scale, with_length
 from etcheck.studies.orbit_sweep import orbit_fields
 from etcheck.studies.sweep_point import (
@@ -229,11 +229,11 @@ class _NoAnswer(Exception):
 
 def _worker_init(parent: int) -> None:
     """Local worker: one BLAS thread (its chunks run without forked helpers, :func:`_serially`), freed matrices
-    kept for reuse (:mod:`etcheck.numerics.heap`: the worker is etcheck's own process); it ends with the sweep
-    process (:func:`~etcheck.numerics.lifetime.die_with_parent`: kill -9 leaves no orphans)."""
+    kept for reuse (:mod:`etcheck.runtime.heap`: the worker is etcheck's own process); it ends with the sweep
+    process (:func:`~etcheck.runtime.lifetime.die_with_parent`: kill -9 leaves no orphans)."""
     from threadpoolctl import threadpool_limits
 
-    from etcheck.numerics.heap import keep_freed_memory
+    from etcheck.runtime.heap import keep_freed_memory
 
     die_with_parent(parent)
     threadpool_limits(limits=1)  # for the life of the worker
@@ -500,7 +500,7 @@ def _assemble(points, results, axes, shape, mission: Mission) -> dict[str, Any]:
 
 def _bows(points, mission: Mission) -> list[float]:
     """The bow at mid-span over the length of each point under the lateral Lorentz load
-    (:func:`etcheck.checks.validity.mid_span_bow`): the field across the tether as the mission states it, else
+    (:func:`etcheck.checks.verdict.validity.mid_span_bow`): the field across the tether as the mission states it, else
     the point's own axial field where the sweep sets one (field or orbit axes), else the check's."""
     stated = mission.cross_field is not None
     out = []

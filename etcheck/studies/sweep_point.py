@@ -19,21 +19,21 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from etcheck import __version__
-from etcheck.checks.buckled import buckled_point
 from etcheck.checks.plan import EXACT, PROFILES_MODEL, straight_route
-from etcheck.checks.validity import P_LIMIT
+from etcheck.checks.rungs.buckled import buckled_point
+from etcheck.checks.verdict.validity import P_LIMIT
 from etcheck.errors import EtcheckError
-from etcheck.numerics.memory import OverBudget
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, is_welded
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.exact import MODEL as EXACT_ROOTS
-from etcheck.rod.straight.exact import exact_critical, pencil_or_exact
-from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.rod.straight.undamped import MODEL as UNDAMPED_MODEL
-from etcheck.rod.straight.undamped import undamped_critical
+from etcheck.rod.straight.collocation.spectral import CriticalKind
+from etcheck.rod.straight.exact.roots import MODEL as EXACT_ROOTS
+from etcheck.rod.straight.exact.roots import exact_critical, pencil_or_exact
+from etcheck.rod.straight.exact.undamped import MODEL as UNDAMPED_MODEL
+from etcheck.rod.straight.exact.undamped import undamped_critical
+from etcheck.runtime.memory import OverBudget
 
 if TYPE_CHECKING:  # rung 1v (scipy.sparse) is imported only for a sweep of a mission with profiles
-    from etcheck.rod.straight.profiles import Tether
+    from etcheck.rod.straight.varying.profiles import Tether
 
 #: Rod theory assumes a slender rod: P = I1 / (A L^2) << 1 (the check's limit).
 P_MAX = P_LIMIT
@@ -199,7 +199,7 @@ def profiles_point(tether: Tether, tol: float, spin: bool = True, damping_fixed:
     """Rung 1v at one sweep point: the critical load at the point's spin (the least favourable of
     :data:`SWEEP_DAMPING` for a circulatory load without a fixed damping, else at the point's damping) and the
     critical spin at its load at that damping (dimensionless, as :func:`solve_point`)."""
-    from etcheck.rod.straight.circulatory import critical, critical_spin
+    from etcheck.rod.straight.varying.circulatory import critical, critical_spin
 
     p = tether.params
     fractions = SWEEP_DAMPING if tether.circulatory and not damping_fixed and p.gamma > 0 else (1.0,)

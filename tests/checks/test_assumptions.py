@@ -1,5 +1,5 @@
-"""The assumptions that decide the verdict (etcheck/checks/assumptions.py) and the flight record
-(etcheck/checks/flight.py): each alternative margin is the margin of a check of the alternative mission, the
+"""The assumptions that decide the verdict (etcheck/checks/verdict/assumptions.py) and the flight record
+(etcheck/checks/verdict/flight.py): each alternative margin is the margin of a check of the alternative mission, the
 exact elasticities are exact, the flags follow the mission file."""
 
 from __future__ import annotations

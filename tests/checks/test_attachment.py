@@ -1,4 +1,4 @@
-"""How the tether is attached (etcheck/checks/attachment.py): the check under pinned and mixed ends, the margins
+"""How the tether is attached (etcheck/checks/margins/attachment.py): the check under pinned and mixed ends, the margins
 under the other attachments beside each margin, and the buckled rungs refused for non-welded ends."""
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from etcheck.checks.pipeline import check
 from etcheck.report import render
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
 from etcheck.rod.straight.analytic import critical_loads
-from etcheck.rod.straight.exact import exact_critical
+from etcheck.rod.straight.exact.roots import exact_critical
 
 SCHEMA = json.loads((Path(__file__).resolve().parents[2] / "docs" / "results.schema.json").read_text())
 VALIDATOR = jsonschema.Draft202012Validator(SCHEMA)

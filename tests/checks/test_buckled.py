@@ -11,15 +11,15 @@ import numpy as np
 import pytest
 from helpers import set_like, tension_free
 
-from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
-from etcheck.checks.margins import needs_postbuckling
+from etcheck.checks.margins.margin import needs_postbuckling
 from etcheck.checks.pipeline import check
+from etcheck.checks.rungs.buckled import DiagramOptions, bifurcation_diagram
 from etcheck.cli.main import main
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.buckled.pitchforks import pitchfork_loads
 from etcheck.rod.straight.analytic import critical_loads
-from etcheck.rod.straight.spectral import divergence_loads
+from etcheck.rod.straight.collocation.spectral import divergence_loads
 from etcheck.scaling import scale, scene
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -89,7 +89,7 @@ def test_lifted_off_b1_leaves_the_first_S1_pitchfork_to_b3(set_scaled):
 def test_a_guessed_branch_that_fails_is_not_needed_when_it_lifted_off(set_scaled, monkeypatch):
     """The primary branches are started before the lift-off spins are known: at omega = 0.75 the guess (b1, the
     first S1 pitchfork) is not needed (b1 lifted off; the diagram's branch is b2), so its failure costs nothing."""
-    from etcheck.checks import buckled
+    from etcheck.checks.rungs import buckled
 
     real = buckled.class_starts
 
@@ -183,7 +183,7 @@ def test_past_critical_reports_the_buckled_state(coiled):
 
 
 def test_operating_state_is_resolution_independent():
-    from etcheck.checks.buckled import operating_state
+    from etcheck.checks.rungs.buckled import operating_state
     from etcheck.rod.buckled.branches import continue_branch, primary_branches, state_at
 
     sc = scale(scene(load_mission(ROOT / "missions" / "set-600m.toml")))
@@ -280,7 +280,7 @@ def test_buckled_margin_from_a_stable_b1_without_pitchfork(bound, verdict):
     (with the bound in the reason); never a fail. An unstable operating state is a fail whatever B* is."""
     from types import SimpleNamespace
 
-    from etcheck.checks.margins import buckled_margins
+    from etcheck.checks.margins.margin import buckled_margins
 
     sc = SimpleNamespace(load=1.0)
     (m,) = buckled_margins(_post(b1_stable_to_IB0_N_per_m=bound), sc, None, 2.0)
@@ -315,7 +315,7 @@ def test_stable_coil_without_pitchfork_passes_on_its_lower_bound():
 def test_special_points_carry_the_measures_of_their_located_state(set_scaled):
     """The figures mark a special point at its own measures: those of the located state (the nearer end of its final
     bracket), in the units of the branch's own arrays."""
-    from etcheck.checks import buckled
+    from etcheck.checks.rungs import buckled
 
     dg = buckled.diagram(set_scaled.params.with_(omega=0.25), set_scaled.scales,
                          DiagramOptions(branches=1, B_max=2.2, stability=False, connect=False))

@@ -13,9 +13,9 @@ import jsonschema
 import pytest
 
 from etcheck.checks.pipeline import check
-from etcheck.checks.straight import DEFAULT_OPTIONS
-from etcheck.numerics.timelimit import OutOfTime, within
+from etcheck.checks.rungs.straight import DEFAULT_OPTIONS
 from etcheck.report import results_json
+from etcheck.runtime.timelimit import OutOfTime, within
 
 ROOT = Path(__file__).resolve().parents[2]
 SET = ROOT / "missions" / "set.toml"

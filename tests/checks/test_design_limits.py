@@ -1,4 +1,4 @@
-"""Design limits (etcheck/checks/design_limits.py): each located limit is where a fresh check of the mission,
+"""Design limits (etcheck/checks/verdict/design_limits.py): each located limit is where a fresh check of the mission,
 with that one input set to the limit, has its smallest straight margin at the required margin; the exact
 power laws hold exactly; the gravity-gradient end masses give the limiting tension."""
 
@@ -14,9 +14,9 @@ import pytest
 from helpers import set_like, tape
 
 from etcheck import check
-from etcheck.checks.design_limits import design_limits
 from etcheck.checks.plan import EXACT
-from etcheck.checks.straight import DEFAULT_OPTIONS
+from etcheck.checks.rungs.straight import DEFAULT_OPTIONS
+from etcheck.checks.verdict.design_limits import design_limits
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.scaling import RPM, scene
 

@@ -8,7 +8,7 @@ import pytest
 
 from etcheck import check, load_mission
 from etcheck.checks.fidelity import DRAFT_TOLERANCE, LEFT_OUT
-from etcheck.checks.straight import WhirlOptions
+from etcheck.checks.rungs.straight import WhirlOptions
 from etcheck.report import render
 
 MISSIONS = Path(__file__).resolve().parents[2] / "missions"

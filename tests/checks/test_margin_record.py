@@ -1,5 +1,5 @@
-"""A margin is typed once, as the record :class:`etcheck.checks.sections.Margin` (made by
-:mod:`etcheck.checks.margins`); results.json holds its fields and its ``model``, written by
+"""A margin is typed once, as the record :class:`etcheck.checks.results.sections.Margin` (made by
+:mod:`etcheck.checks.margins.margin`); results.json holds its fields and its ``model``, written by
 :func:`etcheck.jsonable.to_json` (``Margin.as_dict``)."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 from dataclasses import fields, replace
 
-from etcheck.checks.margins import Margin, incomplete_margin, ratio_margin
+from etcheck.checks.margins.margin import Margin, incomplete_margin, ratio_margin
 from etcheck.checks.plan import route_model
 
 

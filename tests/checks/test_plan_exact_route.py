@@ -1,7 +1,7 @@
 """Tethers as they fly (issue 16): strong tension and tapes go to the exact determinant, in milliseconds.
 
 The planner hands scenes whose end boundary layers are thinner than collocation resolves (or whose
-weak axis is nearly a string) to :mod:`etcheck.rod.straight.exact`; where both routes apply they agree.
+weak axis is nearly a string) to :mod:`etcheck.rod.straight.exact.roots`; where both routes apply they agree.
 """
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ from helpers import set_like
 from etcheck import check, mission_from_dict
 from etcheck.checks.plan import EXACT, LAYER_MIN, SPECTRAL, boundary_layer, plan, straight_route
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.damped_critical import damped_critical
-from etcheck.rod.straight.exact import exact_critical, string_limit_load
+from etcheck.rod.straight.collocation.damped_critical import damped_critical
+from etcheck.rod.straight.exact.roots import exact_critical, string_limit_load
 from etcheck.scaling import scale, scene
 
 SET = dict(P=1e-3, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375)
@@ -80,9 +80,9 @@ def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch
     cores a forked helper takes half of them; the same rows, in order, as one by one."""
     from dataclasses import replace
 
-    import etcheck.checks.straight as straight
-    from etcheck.checks.straight import DEFAULT_OPTIONS, linear_stability
-    from etcheck.numerics.parallel import serial, split_map
+    import etcheck.checks.rungs.straight as straight
+    from etcheck.checks.rungs.straight import DEFAULT_OPTIONS, linear_stability
+    from etcheck.runtime.parallel import serial, split_map
 
     shared_out = []
 

@@ -12,7 +12,7 @@ import pytest
 
 from etcheck.checks.pipeline import check
 from etcheck.input.mission import mission_from_dict
-from etcheck.rod.straight.circulatory import critical
+from etcheck.rod.straight.varying.circulatory import critical
 from etcheck.scaling import scale, scene, with_length
 
 BASE = {
@@ -174,8 +174,8 @@ def test_a_check_with_profiles_on_two_cores_answers_as_on_one(bare, fidelity):
     """Rung 1v shares its parts between two cores (the damping map's survey beside the undamped threshold, the
     uniform-tension bound beside the margins under the other attachment): the same answers as one core computing
     them in turn, each located margin within its error."""
-    from etcheck.numerics.parallel import serial
-    from etcheck.rod.straight.circulatory import forget
+    from etcheck.rod.straight.varying.circulatory import forget
+    from etcheck.runtime.parallel import serial
 
     mission = _mission().with_fidelity(fidelity)
     forget()
@@ -199,7 +199,7 @@ def test_a_check_with_profiles_on_two_cores_answers_as_on_one(bare, fidelity):
 def test_a_sign_off_with_profiles_maps_the_load_and_spin_plane_on_rung_1v(bare):
     """The stability map of a tether with profiles: MAP_ROWS spin rows at the verdict's damping, each stable from zero
     load up to rung 1v's own first crossing at that spin (at zero spin the verdict's); none in a draft."""
-    from etcheck.checks.profiles import MAP_ROWS
+    from etcheck.checks.rungs.profiles import MAP_ROWS
 
     sm = bare["linear"]["stability_map"]
     rows = sm["stable_rows"]

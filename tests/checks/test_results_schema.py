@@ -1,8 +1,8 @@
 """docs/results.schema.json (issue 12): the documented layout of a check's results.json.
 
 The schema is made from the records of the results (etcheck/checks/sections*.py, etcheck/input/echo.py) by
-etcheck.checks.results_schema: the committed file is that one (regenerate it with
-``python -m etcheck.checks.results_schema`` after changing a record). Fresh results (draft and sign-off of the
+etcheck.checks.results.schema: the committed file is that one (regenerate it with
+``python -m etcheck.checks.results.schema`` after changing a record). Fresh results (draft and sign-off of the
 SET mission, the static SET mission, the tensioned and orbit missions, an [uncertainty] study) validate as
 written (strict JSON, no NaN); the schema rejects a bad verdict, a mistyped number and a stale schema version,
 and its enums are the code's.
@@ -20,12 +20,12 @@ import jsonschema
 import pytest
 
 from etcheck.checks import fidelity as fidelity_module
-from etcheck.checks import margins as margins_module
 from etcheck.checks import plan as plan_module
+from etcheck.checks.margins import margin as margins_module
 from etcheck.checks.pipeline import check
-from etcheck.checks.results import SCHEMA_VERSION
-from etcheck.checks.results_schema import SCHEMA_PATH, results_schema, schema_text
-from etcheck.checks.sections import CheckResults
+from etcheck.checks.results.header import SCHEMA_VERSION
+from etcheck.checks.results.schema import SCHEMA_PATH, results_schema, schema_text
+from etcheck.checks.results.sections import CheckResults
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.jsonable import from_json, to_json
 from etcheck.report import render
@@ -40,7 +40,7 @@ def test_the_committed_schema_is_the_one_the_records_make():
     """A record changed without regenerating the schema (or the schema edited by hand) fails here."""
     assert SCHEMA_PATH == ROOT / "docs" / "results.schema.json"
     assert SCHEMA_PATH.read_text(encoding="utf-8") == schema_text(), (
-        "docs/results.schema.json is not the schema of the records: run python -m etcheck.checks.results_schema")
+        "docs/results.schema.json is not the schema of the records: run python -m etcheck.checks.results.schema")
 
 
 def test_every_object_of_the_schema_lists_its_keys():

@@ -14,7 +14,7 @@ from helpers import set_like
 from independent import first_static_load, first_static_spin
 
 from etcheck import check, mission_from_dict
-from etcheck.checks.straight import WhirlOptions
+from etcheck.checks.rungs.straight import WhirlOptions
 from etcheck.cli.main import main as cli_main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -108,7 +108,7 @@ def test_report_shows_campbell_and_map(tmp_path):
 def test_unconverged_operating_spectrum_is_shown_not_fatal(tmp_path, monkeypatch, capsys):
     """An operating spectrum that misses its tolerance is reported as such (its message), and the
     margins, which do not depend on it, are still answered: no exit 3."""
-    import etcheck.checks.straight as whirl
+    import etcheck.checks.rungs.straight as whirl
 
     real = whirl.spectrum
 
@@ -131,8 +131,8 @@ def test_unconverged_operating_spectrum_is_shown_not_fatal(tmp_path, monkeypatch
 def test_unconverged_critical_value_carries_its_error_or_is_not_located(monkeypatch, error, outcome):
     """A critical value whose error estimate misses the tolerance: reported with that estimate (the margin
     carries it and says so) while it is small, "not located" (an incomplete margin) past REPORTABLE."""
-    import etcheck.checks.straight as whirl
-    from etcheck.rod.straight.damped_critical import PencilRoot
+    import etcheck.checks.rungs.straight as whirl
+    from etcheck.rod.straight.collocation.damped_critical import PencilRoot
 
     real = whirl.pencil_or_exact
 

@@ -1,4 +1,4 @@
-"""The uncertainty study inside the check (etcheck/checks/uncertainty.py and the modules it uses): the
+"""The uncertainty study inside the check (etcheck/checks/margins/uncertainty.py and the modules it uses): the
 probability of falling short against independent truths (closed-form rung-0 margins integrated with scipy and
 mpmath, plain Monte Carlo, the exact determinant's margin root found here), the coverage of the sampling
 intervals, elasticities against closed forms and independent differences, and what the check returns."""
@@ -18,15 +18,15 @@ from scipy import integrate, stats
 from scipy.optimize import brentq
 
 from etcheck import check, mission_from_dict
-from etcheck.checks.margins import LOAD_AT_REST, LOAD_AT_SPIN, SPIN
+from etcheck.checks.margins.margin import LOAD_AT_REST, LOAD_AT_SPIN, SPIN
+from etcheck.checks.margins.probability import FLOOR, failure_probability
+from etcheck.checks.margins.sensitivity import sensitivities
+from etcheck.checks.margins.uncertainty import study_model
 from etcheck.checks.orbit_field import resolve
 from etcheck.checks.plan import EXACT
-from etcheck.checks.probability import FLOOR, failure_probability
-from etcheck.checks.sensitivity import sensitivities
-from etcheck.checks.straight import DEFAULT_OPTIONS, critical_values
-from etcheck.checks.uncertainty import study_model
+from etcheck.checks.rungs.straight import DEFAULT_OPTIONS, critical_values
 from etcheck.rod.straight.analytic import critical_loads
-from etcheck.rod.straight.damped_critical import damped_critical
+from etcheck.rod.straight.collocation.damped_critical import damped_critical
 from etcheck.scaling import scale, scene
 
 MISSIONS = Path(__file__).resolve().parents[2] / "missions"
@@ -204,7 +204,7 @@ def test_one_input_on_the_exact_determinant_route_against_its_margin_root():
     def margin(L):
         s = replace(sc, length=L, P=sc.P * (sc.length / L) ** 2)
         q = scale(s).params
-        from etcheck.rod.straight.exact import exact_critical
+        from etcheck.rod.straight.exact.roots import exact_critical
 
         return exact_critical(q, tol=1e-12, spin=False).critical_load.value / q.B
 
@@ -421,8 +421,8 @@ def test_the_buckled_margin_is_scaled_exactly_where_it_is_a_power_law_and_otherw
     it is B*(R, Gamma) f EI1 / (|I B0| L^3), so a current or a length tolerance scales the check's value exactly
     (P = P(length factor > (margin / required)^(1/3))); a tolerance on EI1 alone (R moves) is refused with the
     reason."""
-    from etcheck.checks.margin_model import margin_model
-    from etcheck.checks.margins import BUCKLED, Margin
+    from etcheck.checks.margins.margin import BUCKLED, Margin
+    from etcheck.checks.margins.margin_model import margin_model
     from etcheck.checks.plan import plan
 
     L_star = (2.44 / 2.0) ** (1 / 3)  # the length factor at which the margin is the required one
@@ -448,7 +448,7 @@ def test_the_static_buckled_margin_is_the_power_law_the_study_takes():
     """Rungs 2-3 themselves at another length and at both stiffnesses 10 % larger: the buckled SET (600 m, no
     spin) has the margin the study's power law gives (B* depends on R and Gamma alone: not on P, which moves with
     the length)."""
-    from etcheck.checks.margins import BUCKLED
+    from etcheck.checks.margins.margin import BUCKLED
 
     def buckled(**tether) -> float:
         data = tomllib.loads((MISSIONS / "set-600m.toml").read_text())

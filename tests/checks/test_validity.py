@@ -1,4 +1,4 @@
-"""The model's validity (etcheck/checks/validity.py): the bow of a tensioned beam under a uniform lateral load
+"""The model's validity (etcheck/checks/verdict/validity.py): the bow of a tensioned beam under a uniform lateral load
 against an independent boundary-value solve and its two limits, the verdict "outside" with its reason past
 a limit, and where the field across the tether comes from."""
 
@@ -15,7 +15,7 @@ from scipy.integrate import solve_bvp
 
 from etcheck import check
 from etcheck.checks.pipeline import EXIT_CODES
-from etcheck.checks.validity import BOW_LIMIT, mid_span_bow, tension_for_bow
+from etcheck.checks.verdict.validity import BOW_LIMIT, mid_span_bow, tension_for_bow
 from etcheck.errors import MissionError
 from etcheck.input.mission import load_mission, mission_from_dict
 

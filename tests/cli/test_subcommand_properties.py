@@ -36,7 +36,7 @@ from etcheck import check
 from etcheck.cli.main import main
 from etcheck.input.mission import mission_from_dict
 from etcheck.rod.buckled.pitchforks import liftoff_spin
-from etcheck.rod.straight.spectral import divergence_loads
+from etcheck.rod.straight.collocation.spectral import divergence_loads
 from etcheck.scaling import scale, scene
 from etcheck.studies.sweep import solve_point
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from etcheck.numerics.blas import BLAS_THREAD_VARIABLES, pinned_by_environment
+from etcheck.runtime.blas import BLAS_THREAD_VARIABLES, pinned_by_environment
 
 ALL = (*BLAS_THREAD_VARIABLES, "OMP_NUM_THREADS")
 

@@ -1,4 +1,4 @@
-"""glibc's malloc keeps the solvers' freed matrices for reuse in the CLI's process (etcheck.numerics.heap)."""
+"""glibc's malloc keeps the solvers' freed matrices for reuse in the CLI's process (etcheck.runtime.heap)."""
 
 from __future__ import annotations
 
@@ -15,7 +15,7 @@ GLIBC = sys.platform.startswith("linux") and "glibc" in " ".join(__import__("pla
 PROBE = textwrap.dedent("""
     import sys
     if sys.argv[1] == "keep":
-        from etcheck.numerics.heap import keep_freed_memory
+        from etcheck.runtime.heap import keep_freed_memory
         assert keep_freed_memory() is True
     def rss():
         with open("/proc/self/statm") as fh:
@@ -52,7 +52,7 @@ def test_cli_keeps_freed_memory(monkeypatch):
 
 
 def test_outside_linux_nothing_is_done(monkeypatch):
-    from etcheck.numerics import heap
+    from etcheck.runtime import heap
 
     heap.keep_freed_memory.cache_clear()
     monkeypatch.setattr(heap.sys, "platform", "darwin")

@@ -9,7 +9,7 @@ import time
 
 import pytest
 
-from etcheck.numerics.lifetime import Stopped, stop_words
+from etcheck.runtime.lifetime import Stopped, stop_words
 
 linux = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="parent-death signal and /proc (Linux)")
 
@@ -33,7 +33,7 @@ def test_a_helper_is_killed_when_its_parent_is():
     """A middle process starts a helper that would sleep 60 s; the middle one is SIGKILLed; the helper follows."""
     out = _run("""
         import os, sys, time
-        from etcheck.numerics.lifetime import die_with_parent
+        from etcheck.runtime.lifetime import die_with_parent
         r, w = os.pipe()
         middle = os.fork()
         if middle == 0:
@@ -66,7 +66,7 @@ def test_a_helper_is_killed_when_its_parent_is():
 def test_a_helper_whose_parent_ended_before_the_request_leaves_at_once():
     out = _run("""
         import os
-        from etcheck.numerics.lifetime import die_with_parent
+        from etcheck.runtime.lifetime import die_with_parent
         pid = os.fork()
         if pid == 0:
             die_with_parent(os.getppid() + 1_000_000)  # not its parent: as if the parent had ended already
@@ -80,7 +80,7 @@ def test_a_helper_whose_parent_ended_before_the_request_leaves_at_once():
 def test_a_stop_signal_stops_the_children_and_raises_stopped():
     out = _run("""
         import os, signal, subprocess, time
-        from etcheck.numerics.lifetime import Stopped, stop_on_signals
+        from etcheck.runtime.lifetime import Stopped, stop_on_signals
         child = subprocess.Popen(["sleep", "60"])
         try:
             with stop_on_signals():
@@ -109,7 +109,7 @@ def test_a_stop_hidden_by_another_exception_is_still_known():
     """A Stopped raised where Python only prints it (an at-fork hook) is not printed; requested() tells it."""
     out = _run("""
         import os, signal
-        from etcheck.numerics.lifetime import requested, stop_on_signals
+        from etcheck.runtime.lifetime import requested, stop_on_signals
         with stop_on_signals():
             os.register_at_fork(after_in_parent=lambda: os.kill(os.getpid(), signal.SIGTERM))
             pid = os.fork()

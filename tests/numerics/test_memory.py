@@ -6,16 +6,16 @@ import tracemalloc
 import numpy as np
 import pytest
 
-from etcheck.numerics import memory
 from etcheck.numerics.eigen import QZ_MATRICES, qep_dense
-from etcheck.numerics.memory import BASELINE, Memo, OverBudget, matrix_bytes, parse, require
 from etcheck.rod.core.base_state import straight
 from etcheck.rod.core.linear import linear_operator
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import lowest_eigenvalues, prefers_dense, solve_bytes, spectrum
-from etcheck.rod.straight.damped_critical import first_root
-from etcheck.rod.straight.exact import exact_critical, pencil_or_exact
-from etcheck.rod.straight.spectral import StraightFamily, family_bytes
+from etcheck.rod.straight.collocation.damped_critical import first_root
+from etcheck.rod.straight.collocation.spectral import StraightFamily, family_bytes
+from etcheck.rod.straight.exact.roots import exact_critical, pencil_or_exact
+from etcheck.runtime import memory
+from etcheck.runtime.memory import BASELINE, Memo, OverBudget, matrix_bytes, parse, require
 
 #: SET at its operating point (Sec. VII B), damped
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, B=0.3, omega=0.25, T=0.0, gamma=0.04375)
@@ -156,7 +156,7 @@ def test_a_spectrum_whose_first_pair_does_not_fit_is_not_answered(budget):
 def test_the_families_of_a_memo_stay_within_its_share(budget):
     """Many parameter sets at a fine resolution (as an uncertainty study's samples): the memo holds what the
     budget's share allows (it held 32 families whatever their size: 2.5 GB at N = 128)."""
-    from etcheck.rod.straight.spectral import straight_family
+    from etcheck.rod.straight.collocation.spectral import straight_family
 
     budget("400 MB")
     for i in range(6):
@@ -169,7 +169,7 @@ def test_the_exact_determinant_is_evaluated_in_blocks_that_fit_the_budget(budget
     """The same values (to round-off: numpy's vectorised logarithms and exponentials differ in the last bit with
     the position in a block) in blocks of a tenth of a small budget, and a peak within it (one block of 1e5
     points held 530 MB)."""
-    from etcheck.rod.straight.undamped_kernel import characteristic_counted
+    from etcheck.rod.straight.exact.undamped_kernel import characteristic_counted
 
     p = SET.with_(gamma=0.0)
     mu = np.linspace(0.1, 1e3, 20_000)

@@ -5,8 +5,8 @@ import time
 
 import pytest
 
-from etcheck.numerics import parallel
-from etcheck.numerics.parallel import can_split, split_map
+from etcheck.runtime import parallel
+from etcheck.runtime.parallel import can_split, split_map
 
 
 def _forkable() -> bool:

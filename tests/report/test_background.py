@@ -70,10 +70,10 @@ def _plain(value) -> bool:
 
 def test_another_process_is_sent_plain_json_types(tmp_path):
     """An enum or a numpy value would make the report process import the modules that define them when it
-    unpickles the results (etcheck.checks.margins loads astropy and scipy: 0.6 s of its time)."""
+    unpickles the results (etcheck.checks.margins.margin loads astropy and scipy: 0.6 s of its time)."""
     import numpy as np
 
-    from etcheck.checks.margins import Verdict
+    from etcheck.checks.margins.margin import Verdict
     from etcheck.report import render, write_reports
 
     sent = []

@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from etcheck.checks.orbit_field import resolve
-from etcheck.checks.static_buckling import static_buckling
+from etcheck.checks.rungs.static_buckling import static_buckling
 from etcheck.input.mission import load_mission
 from etcheck.scaling import scale
 

@@ -11,7 +11,7 @@ import pytest
 from helpers import set_like
 
 from etcheck import check
-from etcheck.checks.results import SCHEMA_VERSION
+from etcheck.checks.results.header import SCHEMA_VERSION
 from etcheck.errors import ReportError
 from etcheck.report import render, write_reports
 
@@ -94,7 +94,7 @@ def test_a_write_stopped_by_a_signal_leaves_the_old_report_and_no_temporary_file
     import os
     import signal
 
-    from etcheck.numerics.lifetime import Stopped
+    from etcheck.runtime.lifetime import Stopped
 
     paths = write_reports(set_results, tmp_path / "set", ("json",))
     before = paths[0].read_bytes()

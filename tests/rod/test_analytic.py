@@ -359,7 +359,7 @@ def test_tensioned_frequencies_are_roots_of_the_exact_undamped_determinant(R, P,
     exact characteristic function E of the undamped straight rod at B = omega = 0 (its own formulation, the
     4x4 blocks of both axes at once): E changes sign across mu^2 (1 +- 1e-7)."""
     from etcheck.rod.core.parameters import RodParameters
-    from etcheck.rod.straight.undamped_kernel import characteristic_mu
+    from etcheck.rod.straight.exact.undamped_kernel import characteristic_mu
 
     p = RodParameters(P=P, R=R, Gamma=0.75, f=F_CLAMPED, B=0.0, omega=0.0, T=T, gamma=0.0, ends=ends)
     for axis in ("weak", "stiff"):

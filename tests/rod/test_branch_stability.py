@@ -307,7 +307,7 @@ def test_a_buckled_states_spectrum_climbs_from_the_states_own_resolution(b1_stat
     """The stability of a state of b1 (known at N = 24) is solved at N = 24 and above, never below (an operator
     sampled from the state's interpolant on fewer points cannot agree with the finer one); its growth rate agrees
     with another pair of resolutions within both error estimates."""
-    from etcheck.checks import coil
+    from etcheck.checks.rungs import coil
     from etcheck.rod.core import spectrum as sp_module
 
     st = b1_static.states[len(b1_static.states) // 2]
@@ -331,7 +331,7 @@ def test_a_branch_s_eigenvalue_paths_decide_its_stability_without_solves_of_thei
     """At the diagram's resolution (N = 32, checked at 48: the first pair of the stability ladder) the spectra of a
     branch's eigenvalue paths give the stability of its probed states as their own solves do, to round-off, and
     none is solved again; at N = 24 (checked at 36, the ladder's next rung is 32) they are solved as before."""
-    from etcheck.checks import coil
+    from etcheck.checks.rungs import coil
     from etcheck.rod.core import spectrum as sp_module
 
     for n, reused, B_end in ((32, True, 1.2), (24, False, 0.8)):

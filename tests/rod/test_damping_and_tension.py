@@ -10,8 +10,8 @@ from independent import first_static_load
 
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
 from etcheck.rod.core.spectrum import damping_cluster, spectrum
-from etcheck.rod.straight.spectral import THRESHOLD, critical_load, straight_family
-from etcheck.rod.straight.static_map import plane, stable_rows, static_curves
+from etcheck.rod.straight.collocation.spectral import THRESHOLD, critical_load, straight_family
+from etcheck.rod.straight.collocation.static_map import plane, stable_rows, static_curves
 
 
 @pytest.mark.parametrize("gamma", [0.2, pytest.param(0.5, marks=pytest.mark.slow), 2.0])  # 0.5: between the two
@@ -110,7 +110,7 @@ def test_no_rotary_inertia_with_damping():
 @pytest.mark.parametrize("where", ["two cores", "one core"])
 def test_static_curves_are_the_same_on_two_cores(where):
     """Rows and columns are shared with a forked helper where it can help: the same numbers."""
-    from etcheck.numerics import parallel
+    from etcheck.runtime import parallel
 
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, gamma=0.04375, omega=0.3)
     spins = np.linspace(0.0, 0.9, 6)

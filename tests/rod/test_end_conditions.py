@@ -28,11 +28,11 @@ from etcheck.rod.core.ends import ALL_PINNED, ALL_WELDED, Ends
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters
 from etcheck.rod.core.spectrum import spectrum
 from etcheck.rod.straight import analytic
-from etcheck.rod.straight import determinant as det
-from etcheck.rod.straight.damped_critical import damped_critical
-from etcheck.rod.straight.exact import exact_critical, exact_root, string_limit_load
-from etcheck.rod.straight.spectral import static_points
-from etcheck.rod.straight.undamped import undamped_critical
+from etcheck.rod.straight.collocation.damped_critical import damped_critical
+from etcheck.rod.straight.collocation.spectral import static_points
+from etcheck.rod.straight.exact import determinant as det
+from etcheck.rod.straight.exact.roots import exact_critical, exact_root, string_limit_load
+from etcheck.rod.straight.exact.undamped import undamped_critical
 
 MIXED = Ends(("welded", "pinned"))
 SWAPPED = Ends(("pinned", "welded"))

@@ -27,7 +27,7 @@ from etcheck.rod.core.base_state import BaseState
 from etcheck.rod.core.linear import linear_operator
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.analytic import critical_loads
-from etcheck.rod.straight.spectral import divergence_loads
+from etcheck.rod.straight.collocation.spectral import divergence_loads
 
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
 N_LO, N_HI = 24, 32

@@ -78,8 +78,8 @@ NEAR_END = [
 def test_damped_critical_estimate_bounds_round_off_near_the_end_of_a_line(name, params, axis):
     """Two resolutions each at round-off can agree far better than either is right where a root falls like
     a square root: the stated error must still bound the distance to the exact determinant."""
-    from etcheck.rod.straight.damped_critical import damped_critical
-    from etcheck.rod.straight.exact import first_exact_root
+    from etcheck.rod.straight.collocation.damped_critical import damped_critical
+    from etcheck.rod.straight.exact.roots import first_exact_root
 
     d = damped_critical(params, tol=1e-10)
     r = d.critical_load if axis == "B" else d.critical_spin

@@ -1,6 +1,6 @@
 """Rung 1x: the exact characteristic function of the straight tether.
 
-References: the collocation pencil (etcheck.rod.straight.damped_critical.first_root)
+References: the collocation pencil (etcheck.rod.straight.collocation.damped_critical.first_root)
 where it converges, the chi roots (rung 0), the 50-digit shooting
 determinant of tests/independent.py, and an exponential-basis determinant
 in mpmath written here (exponents from mpmath.polyroots, no scaling tricks
@@ -24,14 +24,14 @@ from independent import static_determinant  # noqa: E402
 
 from etcheck.rod.core.parameters import F_CLAMPED, RodParameters  # noqa: E402
 from etcheck.rod.straight.analytic import critical_loads  # noqa: E402
-from etcheck.rod.straight.damped_critical import damped_critical, first_root  # noqa: E402
-from etcheck.rod.straight.determinant import (  # noqa: E402
+from etcheck.rod.straight.collocation.damped_critical import damped_critical, first_root  # noqa: E402
+from etcheck.rod.straight.exact.determinant import (  # noqa: E402
     characteristic,
     evaluate,
     isotropic_characteristic,
     kernel_dimension,
 )
-from etcheck.rod.straight.exact import exact_critical, exact_root, first_exact_root, string_limit_load  # noqa: E402
+from etcheck.rod.straight.exact.roots import exact_critical, exact_root, first_exact_root, string_limit_load  # noqa: E402
 
 F = F_CLAMPED
 SET = RodParameters(P=0.001, R=21 / 38, Gamma=0.76923)
@@ -302,7 +302,7 @@ def test_second_formulation_where_the_exponential_basis_stops_applying():
     check). It falls back to Schur where the basis does not apply; the unloaded rod has no critical spin, and
     the error of the critical spin is judged relative to the spin itself (its floor, 1 % of an infinite spin,
     made it NaN)."""
-    from etcheck.rod.straight.exact import exact_critical
+    from etcheck.rod.straight.exact.roots import exact_critical
 
     p = RodParameters(P=0.3, R=0.9, Gamma=1.0844737162142614e-4, f=F_CLAMPED, B=4.557013742222468, omega=0.0,
                       T=30.0, gamma=0.04)
@@ -318,7 +318,7 @@ def test_a_root_next_to_the_end_of_its_line_comes_from_the_determinant():
     """SET 8e-6 below its static load: the critical spin falls like a square root, and the pencil's round-off
     (N = 48: 2.8e-7 off) is amplified past the tolerance; the pencil says so (not converged, an estimate that
     bounds its error) and the determinant answers within its own estimate of the reference."""
-    from etcheck.rod.straight.exact import first_exact_root, pencil_or_exact
+    from etcheck.rod.straight.exact.roots import first_exact_root, pencil_or_exact
 
     p = RodParameters(P=1e-3, R=21 / 38, Gamma=0.76923, gamma=0.1, B=0.58539)
     ref = first_exact_root(p, "omega", 1e-12)

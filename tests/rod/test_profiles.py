@@ -15,13 +15,13 @@ import pytest
 from etcheck.numerics.eigen import sparse_qep_nearest
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.profile import Profile
-from etcheck.rod.straight import circulatory, line_band
 from etcheck.rod.straight.analytic import critical_loads
-from etcheck.rod.straight.circulatory import critical
-from etcheck.rod.straight.exact import exact_critical
-from etcheck.rod.straight.profiles import Tether, family, layer_widths, mesh
-from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.rod.straight.undamped import undamped_critical
+from etcheck.rod.straight.collocation.spectral import CriticalKind
+from etcheck.rod.straight.exact.roots import exact_critical
+from etcheck.rod.straight.exact.undamped import undamped_critical
+from etcheck.rod.straight.varying import circulatory, line_band
+from etcheck.rod.straight.varying.circulatory import critical
+from etcheck.rod.straight.varying.profiles import Tether, family, layer_widths, mesh
 
 #: the shipped tape tether (missions/tape-tether.toml), scaled
 TAPE = RodParameters(P=2.0857142857142857e-10, R=2.556164383561644e-06, Gamma=7.671213267830194e-06,

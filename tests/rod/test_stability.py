@@ -1,4 +1,4 @@
-"""Stability of the straight rod (etcheck.rod.straight.spectral)."""
+"""Stability of the straight rod (etcheck.rod.straight.collocation.spectral)."""
 
 import numpy as np
 import pytest
@@ -6,7 +6,7 @@ from scipy.optimize import brentq
 
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum
-from etcheck.rod.straight.spectral import (
+from etcheck.rod.straight.collocation.spectral import (
     campbell,
     critical_load,
     critical_spin,
@@ -156,7 +156,7 @@ def test_map_and_campbell():
 def test_family_eigenvalues_from_its_uncoupled_parts(gamma):
     # bending, torsion and axial parts solved apart (torsion once) give the spectrum of the whole operator
     from etcheck.rod.core.spectrum import nearest_eigenvalues
-    from etcheck.rod.straight.spectral import StraightFamily
+    from etcheck.rod.straight.collocation.spectral import StraightFamily
 
     p = SET.with_(gamma=gamma)
     fam = StraightFamily(p, 16)

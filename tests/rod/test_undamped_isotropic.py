@@ -1,7 +1,7 @@
-"""The undamped isotropic tether (R = 1) from the scalar complex problem D+ (etcheck.rod.straight.undamped_isotropic).
+"""The undamped isotropic tether (R = 1) from the scalar complex problem D+ (etcheck.rod.straight.exact.undamped_isotropic).
 
 Checked across models: the roots of D+ are roots of the coupled real determinant E(mu) of
-etcheck.rod.straight.undamped; with P = 0 the spin is a change of frame (the static load at rest is
+etcheck.rod.straight.exact.undamped; with P = 0 the spin is a change of frame (the static load at rest is
 critical at every spin, exactly); every critical value and window edge is bracketed by the full dense
 collocation spectrum (rod.linear, every eigenvalue, no selection).
 """
@@ -17,10 +17,10 @@ from helpers import collocation_growth
 from scipy.optimize import brentq
 
 from etcheck.rod.core.parameters import RodParameters
-from etcheck.rod.straight.exact import exact_root
-from etcheck.rod.straight.undamped import has_real_pair, undamped_critical
-from etcheck.rod.straight.undamped_isotropic import characteristic_plus
-from etcheck.rod.straight.undamped_kernel import characteristic_mu
+from etcheck.rod.straight.exact.roots import exact_root
+from etcheck.rod.straight.exact.undamped import has_real_pair, undamped_critical
+from etcheck.rod.straight.exact.undamped_isotropic import characteristic_plus
+from etcheck.rod.straight.exact.undamped_kernel import characteristic_mu
 
 GAMMA = 0.76923
 
@@ -140,7 +140,7 @@ def test_collocation_indicator_looks_at_the_whole_coupled_band():
     least-|lambda| pairs (a dense low spectrum: P = 0.05, B past three static loads); the undamped stability
     indicator looks at every eigenvalue of the band that load and spin reshape, so it sees it (it saw a stable
     window at omega in [5.42, 7.14])."""
-    from etcheck.rod.straight.spectral import straight_family
+    from etcheck.rod.straight.collocation.spectral import straight_family
 
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, T=0.0)
     assert straight_family(p, 24).growth(20.0, 6.0, 0.0) == pytest.approx(collocation_growth(p.with_(B=20.0, omega=6.0)), rel=1e-6)
@@ -150,7 +150,7 @@ def test_a_change_of_stability_below_the_static_load_at_rest_is_refused(monkeypa
     """The hyperbolic bound is also a check of the load line: a change located below the static load at rest
     (root counts not resolved, e.g. next to the rotary-inertia accumulation of a taut tether's modes at
     Omega^2 = T / P) ends in ArithmeticError ("not located"), never in a wrong critical load."""
-    import etcheck.rod.straight.undamped as us
+    import etcheck.rod.straight.exact.undamped as us
 
     p = RodParameters(P=0.05, R=1.0, Gamma=GAMMA, B=0.0, omega=1.0, T=30.0, gamma=0.0)
     rest = exact_root(p.with_(B=0.0, omega=0.0), "B").value

@@ -16,18 +16,18 @@ import pytest
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import spectrum
 from etcheck.rod.straight.analytic import critical_loads
-from etcheck.rod.straight.damped_critical import first_root
-from etcheck.rod.straight.exact import exact_critical, string_limit_load
-from etcheck.rod.straight.spectral import CriticalKind
-from etcheck.rod.straight.undamped import complex_pairs, complex_pairs_on_line, has_real_pair, undamped_critical
-from etcheck.rod.straight.undamped_kernel import (
+from etcheck.rod.straight.collocation.damped_critical import first_root
+from etcheck.rod.straight.collocation.spectral import CriticalKind
+from etcheck.rod.straight.exact.roots import exact_critical, string_limit_load
+from etcheck.rod.straight.exact.undamped import complex_pairs, complex_pairs_on_line, has_real_pair, undamped_critical
+from etcheck.rod.straight.exact.undamped_kernel import (
     characteristic_mu,
     horner,
     rayleigh_floor,
     rounding_scale,
     stiffness_definite,
 )
-from etcheck.rod.straight.undamped_lines import Line, stability_line, static_roots
+from etcheck.rod.straight.exact.undamped_lines import Line, stability_line, static_roots
 
 SET = dict(P=1e-3, R=21 / 38, Gamma=0.76923)
 
@@ -153,7 +153,7 @@ def test_real_pairs_only_past_the_first_static_load_at_rest(R, T):
     """Without spin and compression the stiffness is positive definite below the first static load: no real pair
     (the spin line of a sweep point relies on it and does not look); just past it without tension a root mu < 0
     (under tension the roots past it can come as a close pair that the 64-point scan need not see)."""
-    from etcheck.rod.straight.exact import exact_root
+    from etcheck.rod.straight.exact.roots import exact_root
 
     p = RodParameters(P=1e-3, R=R, Gamma=0.76923, T=T)
     static = exact_root(p, "B").value
@@ -290,13 +290,13 @@ def test_horner_in_k_squared_is_the_polynomial_and_its_derivative():
 @pytest.mark.parametrize("omega", [0.0, 0.25])
 def test_the_load_line_followed_by_a_helper_gives_the_same_answer(omega):
     """On two cores the load line is followed in a forked helper while the spin line is followed here."""
-    from etcheck.numerics import parallel
+    from etcheck.runtime import parallel
 
     p = RodParameters(P=0.001, R=21 / 38, Gamma=1 / 1.3, B=0.2, omega=omega, T=0.05, gamma=0.0)
     with parallel.serial():
         serial = undamped_critical(p, 1e-8, windows=True)
-    import etcheck.rod.straight.exact as ex
-    import etcheck.rod.straight.undamped as us
+    import etcheck.rod.straight.exact.roots as ex
+    import etcheck.rod.straight.exact.undamped as us
 
     for module in (us, ex):  # nothing memoised: the helper computes the load line afresh
         for fn in vars(module).values():
@@ -338,7 +338,7 @@ def test_the_stiffness_proof_under_load_stops_short_of_the_static_load(R, T, ome
     """With load the proof bounds the load's term (2 B int u' v) by the clamped beams' bending: along B it must stop
     short of the first static load (where K is singular: a proof past it would be wrong), and where it holds the
     counted line has no real and no complex pair."""
-    from etcheck.rod.straight.exact import exact_root
+    from etcheck.rod.straight.exact.roots import exact_root
 
     p = RodParameters(P=1e-3, R=R, Gamma=0.76923, T=T, omega=omega)
     static = exact_root(p, "B").value
@@ -368,7 +368,7 @@ def test_no_real_root_below_the_rayleigh_floor(R, load):
     rods (the load's term bounded with its factor 2 and the best split of |u|, |v|): E keeps its sign on a fine
     grid from three times the floor down to it, and has its lowest root between the floor and 0. With the factor
     1 the floor of R = 0.01 at ten times its static load was -64.6 and the lowest root -73.1."""
-    from etcheck.rod.straight.exact import exact_root
+    from etcheck.rod.straight.exact.roots import exact_root
 
     p = RodParameters(P=0.0, R=R, Gamma=0.77)
     q = p.with_(B=load * exact_root(p, "B").value)

@@ -1,7 +1,7 @@
 """Property tests of the accuracy study (``etcheck accuracy``, issue 11) over valid scenes.
 
 The study measures, per resolution N, the error of the straight tether's lowest eigenvalue pairs
-against a finer reference (:func:`etcheck.checks.straight.accuracy`: the smallest of 48, 64, 96, 128 at
+against a finer reference (:func:`etcheck.checks.rungs.straight.accuracy`: the smallest of 48, 64, 96, 128 at
 least 1.5 N), and times the automatic
 two-resolution solve the check runs (:func:`etcheck.rod.core.spectrum.spectrum`). Property (issue 11,
 item 4): the automatic solve's error estimate bounds its true error, measured against the study's
@@ -24,7 +24,7 @@ from etcheck.input.mission import mission_from_dict
 from etcheck.numerics.eigen import match_spectra, relative_distance
 from etcheck.rod.buckled.pitchforks import liftoff_spin
 from etcheck.rod.core.spectrum import ERROR_FLOOR, lowest_eigenvalues, spectrum
-from etcheck.rod.straight.convergence import reference_resolution
+from etcheck.rod.straight.collocation.convergence import reference_resolution
 from etcheck.scaling import scale, scene
 from etcheck.studies.accuracy import trace_b1
 
@@ -69,7 +69,7 @@ def test_roundoff_floor_of_the_estimate():
 
 def _estimate_bounds_true_error(s: dict, load: float) -> None:
     """Each eigenvalue the automatic solve reports lies within its stated error of the study's reference
-    (:func:`~etcheck.rod.straight.convergence.reference_resolution`), less the reference's own uncertainty."""
+    (:func:`~etcheck.rod.straight.collocation.convergence.reference_resolution`), less the reference's own uncertainty."""
     scaled = _scaled(s, load)
     auto = spectrum(scaled.params, k=PAIRS)
     if not auto.converged or 1.5 * auto.N > N_REF:  # unconverged solves say so; the reference must be finer

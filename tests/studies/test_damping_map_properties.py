@@ -6,7 +6,7 @@ written by the command read back. Properties: exit 0 or a refusal (2) with a mes
 failed solve (3) or a traceback; damping.json is strict JSON and every number in it finite; the
 map's points below B*(omega) are stable with damping (Kelvin-Tait-Chetaev, Sec. VII B) with damping
 ratios in (0, 1]; and the B*(omega) curve at omega = 0 is the check's B* (b1's secondary pitchfork,
-:func:`etcheck.checks.buckled.postbuckling_check`) within the two stated errors (issue 11: one value,
+:func:`etcheck.checks.rungs.buckled.postbuckling_check`) within the two stated errors (issue 11: one value,
 one route). A damping map costs seconds: the default run draws one scene, the paper's SET.
 """
 
@@ -30,11 +30,11 @@ from scene_missions import (
     write_mission,
 )
 
-from etcheck.checks.buckled import postbuckling_check
 from etcheck.checks.plan import LAYER_MIN, boundary_layer
+from etcheck.checks.rungs.buckled import postbuckling_check
 from etcheck.cli.main import main
 from etcheck.input.mission import mission_from_dict
-from etcheck.rod.straight.spectral import THRESHOLD, divergence_loads
+from etcheck.rod.straight.collocation.spectral import THRESHOLD, divergence_loads
 from etcheck.scaling import scale, scene
 
 #: resolution of the map (the CLI's smallest; its B* curve is located at N and 1.5 N)

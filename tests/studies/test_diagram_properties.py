@@ -21,12 +21,12 @@ from hypothesis import strategies as st
 from scene_missions import THOROUGH, assert_all_finite, mission_dict, profile, scenes, strict_json
 
 from etcheck import check
-from etcheck.checks.buckled import DiagramOptions, bifurcation_diagram
 from etcheck.checks.plan import LAYER_MIN, boundary_layer
+from etcheck.checks.rungs.buckled import DiagramOptions, bifurcation_diagram
 from etcheck.errors import EtcheckError, SolverError
 from etcheck.input.mission import mission_from_dict
 from etcheck.report import render
-from etcheck.rod.straight.spectral import divergence_loads
+from etcheck.rod.straight.collocation.spectral import divergence_loads
 from etcheck.scaling import scale, scene
 from etcheck.studies.diagram import diagram_study
 

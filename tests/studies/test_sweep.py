@@ -28,10 +28,10 @@ from etcheck.input.sweep_axes import parse_option
 from etcheck.report.sweep_files import read_csv, read_netcdf, to_csv, to_netcdf
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.straight.analytic import critical_loads
-from etcheck.rod.straight.damped_critical import damped_critical, first_root
-from etcheck.rod.straight.exact import string_limit_load
-from etcheck.rod.straight.spectral import critical_load, critical_spin
-from etcheck.rod.straight.undamped import MODEL as UNDAMPED_MODEL
+from etcheck.rod.straight.collocation.damped_critical import damped_critical, first_root
+from etcheck.rod.straight.collocation.spectral import critical_load, critical_spin
+from etcheck.rod.straight.exact.roots import string_limit_load
+from etcheck.rod.straight.exact.undamped import MODEL as UNDAMPED_MODEL
 from etcheck.scaling import scale, scene
 from etcheck.studies.sweep import STATUS_OK, STATUS_OUTSIDE, SweepOptions, solve_point, sweep
 
@@ -443,7 +443,7 @@ def test_buckled_option_labels_coiled_points_like_the_check():
     res = sweep(m, (parse_option("length", "600m:1000m:2"),), SweepOptions(workers=1, buckled=True))
     g = res["grid"]
     assert g["region"] == ["buckled-stable", "straight-unstable"]  # 1000 m: past b1's secondary pitchfork
-    from etcheck.checks.buckled import operating_state
+    from etcheck.checks.rungs.buckled import operating_state
 
     sc = scale(scene(m))
     post = operating_state(sc.params, sc.scales, N=32)  # what the check reports for this mission
@@ -455,7 +455,7 @@ def test_headline_counts_the_points_that_meet_the_required_margin(small):
     """The headline's numbers are sweep.json's: points that pass (stable, both margins met, within the model's
     validity), those that meet the margin but bow past the limit, and those stable but short of it; each
     point's verdict follows its margins and its bow."""
-    from etcheck.checks.validity import BOW_LIMIT, mid_span_bow
+    from etcheck.checks.verdict.validity import BOW_LIMIT, mid_span_bow
     from etcheck.report import render
 
     g = small["grid"]

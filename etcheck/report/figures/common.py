@@ -22,7 +22,7 @@ import pickle
 import threading
 from collections.abc import Callable, Iterator
 
-from etcheck.numerics.lifetime import die_with_parent, kill_and_reap
+from etcheck.runtime.lifetime import die_with_parent, kill_and_reap
 
 #: dots per inch of the figures (sharp on paper at the figures' printed size)
 PRINT_DPI = 220

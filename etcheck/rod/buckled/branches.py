@@ -28,7 +28,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.continuation import (
     ContinuationOptions,
     ContinuationResult,
@@ -47,6 +46,7 @@ from etcheck.rod.buckled.symmetry import symmetry_bases, symmetry_class
 from etcheck.rod.core.linear import NFIELDS
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution
+from etcheck.runtime.blas import single_blas_thread
 
 __all__ = [
     "Branch",

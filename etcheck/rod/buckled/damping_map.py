@@ -12,7 +12,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from etcheck.jsonable import jsonable
-from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.eigen import match_spectra
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.buckled import pitchforks
@@ -24,6 +23,7 @@ from etcheck.rod.core.spectrum import (
     check_resolution,
     damping_cluster,
 )
+from etcheck.runtime.blas import single_blas_thread
 
 #: The damping values of Fig. 19 (Sec. VII B), outside to inside.
 HOPF_GAMMAS = (0.01, 0.013, 0.016, 0.02, 0.022)

@@ -53,7 +53,7 @@ default (same cost as A0, checked column by column against finite
 differences in the tests), which gives quadratic convergence to rounding;
 ``jacobian(..., exact=False)`` returns A0. Consequences: the discrete
 pitchforks of the straight rod are exactly the divergence loads of
-:mod:`etcheck.rod.straight.spectral` at the same N, and the singular points of A0
+:mod:`etcheck.rod.straight.collocation.spectral` at the same N, and the singular points of A0
 along a buckled branch (rung 3, lambda = 0) agree with the branch points found
 here to the discretisation error.
 """

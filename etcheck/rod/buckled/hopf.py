@@ -13,12 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from etcheck.jsonable import jsonable
-from etcheck.numerics.blas import single_blas_thread
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.buckled.spectra import point_spectrum
 from etcheck.rod.core.spectrum import (
     check_resolution,
 )
+from etcheck.runtime.blas import single_blas_thread
 
 __all__ = ["HopfPoint", "HopfScan", "find_hopf"]
 

@@ -11,12 +11,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.eigen import pencil_eigenvalues
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.buckled.symmetry import symmetry_bases, symmetry_class
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import check_resolution
+from etcheck.runtime.blas import single_blas_thread
 
 __all__ = [
     "class_loads",

@@ -13,14 +13,14 @@ import numpy as np
 
 from etcheck.errors import SolverError
 from etcheck.jsonable import jsonable
-from etcheck.numerics.blas import single_blas_thread
-from etcheck.numerics.parallel import split_map
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.core.parameters import RodParameters
 from etcheck.rod.core.spectrum import (
     check_resolution,
 )
+from etcheck.runtime.blas import single_blas_thread
+from etcheck.runtime.parallel import split_map
 
 __all__ = [
     "b1_direct",

@@ -31,11 +31,9 @@ import scipy.linalg as sla
 from scipy.sparse.linalg import ArpackNoConvergence, LinearOperator, eigs
 
 from etcheck.jsonable import jsonable
-from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.chebyshev import clenshaw_curtis_weights
 from etcheck.numerics.eigen import match_spectra
 from etcheck.numerics.optimize import linear_sum_assignment
-from etcheck.numerics.parallel import split_map
 from etcheck.rod.buckled import equilibria as eq
 from etcheck.rod.core.linear import NFIELDS, collocation, linear_operator, stiffness_diag
 from etcheck.rod.core.parameters import RodParameters
@@ -46,7 +44,9 @@ from etcheck.rod.core.spectrum import (
     nearest_eigenvalues,
     prefers_dense,
 )
-from etcheck.rod.straight.spectral import THRESHOLD
+from etcheck.rod.straight.collocation.spectral import THRESHOLD
+from etcheck.runtime.blas import single_blas_thread
+from etcheck.runtime.parallel import split_map
 
 __all__ = [
     "LABELS",

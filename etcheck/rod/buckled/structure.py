@@ -23,12 +23,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from etcheck.numerics.blas import single_blas_thread
 from etcheck.rod.buckled.spectra import damped_operator, operator_eigenvalues, real_positive_count, static_problem
 from etcheck.rod.core.spectrum import (
     ERROR_FLOOR,
 )
-from etcheck.rod.straight.spectral import THRESHOLD
+from etcheck.rod.straight.collocation.spectral import THRESHOLD
+from etcheck.runtime.blas import single_blas_thread
 
 __all__ = ["StructureCheck", "structure_check"]
 

@@ -23,7 +23,7 @@ pair is (end at s = 0, end at s = 1): the lower end first, then the upper.
 
 Each kind is an :class:`EndCondition` (one class, one instance in :data:`REGISTRY` under its name) that owns its
 rows: those of the collocation operator (:func:`etcheck.rod.core.linear.end_rows`) and those of the exact
-determinant's scaled state (:mod:`etcheck.rod.straight.determinant`). :class:`Ends` is the pair, a tuple of the
+determinant's scaled state (:mod:`etcheck.rod.straight.exact.determinant`). :class:`Ends` is the pair, a tuple of the
 two names (as mission files and results write them) that answers what depends on both ends: the first beam
 mode and Euler load of :data:`BEAMS`, looked up by the pair of the ends' bending behaviours (``CLAMPED``,
 ``HINGED``), never by a count of clamped ends, so that a kind that bends in a new way is a new entry.

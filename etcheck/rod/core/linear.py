@@ -61,10 +61,10 @@ from etcheck.numerics.chebyshev import (
     lobatto_weights,
     resample_matrix,
 )
-from etcheck.numerics.memory import matrix_bytes, require
 from etcheck.rod.core.base_state import BaseState, StraightBaseState
 from etcheck.rod.core.ends import ALL_WELDED, Ends
 from etcheck.rod.core.parameters import RodParameters
+from etcheck.runtime.memory import matrix_bytes, require
 
 __all__ = [
     "VARIABLES",

@@ -40,14 +40,14 @@ from functools import lru_cache
 
 import numpy as np
 
-from etcheck.numerics.blas import single_blas_thread
 from etcheck.numerics.chebyshev import lobatto_weights, resample_matrix
 from etcheck.numerics.eigen import eliminate_static, match_spectra, qep_dense, qep_shift_invert
-from etcheck.numerics.memory import BASELINE, WORKSPACE, describe, fits, matrix_bytes, require
-from etcheck.numerics.timelimit import predicted_past
 from etcheck.rod.core.base_state import BaseState, straight
 from etcheck.rod.core.linear import NFIELDS, collocation, linear_operator
 from etcheck.rod.core.parameters import RodParameters
+from etcheck.runtime.blas import single_blas_thread
+from etcheck.runtime.memory import BASELINE, WORKSPACE, describe, fits, matrix_bytes, require
+from etcheck.runtime.timelimit import predicted_past
 
 __all__ = [
     "SIGMA",
@@ -299,7 +299,7 @@ def spectrum(params: RodParameters, base: BaseState | None = None, k: int = 10, 
     at least :func:`roundoff_floor` of the finer resolution. A base state known at a resolution of its own (a
     buckled state, ``base.N``) starts the ladder there: below it the operator samples the state's interpolant,
     and the solves of the climb cannot agree with the finer ones. The climb stops early, unconverged and saying
-    why, at the finest resolution within the memory budget (:mod:`etcheck.numerics.memory`) and before a
+    why, at the finest resolution within the memory budget (:mod:`etcheck.runtime.memory`) and before a
     resolution predicted to end past ``deadline`` (a ``time.perf_counter()`` value; its cost from the last
     solve's, as N^3).
     """
