@@ -36,13 +36,13 @@ from etcheck.checks.results.sections import (
 from etcheck.checks.rungs.straight import picture_ranges
 from etcheck.rod.straight.collocation.spectral import CriticalKind
 from etcheck.rod.straight.varying.circulatory import (
-    THRESHOLD,
     Crossing,
     critical,
     critical_spin,
     crossing_mode,
     first_crossings,
 )
+from etcheck.rod.straight.varying.line import THRESHOLD
 from etcheck.rod.straight.varying.profiles import Tether
 from etcheck.runtime.parallel import ahead, can_split, split_map
 from etcheck.scaling import Scaled, Scales

@@ -34,68 +34,52 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from functools import cached_property
 
 import numpy as np
 
-from etcheck.numerics.eigen import qep_newton, sparse_pencil_nearest, sparse_qep_nearest
+from etcheck.numerics.eigen import sparse_pencil_nearest, sparse_qep_nearest
 from etcheck.numerics.optimize import brentq
 from etcheck.rod.straight.collocation.spectral import CriticalKind
+from etcheck.rod.straight.varying.line import (
+    PAST,
+    STATIC_ROOTS,
+    Line,
+    collides,
+    threshold,
+)
 from etcheck.rod.straight.varying.line_band import (
-    MAX_EIGENVALUES,
     ORDER,
     RESTARTS,
     NotLocated,
-    band,
-    band_scale,
     default_hi,
-    eigenvalue_count,
     forget_bands,
-    mean_params,
-    mirrored,
-    solve,
     stages,
 )
-from etcheck.rod.straight.varying.profiles import Tether, check_resolution, family
+from etcheck.rod.straight.varying.profiles import Tether, check_resolution
 from etcheck.runtime.blas import single_blas_thread
 
 __all__ = [
     "LADDER",
     "MODEL",
-    "RELATIVE",
-    "THRESHOLD",
     "Crossing",
-    "collides",
     "critical",
     "critical_spin",
     "crossing_mode",
     "first_crossings",
     "forget",
-    "growth",
     "static_only",
 ]
 
 MODEL = "rung 1v (graded collocation, profiles)"
-#: Re lambda above this (and above RELATIVE |lambda|) counts as unstable.
-THRESHOLD = 1e-9
-RELATIVE = 1e-8
 #: Middle resolutions tried in turn until two meshes agree.
 LADDER = (24, 32, 48, 64, 96)
 #: Evenly spaced points of the scan along a line.
 SCAN = 24
-#: Most spectra computed along one line on one mesh (a search takes 40-150).
-MAX_SPECTRA = 1500
-#: An eigenvalue tracked by inverse iteration may move at most this much (relative to its size plus one) per unit
-#: relative step along the line; a larger jump is another eigenvalue, and ARPACK decides.
-TRACK_STEP = 10.0
 #: Two meshes whose crossings differ by less than this many times the crossing's round-off
 #: (:func:`_roundoff`) agree as well as any finer pair would: the ladder stops there.
 NOISE = 10.0
 #: A bracket is narrowed to this fraction of its end before the crossing in it is located.
 NARROW = 0.25
-#: A mesh resolves a band of at most this many modes per point of a field (:attr:`_Line.resolved`); the ladder
-#: starts at the first of its meshes that does.
-RESOLVED = 0.5
 #: A critical load below this fraction of the scanned range is a crossing at zero (flutter at any load).
 AT_ZERO = 1e-7
 
@@ -125,136 +109,7 @@ class Crossing:
     mode: tuple | None = None
 
 
-def _threshold(lam: np.ndarray) -> np.ndarray:
-    return np.maximum(THRESHOLD, RELATIVE * np.abs(lam))
-
-
-def growth(lam: np.ndarray) -> float:
-    """max (Re lambda - threshold): positive when some eigenvalue counts as unstable."""
-    return float(np.max(lam.real - _threshold(lam))) if lam.size else -math.inf
-
-
-class _Line:
-    """Spectra along one axis on one mesh (memoised): the eigenvalues of the band at each point, the few near
-    a given one, and the static points of the line."""
-
-    def __init__(self, tether: Tether, axis: str, N: int, hi: float):
-        self.tether, self.axis, self.N, self.hi, self.lo = tether, axis, N, hi, 0.0
-        p = tether.params
-        ends = tether.with_(**{axis: hi})
-        nev = eigenvalue_count(tether, mean_params(ends))
-        if nev > MAX_EIGENVALUES:
-            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {(nev - 4) // 2} modes, more than rung 1v "
-                             f"examines ({MAX_EIGENVALUES} eigenvalues a point)")
-        self.fam = family(ends, N)
-        if (nev - 4) // 2 > self.fam.mesh.size:
-            raise NotLocated(f"up to {axis} = {hi:.6g} the load and spin reshape {(nev - 4) // 2} modes, more than the mesh "
-                             f"resolves ({self.fam.mesh.size} points per field at N = {N})")
-        self.base = {"B": p.B, "omega": p.omega, "T": p.T}
-        self.nev = nev
-        self.memo: dict[float, np.ndarray] = {}
-        self._static: np.ndarray | None = None
-        self.tracked: list[tuple[float, complex, np.ndarray]] = []
-
-    @cached_property
-    def band(self):
-        """Where the eigenvalues of the line are sought (:func:`~etcheck.rod.straight.varying.line_band.band`): set up
-        on the first spectrum (a line on which stability changes only at static points may need none)."""
-        return band(self.fam, self.point(0.0), self.nev)
-
-    @property
-    def resolved(self) -> bool:
-        """Whether the mesh resolves the line's band: its modes at most :data:`RESOLVED` of its points per field
-        (the eigenvalues of a mesh's top modes are not converged, and their collisions are spurious)."""
-        return (self.nev - 4) // 2 <= RESOLVED * self.fam.mesh.size
-
-    @cached_property
-    def scale(self) -> float:
-        """The size of the line's lowest frequencies, by which each solve scales lambda (the band's own)."""
-        return band_scale(self.fam, self.point(0.0))
-
-    def point(self, x: float) -> dict:
-        return self.base | {self.axis: x}
-
-    def spectrum(self, x: float) -> np.ndarray:
-        """The band's eigenvalues at x."""
-        if x not in self.memo:
-            if len(self.memo) >= MAX_SPECTRA:
-                raise NotLocated(f"the search along {self.axis} took more than {MAX_SPECTRA} spectra (N = {self.N})")
-            A = self.fam.operator(**self.point(x))
-            lam = [solve(A, k, sigma, self.band.scale, f"{self.axis} = {x:.6g}")
-                   for sigma, k in zip(self.band.sigmas, self.band.ks)]
-            lam = np.concatenate(lam)
-            self.memo[x] = mirrored(lam, self.self_adjoint(x)) if collides(self.tether) else lam
-        return self.memo[x]
-
-    def self_adjoint(self, x: float) -> bool:
-        """Whether the tether at x is undamped, at rest and under a conservative load: M lambda^2 + K with M and K
-        symmetric (docs/model.md section 10), lambda^2 real."""
-        p = self.tether.params
-        return p.gamma == 0 and self.point(x)["omega"] == 0 and not self.tether.circulatory
-
-    def growth(self, x: float) -> float:
-        return growth(self.spectrum(x))
-
-    def unstable(self, x: float) -> bool:
-        """Whether the tether is unstable at x, given that it is stable just before the last static point below
-        x: a band of the upper half-plane does not see the real eigenvalue that a static point sends into
-        Re lambda > 0, which it does (a simple root of det A0 changes the sign of the product of the
-        eigenvalues), so just past a static point it counts as unstable."""
-        return self.growth(x) > 0 or (self.band.upper and self.just_past_static(x))
-
-    def just_past_static(self, x: float) -> bool:
-        r = self.static_roots()
-        return bool(np.any((r < x) & (x <= r * (1 + 2 * PAST))))
-
-    def near(self, x: float, z: complex, k: int = 2) -> np.ndarray:
-        """The k eigenvalues nearest z at x (z real: a real shift next to it); two by default, the pair that meets
-        or the crossing one and its neighbour: more could reach the Kelvin-Voigt cluster, at a distance of the
-        frequency."""
-        A = self.fam.operator(**self.point(x))
-        off = 1e-3 * (1.0 + abs(z))
-        sigma = complex(z.real + off, z.imag) if z.imag != 0 else z.real + off
-        return sparse_qep_nearest(*A, k=k, sigma=sigma, scale=self.scale, ordering=ORDER, maxiter=RESTARTS)
-
-    def track(self, x: float, z: complex) -> complex:
-        """The eigenvalue at x that continues the one near z: nonlinear inverse iteration from the tracked
-        eigenpair at the nearest x already seen (a few sparse LUs), ARPACK where that does not converge or
-        lands far from where it started."""
-        A = self.fam.operator(**self.point(x))
-        if self.tracked:
-            x0, lam0, y0 = min(self.tracked, key=lambda t: abs(t[0] - x))
-            lam, y, ok = qep_newton(*A, lam0, y0, ordering=ORDER)
-            if ok and abs(lam - lam0) <= TRACK_STEP * (abs(lam0) + 1.0) * max(abs(x - x0) / max(abs(x), 1e-300), 1e-3):
-                self.tracked.append((x, lam, y))
-                return lam
-        off = 1e-3 * (1.0 + abs(z))
-        lam, Y = sparse_qep_nearest(*A, k=2, sigma=complex(z.real + off, z.imag), scale=self.scale,
-                                    ordering=ORDER, vectors=True, maxiter=RESTARTS)
-        i = int(np.argmin(np.abs(lam - z)))
-        self.tracked.append((x, complex(lam[i]), Y[:, i]))
-        return complex(lam[i])
-
-    def static_roots(self) -> np.ndarray:
-        """The values in (0, hi] where the operator is singular at lambda = 0 (static points: a real eigenvalue
-        passes through 0 there), sorted."""
-        if self._static is None:
-            A, Nx = self.fam.static(self.axis, **self.base)
-            x = sparse_pencil_nearest(A, Nx, k=STATIC_ROOTS, shift=0.0, ordering=ORDER)
-            x = x[np.abs(x.imag) <= 1e-8 * np.abs(x)].real
-            if self.axis == "omega":
-                x = np.sqrt(x[x > 0])
-            self._static = np.sort(x[(x > 0) & (x <= self.hi)])
-        return self._static
-
-
-#: Static roots sought per line (the nearest to zero: every one on a line up to a few times its first).
-STATIC_ROOTS = 16
-#: Relative offset of the scan points either side of a static point.
-PAST = 1e-6
-
-
-def _scan(line: _Line, lo: float, hi: float, n: int) -> tuple[float, float] | None:
+def _scan(line: Line, lo: float, hi: float, n: int) -> tuple[float, float] | None:
     """(last stable, first unstable) point of n even steps from lo to hi and the points either side of each
     static point; None when all are stable. Unstable at lo: (lo, lo)."""
     if line.growth(lo) > 0:
@@ -271,7 +126,7 @@ def _scan(line: _Line, lo: float, hi: float, n: int) -> tuple[float, float] | No
 
 
 def _unstable_eigenvalue(lam: np.ndarray) -> complex:
-    z = complex(lam[np.argmax(lam.real - _threshold(lam))])
+    z = complex(lam[np.argmax(lam.real - threshold(lam))])
     return complex(z.real, abs(z.imag))  # the member of a pair with Im >= 0
 
 
@@ -279,7 +134,7 @@ def _nearest(lam: np.ndarray, z: complex, k: int = 1) -> np.ndarray:
     return lam[np.argsort(np.abs(lam - z), kind="stable")[:k]]
 
 
-def _crossing_function(line: _Line, a: float, b: float):
+def _crossing_function(line: Line, a: float, b: float):
     """A function of the axis value, negative at a (stable), positive at b (unstable) and smooth through the
     crossing (see the module docstring), from the few eigenvalues near the one that crosses."""
     z = _unstable_eigenvalue(line.spectrum(b))
@@ -310,15 +165,7 @@ def static_only(tether: Tether) -> bool:
     return tether.params.gamma > 0 and not tether.circulatory
 
 
-def collides(tether: Tether) -> bool:
-    """Whether eigenvalues leave the imaginary axis only in colliding pairs: undamped, and either without spin
-    (the spectrum is symmetric under lambda -> -lambda, the equations having lambda^2 only) or with a uniform
-    load (gyroscopic and conservative: Hamiltonian). Otherwise an eigenvalue crosses the axis on its own."""
-    p = tether.params
-    return p.gamma == 0 and (p.omega == 0 or not tether.circulatory)
-
-
-def _bisect(line: _Line, a: float, b: float, rtol: float) -> float:
+def _bisect(line: Line, a: float, b: float, rtol: float) -> float:
     while b - a > rtol * abs(b):
         c = 0.5 * (a + b)
         if line.unstable(c):
@@ -335,13 +182,13 @@ def _middle(a: float, b: float) -> float:
     return math.sqrt(floor * b) if b > 8.0 * floor else 0.5 * (a + b)
 
 
-def _single(line: _Line, a: float, b: float) -> tuple[float, float]:
+def _single(line: Line, a: float, b: float) -> tuple[float, float]:
     """[a, b] shrunk by bisection on stability until one eigenvalue (a real one, or one of a pair with Im > 0) is
     unstable at b and the bracket is narrower than :data:`NARROW` of b: then one crossing lies in it."""
     while True:
         lam = line.spectrum(b)
         lam = lam[lam.imag >= 0]
-        if np.sum(lam.real - _threshold(lam) > 0) <= 1 and b - a <= NARROW * abs(b) or b <= AT_ZERO * line.hi:
+        if np.sum(lam.real - threshold(lam) > 0) <= 1 and b - a <= NARROW * abs(b) or b <= AT_ZERO * line.hi:
             return a, b
         c = _middle(a, b)
         if c in (a, b):
@@ -377,7 +224,7 @@ def _memoised(h):
     return once
 
 
-def _locate(line: _Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
+def _locate(line: Line, a: float, b: float, rtol: float) -> tuple[float, complex]:
     """The crossing between a (stable) and b (unstable), and its eigenvalue (just past it; 0 at a static point):
     a static point between points this close to it is the crossing (divergence). Where the crossing eigenvalue's
     real part is not negative anywhere back to the start of the line (where the scan found the tether stable: Re
@@ -422,7 +269,7 @@ def _kind(z: complex) -> str:
 WIDEN = 6
 
 
-def _widened(line: _Line, near: tuple[float, float], lo: float, hi: float) -> tuple[float, float] | None:
+def _widened(line: Line, near: tuple[float, float], lo: float, hi: float) -> tuple[float, float] | None:
     """The bracket ``near`` (from another mesh or a neighbouring tether) widened by its width either side, stable at
     its start and unstable at its end on this mesh: its end moved up by a width growing 8 times a step while stable
     there (a slow crossing, Re lambda of 1e-10 a little past it, is not yet counted as unstable), at most
@@ -443,7 +290,7 @@ def _widened(line: _Line, near: tuple[float, float], lo: float, hi: float) -> tu
     return None
 
 
-def _first_static(line: _Line):
+def _first_static(line: Line):
     """:func:`_first` from 0 where stability changes only at static points (:func:`static_only`): unstable at 0
     where the stiffness is not positive there, else lost at the first static point (a simple root: one real
     eigenvalue through 0). At 0 the stiffness is positive (bending and tension) up to the first static point of the
@@ -456,7 +303,7 @@ def _first_static(line: _Line):
     return (float(roots[0]), 0j) if roots.size else (None, None)
 
 
-def _positive_at_start(line: _Line) -> bool:
+def _positive_at_start(line: Line) -> bool:
     """Whether the stiffness of a :func:`static_only` tether is positive at the start of its line (the other axis at
     its value, this one at 0): that value below the other axis's first static point at 0 here."""
     other = "omega" if line.axis == "B" else "B"
@@ -470,7 +317,7 @@ def _positive_at_start(line: _Line) -> bool:
     return bool(first.size == 0 or value < float(np.min(first)))
 
 
-def _first(line: _Line, lo: float, hi: float, rtol: float, near=None, hint=None):
+def _first(line: Line, lo: float, hi: float, rtol: float, near=None, hint=None):
     """The first crossing on one mesh: (value, eigenvalue), (lo, eigenvalue) when unstable at lo, or
     (None, None) when stable up to hi. ``near``: a bracket (a, b) from another mesh to start from; the crossing
     found from it is kept only when the tether is stable just below it on this mesh. ``hint``: (x, lambda), that
@@ -510,7 +357,7 @@ _FOUND: dict = {}
 FOUND_SIZE = 64
 
 
-def _first_on(line: _Line, lo: float, hi: float, rtol: float, near, hint=None):
+def _first_on(line: Line, lo: float, hi: float, rtol: float, near, hint=None):
     """:func:`_first`, memoised in :data:`_FOUND` (a search from a bracket may reuse a scan's answer, the first
     crossing; a scan only a scan's)."""
     key = (line.tether, line.axis, line.N, lo, hi, rtol)
@@ -578,7 +425,7 @@ def _positive(c: Crossing) -> bool:
 def _seed(t: Tether, hi: float, c: Crossing) -> tuple[float, complex, np.ndarray] | None:
     """(x, lambda, y): the crossing eigenpair of ``c`` on the survey's mesh."""
     try:
-        line = _Line(t, "B", LADDER[0], hi)
+        line = Line(t, "B", LADDER[0], hi)
         lam = line.track(c.value, c.eigenvalue)
     except NotLocated:
         return None
@@ -588,7 +435,7 @@ def _seed(t: Tether, hi: float, c: Crossing) -> tuple[float, complex, np.ndarray
 def _continued(t: Tether, hi: float, rtol: float, tol: float, seed) -> tuple[Crossing | None, tuple | None]:
     """The crossing of ``t`` continued from ``seed`` (another damping's crossing eigenpair on the same mesh) and its
     own eigenpair, or (None, None) where :func:`_secant` finds none."""
-    line = _Line(t, "B", LADDER[0], hi)
+    line = Line(t, "B", LADDER[0], hi)
     line.tracked = [seed]
     found = _secant(line, seed[0], seed[1], hi, rtol)
     if found is None:
@@ -598,7 +445,7 @@ def _continued(t: Tether, hi: float, rtol: float, tol: float, seed) -> tuple[Cro
     return _crossing(line, "B", x, x, z, 0.0, hi, line.N, tol, rtol, False, estimate=False), line.tracked[-1]
 
 
-def _secant(line: _Line, x: float, z: complex, hi: float, rtol: float) -> tuple[float, complex] | None:
+def _secant(line: Line, x: float, z: complex, hi: float, rtol: float) -> tuple[float, complex] | None:
     """The crossing near x of the eigenvalue near z (a flutter eigenvalue crossing from the left half-plane, from
     another mesh or damping): tracked along the line (from ``line.tracked``, else found near z) and its real part
     brought to 0 by secant steps, at most :data:`SECANT_STEPS`; None where they do not converge, where Re lambda does
@@ -672,7 +519,7 @@ def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int,
     noise = None
     for N in ladder:
         M = check_resolution(N)
-        line = _Line(tether, axis, N, hi)
+        line = Line(tether, axis, N, hi)
         if not (line.resolved or static_only(tether) or N == ladder[-1]):
             continue  # a finer mesh first: this one's top modes would collide spuriously
         x1, z1 = _first_on(line, lo, hi, rtol, near, hint if N == ladder[0] else None)
@@ -680,7 +527,7 @@ def _ladder(tether: Tether, axis: str, hi: float, tol: float, ladder: tuple[int,
             M, x2, z2 = N, x1, z1
             break
         bracket = None if x1 is None else (x1 * (1 - 1e-3), x1 * (1 + 1e-3) + 1e-12 * hi)
-        x2, z2 = _first_on(_Line(tether, axis, M, hi), lo, hi, rtol, bracket, None if x1 is None else (x1, z1))
+        x2, z2 = _first_on(Line(tether, axis, M, hi), lo, hi, rtol, bracket, None if x1 is None else (x1, z1))
         if x1 is None and x2 is None:
             return Crossing(axis, math.nan, CriticalKind.NONE_FOUND, complex(math.nan), math.nan, True, lo, hi, N, M,
                             f"stable on the scanned range {axis} in [{lo:g}, {hi:g}] ({MODEL}, N = {N} and {M})")
@@ -717,7 +564,7 @@ def critical_spin(tether: Tether, tol: float = 1e-8) -> Crossing:
     return critical(tether, "omega", tol=tol, mode=False)
 
 
-def _roundoff(line: _Line, x: float, z: complex) -> float:
+def _roundoff(line: Line, x: float, z: complex) -> float:
     """How far the round-off of the crossing eigenvalue's real part moves a crossing that it makes on its own
     (not a collision, not a static point): that round-off (the spread of Re lambda computed from two shifts)
     over the slope of Re lambda along the line. A weakly damped flutter crosses the axis slowly (Re lambda
@@ -763,12 +610,12 @@ def crossing_mode(tether: Tether, c: Crossing) -> Crossing:
         return c
     x = c.value * (1 + 1e-8) if c.value > 0 else AT_ZERO * c.hi
     try:
-        return replace(c, mode=_mode(_Line(tether, c.axis, c.N_check, c.hi), x, c.eigenvalue))
+        return replace(c, mode=_mode(Line(tether, c.axis, c.N_check, c.hi), x, c.eigenvalue))
     except (NotLocated, RuntimeError, ValueError, ArithmeticError):
         return c
 
 
-def _mode(line: _Line, x: float, z: complex):
+def _mode(line: Line, x: float, z: complex):
     """(s, u, v) of the eigenvector nearest z at x on a uniform grid of 201 points, complex, scaled so that the
     larger of |u|, |v| peaks at 1 with zero phase there."""
     A = line.fam.operator(**line.point(x))

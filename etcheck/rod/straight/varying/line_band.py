@@ -156,7 +156,7 @@ def solve(A, k: int, sigma, scale: float, where: str) -> np.ndarray:
 
 def mirrored(lam: np.ndarray, real_square: bool = False) -> np.ndarray:
     """The eigenvalues of a tether whose spectrum is symmetric under lambda -> -conj(lambda) (undamped, at rest or
-    under one current: :func:`~etcheck.rod.straight.varying.circulatory.collides`), an eigenvalue in Re lambda > 0 without
+    under one current: :func:`~etcheck.rod.straight.varying.line.collides`), an eigenvalue in Re lambda > 0 without
     its mirror image there (within its own real part) put on the imaginary axis: such an eigenvalue leaves the
     axis only together with its mirror (a collision, or a pair through 0), so a lone one's real part is round-off
     (up to 1e-7 of |lambda| at the top of a band on a fine mesh, above the relative threshold of instability).
