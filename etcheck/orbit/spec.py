@@ -1,26 +1,7 @@
 """What an orbit evaluation needs, as a value: :class:`OrbitSpec` and its limits.
 
-The mission file's ``[orbit]`` table is read into it by
-:func:`etcheck.input.orbit_table.parse_orbit`; the table reads
-
-Either orbital elements::
-
-    [orbit]
-    altitude = "500 km"              # circular; or perigee_altitude + apogee_altitude
-    inclination = "51.6 deg"
-    raan = "0 deg"                   # optional, default 0
-    argument_of_perigee = "0 deg"    # optional, default 0
-    mean_anomaly = "0 deg"           # optional, default 0
-    epoch = "2027-03-01T00:00:00"    # UTC: epoch of the elements and start of the window
-    duration = "1 d"                 # optional, default one day
-    step = "30 s"                    # optional, default: halved until the worst case converges
-    libration_in_plane = "10 deg"    # optional pitch amplitude, default 0
-    libration_out_of_plane = "5 deg" # optional roll amplitude, default 0
-
-or a two-line element set, ``tle = ["1 ...", "2 ..."]`` (``epoch`` then
-optional: the start of the window, default the TLE epoch, at most 30 days
-from it), with the same
-duration, step and libration keys.
+The mission file's ``[orbit]`` table (its fields: :mod:`etcheck.input.orbit_table`) is read into it by
+:func:`etcheck.input.orbit_table.parse_orbit`.
 
 Altitudes are above the equatorial radius 6378.137 km. SI units.
 """
