@@ -21,7 +21,7 @@ from typing import Literal
 from etcheck.checks.results.sections import CheckResults
 from etcheck.jsonable import OMITTED, Omitted, json_name
 
-SCHEMA_PATH = Path(__file__).resolve().parents[2] / "docs" / "results.schema.json"
+SCHEMA_PATH = Path(__file__).resolve().parents[3] / "docs" / "results.schema.json"
 _LEAF = {float: "number", int: "integer", str: "string", bool: "boolean", type(None): "null"}
 
 
