@@ -12,7 +12,7 @@ the current i(s) I along its tangent d3 is, in the f-scaling of eq. (36),
     n(s) = B i(s) d3 x b,
 
 which for b = e3 is the load of eqs. (49)-(51). i(s) = 1 for one current; a profile i(s) (a bare tether that
-collects its current, :class:`etcheck.rod.core.profile.Profile`, largest value 1) makes the load circulatory
+collects its current, :class:`etcheck.rod.core.profile.Profile` of one smooth piece, largest value 1) makes the load circulatory
 (docs/model.md, section 10). On the straight tether the load B i (e3 x b) = B i sin(alpha) (-sin(phi), cos(phi), 0)
 points along :attr:`CrossField.in_plane`: that lateral direction and e3 span the plane of the bow; the other
 lateral direction, :attr:`CrossField.out_of_plane` (along the cross component of b), is the direction of coiling.
@@ -43,6 +43,9 @@ class CrossField:
         for name in ("alpha", "phi"):
             if not math.isfinite(getattr(self, name)):
                 raise ValueError(f"field angle {name} must be finite, got {getattr(self, name)!r}")
+        if self.current is not None and len(self.current.coefficients) > 1:
+            raise ValueError("the bowed tether takes a smooth current profile (one piece): one Chebyshev domain "
+                             "converges only algebraically across a kink")
 
     @property
     def direction(self) -> np.ndarray:
