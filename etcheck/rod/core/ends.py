@@ -135,12 +135,12 @@ class EndCondition:
     def real_values(self, u: np.ndarray, v: np.ndarray, k: np.ndarray, ku: np.ndarray, kv: np.ndarray) -> np.ndarray:
         """The held values (n, 4, m) of the basis solutions (u, v) exp(k s) (u, v, k: (n, m)) at s = 0 in the
         real scaled state (:meth:`real_rows`; ku, kv (n,) the scales)."""
-        raise NotImplementedError(f"{type(self).__name__} gives no rows for the exact determinant")
+        raise ValueError(f"{type(self).__name__} gives no rows for the exact determinant (the collocation routes take it)")
 
     def complex_values(self, ms: np.ndarray) -> np.ndarray:
         """The held values (n, 2, m) of the basis solutions exp(m s) at s = 0 in the complex scaled state,
         ``ms`` = m / kap (n, m) (:meth:`complex_rows`)."""
-        raise NotImplementedError(f"{type(self).__name__} gives no rows for the exact determinant")
+        raise ValueError(f"{type(self).__name__} gives no rows for the exact determinant (the collocation routes take it)")
 
 
 #: The kinds by name (what mission files and results write), in the order they are offered.
