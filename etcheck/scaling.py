@@ -188,36 +188,36 @@ def scene(mission: Mission, field: MagneticField | None = None) -> Scene:
     (:func:`etcheck.checks.orbit_field.resolve`).
     """
     # plain Python floats (not numpy scalars): everything downstream stays JSON-able
-    EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in mission.bending_stiffness)
-    profile = mission.current_profile
-    L = float(mission.length.to_value(u.m))
-    rho_a = float(mission.mass_per_length.to_value(u.kg / u.m))
+    EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in mission.tether.bending_stiffness)
+    profile = mission.operation.current_profile
+    L = float(mission.tether.length.to_value(u.m))
+    rho_a = float(mission.tether.mass_per_length.to_value(u.kg / u.m))
     f = mission.check.scaling_constant
     field = _field(mission) if field is None else field
-    current = float(mission.worst_current.to_value(u.A))
-    if mission.damping_time is None:
+    current = float(mission.operation.worst_current.to_value(u.A))
+    if mission.tether.damping_time is None:
         damping = DEFAULT_GAMMA / Scales(L, EI1, rho_a, f).frequency
     else:
-        damping = float(mission.damping_time.to_value(u.s))
+        damping = float(mission.tether.damping_time.to_value(u.s))
     return Scene(
         length=L,
         EI1=EI1,
         EI2=EI2,
-        GJ=float(mission.torsional_stiffness.to_value(u.N * u.m**2)),
+        GJ=float(mission.tether.torsional_stiffness.to_value(u.N * u.m**2)),
         mass_per_length=rho_a,
-        P=mission.rotary_inertia_ratio,
+        P=mission.tether.rotary_inertia_ratio,
         load=current * field.axial,
-        spin_rate=float(mission.spin_rate.to_value(u.rad / u.s)),
-        tension=float(mission.end_tension.to_value(u.N)),
+        spin_rate=float(mission.operation.spin_rate.to_value(u.rad / u.s)),
+        tension=float(mission.operation.end_tension.to_value(u.N)),
         damping_time=damping,
         f=f,
-        ends=mission.end_conditions,
+        ends=mission.tether.end_conditions,
         current_profile=None if profile is None or profile.uniform else profile.profile,
-        gravity_gradient=mission.gravity_gradient,
+        gravity_gradient=mission.operation.gravity_gradient,
         current=current,
         field=field,
-        axial_stiffness=None if mission.youngs_modulus is None or mission.cross_section_area is None else
-        float((mission.youngs_modulus * mission.cross_section_area).to_value(u.N)),
+        axial_stiffness=None if mission.tether.youngs_modulus is None or mission.tether.cross_section_area is None else
+        float((mission.tether.youngs_modulus * mission.tether.cross_section_area).to_value(u.N)),
     )
 
 
@@ -227,8 +227,8 @@ def _field(mission: Mission) -> MagneticField:
     if mission.orbit is not None:
         raise ValueError("the field of a mission with an [orbit] table is the worst over its orbit: the check's "
                          "orbit stage evaluates it (etcheck.checks.orbit_field.resolve)")
-    axial = float(max(abs(mission.axial_field[0]), abs(mission.axial_field[1])).to_value(u.T))
-    cross = mission.worst_cross_field
+    axial = float(max(abs(mission.operation.axial_field[0]), abs(mission.operation.axial_field[1])).to_value(u.T))
+    cross = mission.operation.worst_cross_field
     return MagneticField(axial, axial if cross is None else float(cross.to_value(u.T)))
 
 
