@@ -24,7 +24,7 @@ from etcheck.errors import MissionError
 from etcheck.input.current_profile import parse_current_profile
 from etcheck.input.echo import MissionEcho
 from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
-from etcheck.input.mission_parts import Operation, Provenance, Studies, Tether
+from etcheck.input.mission_parts import Operation, Provenance, Studies, TetherProperties
 from etcheck.input.orbit_field import check_one_field_source, orbit_echo
 from etcheck.input.sweep_axes import AXES, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
@@ -162,7 +162,7 @@ class Mission:
     mission is :meth:`with_tether`, :meth:`with_operation`, ... of the record that changes.
     """
 
-    tether: Tether
+    tether: TetherProperties
     operation: Operation
     provenance: Provenance
     check: CheckSettings = CheckSettings()  # the [check] table
@@ -324,9 +324,9 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     notes = (*_end_notes(ends), *torsion_notes, *inertia_notes, *spin_notes, *tension_notes,
              *(profile.notes if profile else ()),
              *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping), *assumed_notes)
-    tether = Tether(length=length, bending_stiffness=(EI1, EI2), torsional_stiffness=GJ, poisson_ratio=nu,
-                    mass_per_length=mass, rotary_inertia_ratio=P, youngs_modulus=E, cross_section_area=A,
-                    damping_time=damping, end_conditions=ends)
+    tether = TetherProperties(length=length, bending_stiffness=(EI1, EI2), torsional_stiffness=GJ, poisson_ratio=nu,
+                              mass_per_length=mass, rotary_inertia_ratio=P, youngs_modulus=E, cross_section_area=A,
+                              damping_time=damping, end_conditions=ends)
     operation = Operation(current=current, axial_field=bfield, spin_rate=spin, end_tension=tension, cross_field=cross,
                           gravity_gradient=gg, current_profile=profile)
     provenance = Provenance(

@@ -1,6 +1,6 @@
 """The parts of a :class:`~etcheck.input.mission.Mission`, one frozen record per concern.
 
-:class:`Tether` is what the tether is (the ``[tether]`` table), :class:`Operation` how it is run (the
+:class:`TetherProperties` is what the tether is (the ``[tether]`` table), :class:`Operation` how it is run (the
 ``[operation]`` table), :class:`Provenance` where the mission comes from and what etcheck assumed reading it
 (the ``[mission]`` table, the file, the notes) and :class:`Studies` what studies the file asks for (the
 ``[sweep]`` and ``[uncertainty]`` tables). The ``[check]`` table is
@@ -22,7 +22,7 @@ from etcheck.rod.core.ends import ALL_WELDED
 
 
 @dataclass(frozen=True)
-class Tether:
+class TetherProperties:
     """The ``[tether]`` table: the tether itself (SI quantities)."""
 
     length: u.Quantity  # L, m
@@ -109,4 +109,4 @@ class Studies:
     uncertainty: Uncertainty | None = None  # the [uncertainty] table (etcheck.input.uncertainty)
 
 
-__all__ = ["Operation", "Provenance", "Studies", "Tether"]
+__all__ = ["Operation", "Provenance", "Studies", "TetherProperties"]
