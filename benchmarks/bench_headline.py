@@ -253,7 +253,7 @@ from etcheck.input.sweep_axes import parse_option
 from etcheck.studies.sweep import SweepOptions, sweep
 m = load_mission("missions/set.toml")
 if sys.argv[1] == "undamped":
-    m = replace(m, damping_time=0.0 * u.s)
+    m = m.with_tether(damping_time=0.0 * u.s)
 axes = (parse_option("length", "50m:5km:40:log"), parse_option("spin", "0rpm:20rpm:40"))
 t0 = time.perf_counter()
 r = sweep(m, axes, SweepOptions(cache=None))

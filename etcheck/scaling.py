@@ -188,36 +188,37 @@ def scene(mission: Mission, field: MagneticField | None = None) -> Scene:
     (:func:`etcheck.checks.orbit_field.resolve`).
     """
     # plain Python floats (not numpy scalars): everything downstream stays JSON-able
-    EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in mission.bending_stiffness)
-    profile = mission.current_profile
-    L = float(mission.length.to_value(u.m))
-    rho_a = float(mission.mass_per_length.to_value(u.kg / u.m))
+    t, op = mission.tether, mission.operation
+    EI1, EI2 = (float(q.to_value(u.N * u.m**2)) for q in t.bending_stiffness)
+    profile = op.current_profile
+    L = float(t.length.to_value(u.m))
+    rho_a = float(t.mass_per_length.to_value(u.kg / u.m))
     f = mission.check.scaling_constant
     field = _field(mission) if field is None else field
-    current = float(mission.worst_current.to_value(u.A))
-    if mission.damping_time is None:
+    current = float(op.worst_current.to_value(u.A))
+    if t.damping_time is None:
         damping = DEFAULT_GAMMA / Scales(L, EI1, rho_a, f).frequency
     else:
-        damping = float(mission.damping_time.to_value(u.s))
+        damping = float(t.damping_time.to_value(u.s))
     return Scene(
         length=L,
         EI1=EI1,
         EI2=EI2,
-        GJ=float(mission.torsional_stiffness.to_value(u.N * u.m**2)),
+        GJ=float(t.torsional_stiffness.to_value(u.N * u.m**2)),
         mass_per_length=rho_a,
-        P=mission.rotary_inertia_ratio,
+        P=t.rotary_inertia_ratio,
         load=current * field.axial,
-        spin_rate=float(mission.spin_rate.to_value(u.rad / u.s)),
-        tension=float(mission.end_tension.to_value(u.N)),
+        spin_rate=float(op.spin_rate.to_value(u.rad / u.s)),
+        tension=float(op.end_tension.to_value(u.N)),
         damping_time=damping,
         f=f,
-        ends=mission.end_conditions,
+        ends=t.end_conditions,
         current_profile=None if profile is None or profile.uniform else profile.profile,
-        gravity_gradient=mission.gravity_gradient,
+        gravity_gradient=op.gravity_gradient,
         current=current,
         field=field,
-        axial_stiffness=None if mission.youngs_modulus is None or mission.cross_section_area is None else
-        float((mission.youngs_modulus * mission.cross_section_area).to_value(u.N)),
+        axial_stiffness=None if t.youngs_modulus is None or t.cross_section_area is None else
+        float((t.youngs_modulus * t.cross_section_area).to_value(u.N)),
     )
 
 
@@ -227,8 +228,8 @@ def _field(mission: Mission) -> MagneticField:
     if mission.orbit is not None:
         raise ValueError("the field of a mission with an [orbit] table is the worst over its orbit: the check's "
                          "orbit stage evaluates it (etcheck.checks.orbit_field.resolve)")
-    axial = float(max(abs(mission.axial_field[0]), abs(mission.axial_field[1])).to_value(u.T))
-    cross = mission.worst_cross_field
+    axial = float(max(abs(b) for b in mission.operation.axial_field).to_value(u.T))
+    cross = mission.operation.worst_cross_field
     return MagneticField(axial, axial if cross is None else float(cross.to_value(u.T)))
 
 

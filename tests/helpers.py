@@ -49,7 +49,7 @@ def tape(current_profile: bool = True, end_masses: bool = True) -> dict:
     from etcheck.input.mission import mission_from_dict
 
     data = tomllib.loads((Path(__file__).resolve().parents[1] / "missions" / "tape-tether.toml").read_text())
-    minimum = mission_from_dict(copy.deepcopy(data)).gravity_gradient.minimum
+    minimum = mission_from_dict(copy.deepcopy(data)).operation.gravity_gradient.minimum
     if not current_profile:
         del data["operation"]["current_profile"], data["operation"]["collection"]
     if not end_masses:

@@ -50,12 +50,13 @@ def resolve(mission: Mission) -> Resolved:
     from etcheck.orbit.envelope import axial_field_envelope
 
     started = time.perf_counter()
-    env = axial_field_envelope(mission.orbit, source=mission.file)
+    env = axial_field_envelope(mission.orbit, source=mission.provenance.file)
     env = replace(env, seconds=time.perf_counter() - started)
     worst = env.worst * u.T
     s = env.series  # across a tether on the local vertical: sqrt(|B|^2 - (B.up)^2), its largest over the window
     across = float(np.max(np.sqrt(np.maximum(s.b_magnitude**2 - s.axial_nominal**2, 0.0))))
-    resolved = replace(mission, axial_field=(worst, worst), notes=(*orbit_notes(mission.orbit, env), *mission.notes))
+    resolved = mission.with_operation(axial_field=(worst, worst)).with_provenance(
+        notes=(*orbit_notes(mission.orbit, env), *mission.provenance.notes))
     return Resolved(resolved, scene(resolved, MagneticField(float(env.worst), across)), env)
 
 

@@ -151,10 +151,10 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
         margins += buckled_margins(post, sc, scaled, mission.check.required_margin)
     margins_s = time.perf_counter() - started
     study = None
-    if mission.uncertainty is not None and profiles is not None:
+    if mission.studies.uncertainty is not None and profiles is not None:
         skipped.append({"part": "uncertainty study", "why": "not computed with the current or tension along the "
                         "tether: its margins take rung 1v (seconds each) and the study needs hundreds"})
-    elif mission.uncertainty is not None:  # [uncertainty]: the margins again at other inputs, by the same route
+    elif mission.studies.uncertainty is not None:  # [uncertainty]: the margins again at other inputs, by the same route
         from etcheck.checks.margins.uncertainty import uncertainty_study
 
         study = uncertainty_study(mission, sc, scaled, chosen, margins, options).as_dict()
@@ -226,7 +226,7 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         from etcheck.checks.rungs.profiles import profile_stability, stability_map
 
         tol = max(options.tol, options.eig_tol)
-        linear, profiles, alts = profile_stability(scaled, mission.damping_time is not None, tol=tol,
+        linear, profiles, alts = profile_stability(scaled, mission.tether.damping_time is not None, tol=tol,
                                                    draft=options.draft, beside=other_ends)
         if not options.draft:  # the report's extra, within the sign-off's time budget
             linear["stability_map"] = Extras(skipped, deadline, options.time_budget)(

@@ -53,7 +53,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         resolved = resolve(load_mission(args.mission))
         mission, scaled = resolved.mission, scale(resolved.scene)
         rows, auto = rung1_accuracy(scaled, args.N, args.pairs)
-        _print_rung1(mission.name, scaled.params, args.pairs, rows, auto)
+        _print_rung1(mission.provenance.name, scaled.params, args.pairs, rows, auto)
         if args.rung2:
             print("rung 2: branch b1 from its pitchfork to B = 4 B_1 at the mission's spin and tension "
                   "(one BLAS thread)")

@@ -49,7 +49,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         if args.draft:
             mission = mission.with_fidelity("draft")
         if sys.stderr.isatty():
-            print(f"etcheck: checking {mission.name} ...", file=sys.stderr, flush=True)
+            print(f"etcheck: checking {mission.provenance.name} ...", file=sys.stderr, flush=True)
         # while a report process loads the report stack, the accuracy table's timed solves run after the rest
         result = check(mission, replace(DEFAULT_OPTIONS, accuracy_beside=render is in_process,
                                         time_budget=args.time_budget or None))

@@ -64,7 +64,7 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
         options = SweepOptions(tol=args.tolerance or mission.check.tolerance, workers=args.workers,
                                scheduler=args.scheduler, cache=None if args.no_cache else folder / "cache",
                                buckled=args.buckled)
-        results = sweep(mission, axes, options, progress=ProgressBar(f"etcheck sweep {mission.name}"))
+        results = sweep(mission, axes, options, progress=ProgressBar(f"etcheck sweep {mission.provenance.name}"))
         return results, write_reports(results, folder, fmts, kind="sweep", renderer=render)
 
     with renderer(fmts, "sweep") as render:  # started first: the report stack loads while the sweep runs

@@ -14,18 +14,19 @@ import hashlib
 import math
 import re
 import tomllib
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import astropy.units as u
 
 from etcheck.errors import MissionError
-from etcheck.input.current_profile import CurrentProfile, parse_current_profile
+from etcheck.input.current_profile import parse_current_profile
 from etcheck.input.echo import MissionEcho
 from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
+from etcheck.input.mission_parts import Operation, Provenance, Studies, TetherProperties
 from etcheck.input.orbit_field import check_one_field_source, orbit_echo
-from etcheck.input.sweep_axes import AXES, Axis, parse_table
+from etcheck.input.sweep_axes import AXES, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
@@ -151,85 +152,53 @@ def check_settings(fidelity: str = "auto", **settings: Any) -> CheckSettings:
 
 @dataclass(frozen=True)
 class Mission:
-    """A validated mission in physical units (astropy Quantities, SI).
+    """A validated mission in physical units (astropy Quantities, SI), one record per concern.
 
-    Ranges (current, axial field) are (low, high) pairs; the check uses the
-    worst case |I| * |B0| and says so. ``notes`` records every assumption
-    etcheck made (defaults taken, derived values) for the report.
+    ``tether`` is the tether, ``operation`` how it is run, ``orbit`` the ``[orbit]`` table as read (None
+    without one; the field over it is the check's orbit stage, :func:`etcheck.checks.orbit_field.resolve`,
+    whose mission holds the worst axial field over the orbit and libration as ``operation.axial_field``),
+    ``check`` what a check must show, ``provenance`` where the mission comes from and every assumption
+    etcheck made reading it, ``studies`` the sweep and uncertainty studies the file asks for. A changed
+    mission is :meth:`with_tether`, :meth:`with_operation`, ... of the record that changes.
     """
 
-    name: str
-    description: str
-    length: u.Quantity
-    bending_stiffness: tuple[u.Quantity, u.Quantity]  # (EI1, EI2), EI1 >= EI2
-    torsional_stiffness: u.Quantity  # GJ
-    mass_per_length: u.Quantity
-    rotary_inertia_ratio: float  # P
-    current: tuple[u.Quantity, u.Quantity]
-    axial_field: tuple[u.Quantity, u.Quantity] | None  # None: from the [orbit], evaluated by the orbit stage
-    spin_rate: u.Quantity = 0.0 * u.rad / u.s
-    end_tension: u.Quantity = 0.0 * u.N
-    damping_time: u.Quantity | None = None
-    end_conditions: tuple[str, str] = ALL_WELDED  # (lower end, upper end): etcheck.rod.core.ends
-    poisson_ratio: float | None = None
-    youngs_modulus: u.Quantity | None = None
-    cross_section_area: u.Quantity | None = None
+    tether: TetherProperties
+    operation: Operation
+    provenance: Provenance
     check: CheckSettings = CheckSettings()  # the [check] table
-    source: str = ""
-    file: str = "mission"
-    sha256: str = ""
-    notes: tuple[str, ...] = field(default_factory=tuple)
-    sweep: tuple[Axis, ...] = ()  # the [sweep] table: default axes of `etcheck sweep`
-    uncertainty: Uncertainty | None = None  # the [uncertainty] table (etcheck.input.uncertainty)
-    # the [orbit] table as read; the field over it is the check's orbit stage (etcheck.checks.orbit_field.resolve),
-    # whose mission echoes axial_field as (worst, worst) T, the worst axial field over the orbit and libration
+    studies: Studies = Studies()
     orbit: OrbitSpec | None = None
-    # tether.end_masses + orbit rate: the tension profile; end_tension is then its minimum (conservative)
-    gravity_gradient: GravityGradient | None = None
-    # [operation] cross_field: the field across the undeformed tether (its bow under the Lorentz load); None: not
-    # given (from the [orbit] when there is one, else etcheck's default, stated in the report)
-    cross_field: tuple[u.Quantity, u.Quantity] | None = None
-    assumed: tuple[str, ...] = ()  # [mission] assumed: the fields ("table.field") whose values are assumptions
-    flight: dict[str, str] | None = None  # [mission] flight: {"outcome", "reported"}, where the tether flew
-    given: frozenset[str] = frozenset()  # the fields the file gives ("table.field"); the rest took their defaults
-    # operation.current_profile: I(s)/I_max along the tether (None: one current along the whole tether)
-    current_profile: CurrentProfile | None = None
 
     @property
     def slug(self) -> str:
         """File-system safe version of the name (the report folder)."""
-        return slugify(self.name)
+        return slugify(self.provenance.name)
 
-    @property
-    def worst_current(self) -> u.Quantity:
-        return max(abs(self.current[0]), abs(self.current[1]))
+    def with_tether(self, **changes: Any) -> Mission:
+        """The mission with ``changes`` to its tether (e.g. ``length=200 * u.m``)."""
+        return replace(self, tether=replace(self.tether, **changes))
 
-    @property
-    def current_range_A(self) -> tuple[float, float]:
-        """operation.current as given, (low, high) in A: plain floats for the report's statements."""
-        lo, hi = (float(x.to_value(u.A)) for x in self.current)
-        return lo, hi
+    def with_operation(self, **changes: Any) -> Mission:
+        """The mission with ``changes`` to its operation (e.g. ``spin_rate=0.1 * u.rad / u.s``)."""
+        return replace(self, operation=replace(self.operation, **changes))
 
-    @property
-    def axial_field_range_uT(self) -> tuple[float, float]:
-        """operation.axial_field as given, (low, high) in µT: plain floats for the report's statements."""
-        lo, hi = (float(x.to_value(u.uT)) for x in self.axial_field)
-        return lo, hi
+    def with_provenance(self, **changes: Any) -> Mission:
+        """The mission with ``changes`` to its provenance (e.g. more ``notes``)."""
+        return replace(self, provenance=replace(self.provenance, **changes))
 
-    @property
-    def worst_cross_field(self) -> u.Quantity | None:
-        """The largest |field across the tether| given (None where not given)."""
-        return None if self.cross_field is None else max(abs(self.cross_field[0]), abs(self.cross_field[1]))
+    def with_check(self, **changes: Any) -> Mission:
+        """The mission with ``changes`` to its ``[check]`` settings (e.g. ``required_margin=3.0``)."""
+        return replace(self, check=replace(self.check, **changes))
+
+    def with_studies(self, **changes: Any) -> Mission:
+        """The mission with ``changes`` to its studies (e.g. ``uncertainty=None``)."""
+        return replace(self, studies=replace(self.studies, **changes))
 
     def with_fidelity(self, fidelity: str) -> Mission:
         """The mission checked at another ``[check] fidelity`` (one of :data:`FIDELITIES`), its other settings kept."""
         c = self.check
         return replace(self, check=check_settings(fidelity, required_margin=c.required_margin, resolution=c.resolution,
                                                   tolerance=c.tolerance, scaling_constant=c.scaling_constant))
-
-    def is_assumed(self, *fields: str) -> bool:
-        """Whether the mission marks any of ``fields`` ("table.field", or "table" for a whole table) as assumed."""
-        return any(f == a or a.startswith(f + ".") for f in fields for a in self.assumed)
 
     def echo(self) -> MissionEcho:
         """The inputs as JSON-able {field: "value unit"} for reports."""
@@ -243,33 +212,34 @@ class Mission:
         def microtesla(p):
             return [f"{x.to_value(u.uT):.6g} µT" for x in ([p[0]] if p[0] == p[1] else p)]
 
+        t, op, pv = self.tether, self.operation, self.provenance
         out: MissionEcho = {
-            "name": self.name,
-            "description": self.description,
-            "source": self.source,
-            "file": self.file,
-            "sha256": self.sha256,
+            "name": pv.name,
+            "description": pv.description,
+            "source": pv.source,
+            "file": pv.file,
+            "sha256": pv.sha256,
             "tether": {
-                "length": q(self.length),
-                "bending_stiffness": pair(self.bending_stiffness),
-                "torsional_stiffness": q(self.torsional_stiffness),
-                "poisson_ratio": self.poisson_ratio,
-                "mass_per_length": q(self.mass_per_length),
-                "rotary_inertia_ratio": self.rotary_inertia_ratio,
-                "youngs_modulus": q(self.youngs_modulus),
-                "cross_section_area": q(self.cross_section_area),
-                "damping_time": q(self.damping_time),
-                "end_conditions": list(self.end_conditions),
+                "length": q(t.length),
+                "bending_stiffness": pair(t.bending_stiffness),
+                "torsional_stiffness": q(t.torsional_stiffness),
+                "poisson_ratio": t.poisson_ratio,
+                "mass_per_length": q(t.mass_per_length),
+                "rotary_inertia_ratio": t.rotary_inertia_ratio,
+                "youngs_modulus": q(t.youngs_modulus),
+                "cross_section_area": q(t.cross_section_area),
+                "damping_time": q(t.damping_time),
+                "end_conditions": list(t.end_conditions),
             },
             "operation": {
-                "current": pair(self.current),
-                "current_profile": None if self.current_profile is None else self.current_profile.as_dict(),
-                "axial_field": None if self.axial_field is None else microtesla(self.axial_field),
-                "cross_field": None if self.cross_field is None else microtesla(self.cross_field),
-                "spin_rate": q(self.spin_rate),
-                "spin_rate_rpm": float(self.spin_rate.to(u.cycle / u.min).value),
-                "end_tension": q(self.end_tension),
-                "gravity_gradient": None if self.gravity_gradient is None else self.gravity_gradient.as_dict(),
+                "current": pair(op.current),
+                "current_profile": None if op.current_profile is None else op.current_profile.as_dict(),
+                "axial_field": None if op.axial_field is None else microtesla(op.axial_field),
+                "cross_field": None if op.cross_field is None else microtesla(op.cross_field),
+                "spin_rate": q(op.spin_rate),
+                "spin_rate_rpm": float(op.spin_rate.to(u.cycle / u.min).value),
+                "end_tension": q(op.end_tension),
+                "gravity_gradient": None if op.gravity_gradient is None else op.gravity_gradient.as_dict(),
             },
             "check": {
                 "required_margin": self.check.required_margin,
@@ -278,9 +248,9 @@ class Mission:
                 "resolution": self.check.resolution,
                 "tolerance": self.check.tolerance,
             },
-            "notes": list(self.notes),
-            "assumed": list(self.assumed),
-            "flight": self.flight,
+            "notes": list(pv.notes),
+            "assumed": list(pv.assumed),
+            "flight": pv.flight,
         }
         if self.orbit is not None:
             out["orbit"] = orbit_echo(self.orbit)
@@ -354,38 +324,19 @@ def mission_from_dict(data: dict[str, Any], source: str = "mission", sha256: str
     notes = (*_end_notes(ends), *torsion_notes, *inertia_notes, *spin_notes, *tension_notes,
              *(profile.notes if profile else ()),
              *_range_notes(current, bfield), *uncertainty_notes, *_damping_notes(damping), *assumed_notes)
-    return Mission(
-        name=name,
-        description=read_field(m, "mission", "description", source),
-        source=read_field(m, "mission", "source", source),
-        length=length,
-        bending_stiffness=(EI1, EI2),
-        torsional_stiffness=GJ,
-        poisson_ratio=nu,
-        mass_per_length=mass,
-        rotary_inertia_ratio=P,
-        youngs_modulus=E,
-        cross_section_area=A,
-        damping_time=damping,
-        end_conditions=ends,
-        current=current,
-        axial_field=bfield,
-        spin_rate=spin,
-        end_tension=tension,
-        check=check_settings(**settings),
-        file=source,
-        sha256=sha256,
-        notes=notes,
-        sweep=parse_table(data["sweep"], source) if data.get("sweep") else (),
-        uncertainty=uncertainty,
-        orbit=orbit,
-        gravity_gradient=gg,
-        cross_field=cross,
-        assumed=assumed,
-        flight=_flight(m, source),
-        given=frozenset(f"{table}.{key}" for table, fields in data.items() if table != "orbit" for key in fields),
-        current_profile=profile,
-    )
+    tether = TetherProperties(length=length, bending_stiffness=(EI1, EI2), torsional_stiffness=GJ, poisson_ratio=nu,
+                              mass_per_length=mass, rotary_inertia_ratio=P, youngs_modulus=E, cross_section_area=A,
+                              damping_time=damping, end_conditions=ends)
+    operation = Operation(current=current, axial_field=bfield, spin_rate=spin, end_tension=tension, cross_field=cross,
+                          gravity_gradient=gg, current_profile=profile)
+    provenance = Provenance(
+        name=name, description=read_field(m, "mission", "description", source),
+        source=read_field(m, "mission", "source", source), file=source, sha256=sha256, notes=notes,
+        assumed=assumed, flight=_flight(m, source),
+        given=frozenset(f"{table}.{key}" for table, fields in data.items() if table != "orbit" for key in fields))
+    studies = Studies(sweep=parse_table(data["sweep"], source) if data.get("sweep") else (), uncertainty=uncertainty)
+    return Mission(tether=tether, operation=operation, provenance=provenance, check=check_settings(**settings),
+                   studies=studies, orbit=orbit)
 
 
 def read_field(tbl: dict[str, Any], table: str, key: str, source: str) -> Any:

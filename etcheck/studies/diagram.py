@@ -45,7 +45,7 @@ def refuse_outside_limit(mission: Mission, params: RodParameters, what: str, fie
     range (:func:`postbuckling_limit`) or the tether's ends are not welded, before any solve; ``what`` names the
     study."""
     if not is_welded(params.ends):
-        raise MissionError(mission.file or "mission", "tether.end_conditions",
+        raise MissionError(mission.provenance.file or "mission", "tether.end_conditions",
                            f"{what} needs the buckled tether (rungs 2-3), which is {BUCKLED_WELDED_ONLY} (this "
                            f"tether is {describe(params.ends)})",
                            "the straight tether's margins for these ends are given by 'etcheck MISSION'")
@@ -54,7 +54,7 @@ def refuse_outside_limit(mission: Mission, params: RodParameters, what: str, fie
         if field is None:
             field = ("tether.bending_stiffness" if params.R < R_MIN_SPECTRAL
                      else "operation.end_tension" if params.T > 0 else "operation.spin_rate")
-        raise MissionError(mission.file or "mission", field,
+        raise MissionError(mission.provenance.file or "mission", field,
                            f"{what} is outside the model's validated range: {why}",
                            "lower the end tension or spin, or raise EI2 (tether.bending_stiffness), so that "
                            f"the boundary layers sqrt(R / (f T_eff)) are at least {LAYER_MIN:g} of the length; "

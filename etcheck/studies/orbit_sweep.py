@@ -76,10 +76,10 @@ class OrbitFields:
 
         names = [a.name for a in axes]
         if mission.orbit is None:
-            raise MissionError(mission.file, "orbit", "altitude and inclination axes need the mission's [orbit] table",
+            raise MissionError(mission.provenance.file, "orbit", "altitude and inclination axes need the mission's [orbit] table",
                                "add an [orbit] table (epoch, and optionally duration and libration) to the mission")
         if not isinstance(mission.orbit.orbit, KeplerianElements):
-            raise MissionError(mission.file, "orbit.tle", "altitude and inclination axes need orbital elements, not a TLE",
+            raise MissionError(mission.provenance.file, "orbit.tle", "altitude and inclination axes need orbital elements, not a TLE",
                                "give the orbit as altitude, inclination and epoch to sweep it")
         if "axial_field" in names:
             raise MissionError("command line", "--field", "the axial field follows from the orbit axes",

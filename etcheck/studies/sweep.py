@@ -361,7 +361,7 @@ def sweep(mission: Mission, axes: tuple[Axis, ...], options: SweepOptions = DEFA
     shape = tuple(len(g) for g in grids)
     cache = Cache(options.cache)
     orbit = orbit_fields(mission, axes, options, cache, _run)  # altitude/inclination axes: worst field per orbit
-    fixed = mission.damping_time is not None
+    fixed = mission.tether.damping_time is not None
 
     points = []
     for idx in np.ndindex(*shape):
@@ -502,7 +502,7 @@ def _bows(points, mission: Mission) -> list[float]:
     """The bow at mid-span over the length of each point under the lateral Lorentz load
     (:func:`etcheck.checks.verdict.validity.mid_span_bow`): the field across the tether as the mission states it, else
     the point's own axial field where the sweep sets one (field or orbit axes), else the check's."""
-    stated = mission.cross_field is not None
+    stated = mission.operation.cross_field is not None
     out = []
     for _, values, sc, _, _ in points:
         b_perp = sc.field.cross if stated else values.get("axial_field", sc.field.cross)
@@ -569,7 +569,7 @@ def load_axes_or_table(mission: Mission, axes: Iterable[Axis]) -> tuple[Axis, ..
     axes = tuple(axes)
     if axes:
         return check_axes(axes, "command line")
-    if mission.sweep:
-        return mission.sweep
-    raise MissionError(mission.file, "sweep", "no sweep axes given",
+    if mission.studies.sweep:
+        return mission.studies.sweep
+    raise MissionError(mission.provenance.file, "sweep", "no sweep axes given",
                        "pass e.g. --length 50m:5km:40:log --spin 0rpm:2rpm:40, or add a [sweep] table to the mission")

@@ -79,12 +79,12 @@ def test_tape_limits_on_the_exact_determinant_route():
     tension = limits["end_tension"]
     assert tension["status"] == "located" and 0 < tension["limit"] < r["scene"]["tension_N"]
     assert "smallest tension held constant" in r["design_limits"]["basis"]
-    gg = mission.gravity_gradient
+    gg = mission.operation.gravity_gradient
     k = tension["end_mass_factor"]
     scaled_gg = replace(gg, upper_mass=k * gg.upper_mass, lower_mass=k * gg.lower_mass)
     assert scaled_gg.minimum == pytest.approx(tension["limit"], rel=1e-10)
-    at = check(replace(mission, gravity_gradient=None,
-                       end_tension=tension["limit"] * mission.end_tension.unit).with_fidelity("draft"))
+    at = check(mission.with_operation(gravity_gradient=None, end_tension=tension["limit"] * mission.operation.end_tension.unit)
+               .with_fidelity("draft"))
     assert at.results["plan"]["route"] == EXACT
     assert _smallest(at.results) == pytest.approx(2.0, rel=1e-6)
     current = limits["current"]
@@ -97,7 +97,7 @@ def test_tape_limits_on_the_exact_determinant_route():
 def test_limits_use_the_checks_options_and_a_failing_mission_looks_shorter():
     """A mission already short of the margin: its limits lie below the mission's values."""
     mission = load_mission(MISSIONS / "set-static.toml")
-    failing = replace(mission, check=replace(mission.check, required_margin=200.0))
+    failing = mission.with_check(required_margin=200.0)
     limits = {lim["input"]: lim for lim in design_limits(failing, scene(failing), DEFAULT_OPTIONS)["limits"]}
     assert limits["length"]["limit"] < 100.0 and limits["current"]["limit"] < 1.0
     assert limits["length"]["margin_at_limit"] == pytest.approx(200.0, rel=1e-6)

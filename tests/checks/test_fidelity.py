@@ -54,6 +54,6 @@ def test_a_draft_report_is_marked_on_its_title_verdict_and_every_page():
     sign = " ".join(render(check(mission).results, ("html",))["html"].decode().split())
     assert '<span class="draft-mark">DRAFT</span></h1>' in draft and "(DRAFT)</title>" in draft
     assert "Draft verdict, not for signature" in draft
-    assert f' · {mission.name} · DRAFT, not for signature"; font-size' in draft  # the PDF's page footer
+    assert f' · {mission.provenance.name} · DRAFT, not for signature"; font-size' in draft  # the PDF's page footer
     for mark in ("draft-mark\">", "(DRAFT)", "Draft verdict", "DRAFT, not for signature"):
         assert mark not in sign

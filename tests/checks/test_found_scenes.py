@@ -103,7 +103,7 @@ def _round_wire_undamped(current: str) -> dict:
     from pathlib import Path
 
     data = tomllib.loads((Path(__file__).parents[2] / "missions" / "pmg.toml").read_text())
-    minimum = mission_from_dict(copy.deepcopy(data)).gravity_gradient.minimum
+    minimum = mission_from_dict(copy.deepcopy(data)).operation.gravity_gradient.minimum
     data["tether"].pop("end_masses")
     data["operation"].pop("orbit_rate", None), data["operation"].pop("orbit_altitude", None)
     data["tether"]["damping_time"] = "0 s"

@@ -123,7 +123,7 @@ def test_static_mission_validates_in_both_fidelities():
 
 
 def tensioned_missions() -> list[Path]:
-    return [p for p in sorted(MISSIONS.glob("*.toml")) if load_mission(p).end_tension.value > 0]
+    return [p for p in sorted(MISSIONS.glob("*.toml")) if load_mission(p).operation.end_tension.value > 0]
 
 
 def test_tensioned_missions_validate():

@@ -51,7 +51,7 @@ def static_set(margin: float, uncertainty: dict = EI_AND_FIELD):
 
 
 def probability(m, kind: str = LOAD_AT_REST, **kw):
-    return failure_probability(study_model(m), kind, m.uncertainty, **kw)
+    return failure_probability(study_model(m), kind, m.studies.uncertainty, **kw)
 
 
 # --------------------------------------------------------------------------- truths of the rung-0 margin
@@ -157,7 +157,7 @@ def test_sampling_intervals_cover_the_truth_95_percent_of_the_time():
         model = study_model(m)
         truth = truth_ei_field(m0)
         for seed in range(80):
-            p = failure_probability(model, LOAD_AT_REST, m.uncertainty, seed=seed, method="sampling", points=64)
+            p = failure_probability(model, LOAD_AT_REST, m.studies.uncertainty, seed=seed, method="sampling", points=64)
             hits += p.low <= truth <= p.high
             total += 1
     assert 0.92 <= hits / total <= 0.98
@@ -198,7 +198,7 @@ def test_one_input_on_the_exact_determinant_route_against_its_margin_root():
     m = mission(tape(current_profile=False, end_masses=False), {"length": {"distribution": "normal", "sigma": "10 %"}})
     model = study_model(m)
     assert model.route == EXACT
-    p = failure_probability(model, LOAD_AT_SPIN, m.uncertainty)
+    p = failure_probability(model, LOAD_AT_SPIN, m.studies.uncertainty)
     sc = resolve(m).scene
 
     def margin(L):
@@ -242,10 +242,10 @@ def test_undamped_mission_is_answered_by_the_undamped_determinant():
     data["check"] |= {"required_margin": 120, "fidelity": "draft"}
     m = mission_from_dict(data)
     model = study_model(m)
-    p = failure_probability(model, LOAD_AT_SPIN, m.uncertainty)
+    p = failure_probability(model, LOAD_AT_SPIN, m.studies.uncertainty)
     truth = (1.3 - model.at_nominal[LOAD_AT_SPIN] / 120) / 0.6  # field factor b > m0 / required, b on [0.7, 1.3]
     assert "undamped" in model.name and not model.damped
-    plain = check(replace(m, uncertainty=None)).results  # (the check alone: its study differentiates 12 margins)
+    plain = check(m.with_studies(uncertainty=None)).results  # (the check alone: its study differentiates 12 margins)
     assert model.at_nominal[LOAD_AT_SPIN] == pytest.approx(plain["margins"][0]["value"], rel=1e-12)
     assert p.value == pytest.approx(truth, rel=1e-9) and p.evaluations == 1
 
@@ -257,9 +257,9 @@ def test_far_from_failure_one_margin_at_the_adverse_corner_bounds_it():
     m = mission(uncertainty={"EI1": {"distribution": "log-uniform", "factor": 1.5}, "mass_per_length": "±30 %"})
     model = study_model(m)
     sens = {s.margin: s for s in sensitivities(replace(model, options=DEFAULT_OPTIONS))}
-    fast = failure_probability(model, LOAD_AT_SPIN, m.uncertainty, sens[LOAD_AT_SPIN])
+    fast = failure_probability(model, LOAD_AT_SPIN, m.studies.uncertainty, sens[LOAD_AT_SPIN])
     assert fast.bound == FLOOR and fast.evaluations == 5 and "either side" in fast.how
-    slow = failure_probability(model, LOAD_AT_SPIN, m.uncertainty)
+    slow = failure_probability(model, LOAD_AT_SPIN, m.studies.uncertainty)
     assert slow.method == "quadrature" and slow.bound == FLOOR and slow.evaluations > 100
 
 
@@ -295,7 +295,7 @@ def test_a_margin_that_jumps_at_the_missions_values_is_not_bounded_away():
     sens = next(s for s in sensitivities(model) if s.margin == LOAD_AT_SPIN)
     nominal = model.margin(model.values(), LOAD_AT_SPIN).value
     assert nominal < 1.66
-    p = failure_probability(model, LOAD_AT_SPIN, m.uncertainty, sens)
+    p = failure_probability(model, LOAD_AT_SPIN, m.studies.uncertainty, sens)
     above = model.margin(model.values({"bending_stiffness": 1.001}), LOAD_AT_SPIN).value
     assert above > 1.66  # the jump lies within a thousandth of the stiffness: P is Phi of a z below 0.01
     assert p.value == pytest.approx(0.5, abs=0.005)
@@ -436,7 +436,7 @@ def test_the_buckled_margin_is_scaled_exactly_where_it_is_a_power_law_and_otherw
         scaled = scale(sc)
         buckled = Margin(BUCKLED, "N/m", 2.44 * sc.load, sc.load, 2.44, 2.0, "pass", 3, 1e-8, "")
         model = margin_model(m, sc, scaled, plan(scaled.params), [buckled])
-        p = failure_probability(model, BUCKLED, m.uncertainty)
+        p = failure_probability(model, BUCKLED, m.studies.uncertainty)
         if truth is not None:
             assert p.method == "exact" and p.evaluations == 1
             assert p.value == pytest.approx(truth, rel=1e-9)

@@ -32,13 +32,13 @@ def _without_section(d: dict) -> None:
 
 def test_points_are_read_as_given():
     m = mission_from_dict(_base(current_profile={"at": [0, 0.3, 1], "fraction": [0, 0.8, 1]}))
-    cp = m.current_profile
+    cp = m.operation.current_profile
     assert cp.model == "given" and cp.at == (0.0, 0.3, 1.0) and cp.fraction == (0.0, 0.8, 1.0)
     assert cp.profile(np.array([0.15, 0.65])) == pytest.approx([0.4, 0.9])
     echo = m.echo()["operation"]["current_profile"]
     assert echo["at"] == [0.0, 0.3, 1.0] and echo["collection"] is None
-    assert any("piecewise linear" in n for n in m.notes)
-    assert mission_from_dict(_base()).current_profile is None  # no profile: one current, as before
+    assert any("piecewise linear" in n for n in m.provenance.notes)
+    assert mission_from_dict(_base()).operation.current_profile is None  # no profile: one current, as before
 
 
 @pytest.mark.parametrize("profile, field, words", [
@@ -94,7 +94,7 @@ def test_oml_long_tether_saturates():
 
 def test_oml_profile_in_a_mission():
     m = mission_from_dict(_base(current_profile="OML", collection=COLLECTION))
-    cp = m.current_profile
+    cp = m.operation.current_profile
     assert cp.model == "orbital-motion-limited collection"
     assert cp.profile(np.array([0.0]))[0] == pytest.approx(1.0, abs=1e-9)  # largest at the lower (cathodic) end
     assert abs(cp.profile(np.array([1.0]))[0]) < 1e-9  # zero at the upper (anodic) end
@@ -105,9 +105,9 @@ def test_oml_profile_in_a_mission():
     assert np.allclose(cp.profile(s), i(xi_L * (1 - s)) / i(xi_L), atol=1e-9)
     echo = m.echo()["operation"]["current_profile"]["collection"]
     assert echo["length_ratio"] == pytest.approx(xi_L) and echo["anode_end"] == "upper"
-    assert any("OML predicts a largest current" in n for n in m.notes)
+    assert any("OML predicts a largest current" in n for n in m.provenance.notes)
     lower = mission_from_dict(_base(current_profile="OML", collection=COLLECTION | {"anode_end": "lower"}))
-    assert np.allclose(lower.current_profile.profile(s), cp.profile(1 - s), atol=1e-9)
+    assert np.allclose(lower.operation.current_profile.profile(s), cp.profile(1 - s), atol=1e-9)
 
 
 @pytest.mark.parametrize("change, field, words", [

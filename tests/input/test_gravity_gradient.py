@@ -93,16 +93,16 @@ def _base() -> dict:
 def test_mission_tension_is_the_profile_with_the_minimum_as_a_bound():
     m = mission_from_dict(_base())
     g = GravityGradient(10.0, 2.0, 1000.0, 0.01, 1.1e-3, "operation.orbit_rate")
-    assert m.gravity_gradient == g
-    assert m.end_tension.to_value("N") == g.minimum > 0
+    assert m.operation.gravity_gradient == g
+    assert m.operation.end_tension.to_value("N") == g.minimum > 0
     assert m.echo()["operation"]["gravity_gradient"]["minimum_N"] == g.minimum
     assert m.echo()["operation"]["gravity_gradient"]["used"] == "profile"
-    assert any("uses this profile" in n and "as a bound" in n for n in m.notes)
+    assert any("uses this profile" in n and "as a bound" in n for n in m.provenance.notes)
     s = np.linspace(0.0, 1.0, 11)
     assert np.allclose(g.shape()(s) * g.maximum, [g.at(x * g.length) for x in s], rtol=1e-13)
     d = _base()
     d["operation"] = {"current": "1 A", "axial_field": "30 uT", "orbit_altitude": "350 km"}
-    assert mission_from_dict(d).gravity_gradient.orbit_rate == pytest.approx(circular_rate(350e3), rel=1e-15)
+    assert mission_from_dict(d).operation.gravity_gradient.orbit_rate == pytest.approx(circular_rate(350e3), rel=1e-15)
 
 
 def _error(change) -> MissionError:
@@ -142,8 +142,8 @@ def test_errors_name_the_field(change, field, words):
 ])
 def test_shipped_missions_carry_gravity_gradient_tension(name, at, lo, hi):
     m = load_mission(MISSIONS / f"{name}.toml")
-    g = m.gravity_gradient
-    assert g is not None and g.minimum_at == at and lo < m.end_tension.to_value("N") == g.minimum < hi
+    g = m.operation.gravity_gradient
+    assert g is not None and g.minimum_at == at and lo < m.operation.end_tension.to_value("N") == g.minimum < hi
     assert g.maximum > g.minimum
     sd = scene_section(scene(m))
     assert sd.tension_N == g.minimum and sd.tension_profile.minimum_N == g.minimum
@@ -152,11 +152,11 @@ def test_shipped_missions_carry_gravity_gradient_tension(name, at, lo, hi):
 def test_tape_tether_mission_takes_its_rate_from_the_orbit():
     """The tape mission's [orbit] (600 km circular) gives the rate; equal 12 kg ends: 0.01056 N at each end."""
     m = load_mission(MISSIONS / "tape-tether.toml")
-    g = m.gravity_gradient
+    g = m.operation.gravity_gradient
     assert g.orbit_rate == pytest.approx(circular_rate(600e3), rel=1e-12) and "[orbit]" in g.rate_source
     assert g.minimum == pytest.approx(3 * circular_rate(600e3) ** 2 * 12.0 * 250.0, rel=1e-14)
-    assert m.end_tension.to_value("N") == pytest.approx(0.010558, rel=1e-4)
-    EI1, EI2 = (x.to_value("N m2") for x in m.bending_stiffness)
+    assert m.operation.end_tension.to_value("N") == pytest.approx(0.010558, rel=1e-4)
+    EI1, EI2 = (x.to_value("N m2") for x in m.tether.bending_stiffness)
     assert EI2 / EI1 == pytest.approx(2.56e-6, rel=1e-2)
 
 

@@ -227,30 +227,30 @@ def _assert_names(exc: MissionError, source: str, field: str, extra: str | None)
 def test_shipped_missions_parse(name):
     m = load_mission(MISSIONS / name)
     assert isinstance(m, Mission)
-    assert m.name
-    assert m.file == str(MISSIONS / name)
-    assert len(m.sha256) == 64
-    EI1, EI2 = m.bending_stiffness
+    assert m.provenance.name
+    assert m.provenance.file == str(MISSIONS / name)
+    assert len(m.provenance.sha256) == 64
+    EI1, EI2 = m.tether.bending_stiffness
     assert EI1 >= EI2 > 0 * u.N * u.m**2
-    assert m.length > 0 * u.m
-    assert m.mass_per_length > 0 * u.kg / u.m
-    assert 0 <= m.rotary_inertia_ratio < 1
+    assert m.tether.length > 0 * u.m
+    assert m.tether.mass_per_length > 0 * u.kg / u.m
+    assert 0 <= m.tether.rotary_inertia_ratio < 1
 
 
 def test_set_mission_values():
     m = load_mission(MISSIONS / "set.toml")
-    assert m.name == "SET"
-    assert m.length.to_value(u.m) == pytest.approx(100.0)
-    assert [q.to_value(u.N * u.m**2) for q in m.bending_stiffness] == pytest.approx([38.0, 21.0])
-    assert m.rotary_inertia_ratio == pytest.approx(0.001)
-    assert m.worst_current.to_value(u.A) == pytest.approx(1.0)
+    assert m.provenance.name == "SET"
+    assert m.tether.length.to_value(u.m) == pytest.approx(100.0)
+    assert [q.to_value(u.N * u.m**2) for q in m.tether.bending_stiffness] == pytest.approx([38.0, 21.0])
+    assert m.tether.rotary_inertia_ratio == pytest.approx(0.001)
+    assert m.operation.worst_current.to_value(u.A) == pytest.approx(1.0)
     assert scene(m).field.axial == pytest.approx(70e-6)
     assert scene(m).load == pytest.approx(70e-6)
     # spin: the paper's omega = 0.25 with the assumed mass per length (commented in the file)
-    assert m.spin_rate.to_value(u.cycle / u.min) == pytest.approx(0.1041)
-    assert m.end_tension.to_value(u.N) == 0
+    assert m.operation.spin_rate.to_value(u.cycle / u.min) == pytest.approx(0.1041)
+    assert m.operation.end_tension.to_value(u.N) == 0
     # Gamma = 2 GJ / (EI1 + EI2) = 1 / (1 + nu) = 1/1.3
-    GJ = m.torsional_stiffness.to_value(u.N * u.m**2)
+    GJ = m.tether.torsional_stiffness.to_value(u.N * u.m**2)
     assert 2 * GJ / (38.0 + 21.0) == pytest.approx(1 / 1.3, rel=1e-14)
     assert m.check.required_margin == 2
     assert m.check.fidelity == "auto"
@@ -258,39 +258,39 @@ def test_set_mission_values():
 
 def test_rotary_inertia_from_section():
     m = load_mission(MISSIONS / "pmg.toml")
-    EI1 = m.bending_stiffness[0].to_value(u.N * u.m**2)
-    E = m.youngs_modulus.to_value(u.Pa)
-    A = m.cross_section_area.to_value(u.m**2)
-    L = m.length.to_value(u.m)
+    EI1 = m.tether.bending_stiffness[0].to_value(u.N * u.m**2)
+    E = m.tether.youngs_modulus.to_value(u.Pa)
+    A = m.tether.cross_section_area.to_value(u.m**2)
+    L = m.tether.length.to_value(u.m)
     # P = I1 / (A L^2) with I1 = EI1 / E
-    assert m.rotary_inertia_ratio == pytest.approx(EI1 / E / (A * L**2), rel=1e-12)
-    assert any("rotary inertia" in note for note in m.notes)
+    assert m.tether.rotary_inertia_ratio == pytest.approx(EI1 / E / (A * L**2), rel=1e-12)
+    assert any("rotary inertia" in note for note in m.provenance.notes)
 
 
 def test_ranges_worst_case():
     m = load_mission(MISSIONS / "proseds.toml")
-    assert m.current[0] < m.current[1]
-    assert m.worst_current.to_value(u.A) == pytest.approx(1.5)
+    assert m.operation.current[0] < m.operation.current[1]
+    assert m.operation.worst_current.to_value(u.A) == pytest.approx(1.5)
     assert scene(m).field.axial == pytest.approx(40e-6)
-    assert any("worst case" in note for note in m.notes)
+    assert any("worst case" in note for note in m.provenance.notes)
 
 
 def test_isotropic_single_stiffness(tmp_path):
     m = load_mission(write_mission(tmp_path, {("tether", "bending_stiffness"): '"10 N m2"'}))
-    assert m.bending_stiffness[0] == m.bending_stiffness[1]
-    assert m.bending_stiffness[0].to_value(u.N * u.m**2) == pytest.approx(10.0)
+    assert m.tether.bending_stiffness[0] == m.tether.bending_stiffness[1]
+    assert m.tether.bending_stiffness[0].to_value(u.N * u.m**2) == pytest.approx(10.0)
 
 
 def test_negative_range_uses_magnitude(tmp_path):
     m = load_mission(write_mission(tmp_path, {("operation", "current"): '["-3 A", "1 A"]'}))
-    assert m.worst_current.to_value(u.A) == pytest.approx(3.0)
+    assert m.operation.worst_current.to_value(u.A) == pytest.approx(3.0)
 
 
 @pytest.mark.parametrize("nu", ["0.5", "-0.99", "0", "0.3"])
 def test_poisson_ratio_edges_accepted(tmp_path, nu):
     m = load_mission(write_mission(tmp_path, {("tether", "poisson_ratio"): nu}))
-    assert m.poisson_ratio == pytest.approx(float(nu))
-    GJ = m.torsional_stiffness.to_value(u.N * u.m**2)
+    assert m.tether.poisson_ratio == pytest.approx(float(nu))
+    GJ = m.tether.torsional_stiffness.to_value(u.N * u.m**2)
     assert GJ == pytest.approx((38 + 21) / (2 * (1 + float(nu))), rel=1e-14)
 
 
@@ -298,8 +298,8 @@ def test_torsional_stiffness_instead_of_poisson(tmp_path):
     m = load_mission(
         write_mission(tmp_path, {("tether", "poisson_ratio"): None, ("tether", "torsional_stiffness"): '"20 N m2"'})
     )
-    assert m.torsional_stiffness.to_value(u.N * u.m**2) == pytest.approx(20.0)
-    assert m.poisson_ratio is None
+    assert m.tether.torsional_stiffness.to_value(u.N * u.m**2) == pytest.approx(20.0)
+    assert m.tether.poisson_ratio is None
 
 
 def test_optional_fields(tmp_path):
@@ -314,9 +314,9 @@ def test_optional_fields(tmp_path):
             },
         )
     )
-    assert m.damping_time.to_value(u.s) == pytest.approx(0.02)
-    assert m.spin_rate.to_value(u.rad / u.s) == pytest.approx(2 * 2 * math.pi / 60)
-    assert m.end_tension.to_value(u.N) == pytest.approx(500.0)
+    assert m.tether.damping_time.to_value(u.s) == pytest.approx(0.02)
+    assert m.operation.spin_rate.to_value(u.rad / u.s) == pytest.approx(2 * 2 * math.pi / 60)
+    assert m.operation.end_tension.to_value(u.N) == pytest.approx(500.0)
     assert m.check.fidelity == "analytic"
 
 
@@ -324,8 +324,8 @@ def test_defaults(tmp_path):
     m = load_mission(write_mission(tmp_path, {("check", "required_margin"): None}))
     assert m.check.required_margin == 2
     assert m.check.fidelity == "auto"
-    assert m.spin_rate.to_value(u.rad / u.s) == 0
-    assert m.end_tension.to_value(u.N) == 0
+    assert m.operation.spin_rate.to_value(u.rad / u.s) == 0
+    assert m.operation.end_tension.to_value(u.N) == 0
 
 
 # --- bad input --------------------------------------------------------------------------
@@ -431,7 +431,7 @@ def test_astropy_quantities_accepted():
     m = mission_from_dict(
         set_like(length=0.1 * u.km, axial_field=70 * u.uT, bending_stiffness=[38 * u.N * u.m**2, "21 N m2"])
     )
-    assert m.length.to_value(u.m) == pytest.approx(100.0)
+    assert m.tether.length.to_value(u.m) == pytest.approx(100.0)
     assert scene(m).field.axial == pytest.approx(70e-6)
 
 
@@ -448,13 +448,13 @@ def test_pint_quantities_accepted():
             spin_rate=ureg("2 rpm"),
         )
     )
-    assert m.length.unit == u.m and m.length.value == pytest.approx(100.0)
-    assert m.mass_per_length.to_value(u.kg / u.m) == pytest.approx(0.1)
-    assert m.worst_current.to_value(u.A) == pytest.approx(1.0)
+    assert m.tether.length.unit == u.m and m.tether.length.value == pytest.approx(100.0)
+    assert m.tether.mass_per_length.to_value(u.kg / u.m) == pytest.approx(0.1)
+    assert m.operation.worst_current.to_value(u.A) == pytest.approx(1.0)
     assert scene(m).field.axial == pytest.approx(70e-6)
-    assert m.spin_rate.to_value(u.rad / u.s) == pytest.approx(0.20944, rel=1e-5)
+    assert m.operation.spin_rate.to_value(u.rad / u.s) == pytest.approx(0.20944, rel=1e-5)
     m2 = mission_from_dict(set_like(spin_rate=ureg("1 Hz")))
-    assert m2.spin_rate.to_value(u.rad / u.s) == pytest.approx(2 * math.pi, rel=1e-14)
+    assert m2.operation.spin_rate.to_value(u.rad / u.s) == pytest.approx(2 * math.pi, rel=1e-14)
 
 
 @pytest.mark.parametrize(
@@ -504,7 +504,7 @@ def test_end_conditions_lower_end_first(tmp_path, literal, ends):
     from etcheck.scaling import scale, scene
 
     m = load_mission(write_mission(tmp_path, {("tether", "end_conditions"): literal}))
-    assert m.end_conditions == ends
+    assert m.tether.end_conditions == ends
     assert m.echo()["tether"]["end_conditions"] == list(ends)
     assert scale(scene(m)).params.ends == ends
-    assert any("end_conditions" in n for n in m.notes) == (ends != ("welded", "welded"))
+    assert any("end_conditions" in n for n in m.provenance.notes) == (ends != ("welded", "welded"))

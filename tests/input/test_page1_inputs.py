@@ -14,8 +14,8 @@ def test_assumed_fields_are_read_and_flagged():
     data = set_like(name="a", end_tension="0.1 N")
     data["mission"]["assumed"] = ["operation.end_tension", "tether.length"]
     m = mission_from_dict(data)
-    assert m.assumed == ("operation.end_tension", "tether.length")
-    assert m.is_assumed("operation.end_tension") and not m.is_assumed("operation.current")
+    assert m.provenance.assumed == ("operation.end_tension", "tether.length")
+    assert m.provenance.is_assumed("operation.end_tension") and not m.provenance.is_assumed("operation.current")
     assert m.echo()["assumed"] == ["operation.end_tension", "tether.length"]
 
 
@@ -23,7 +23,7 @@ def test_an_assumed_field_not_given_is_a_note_not_an_error():
     data = set_like(name="a")
     data["mission"]["assumed"] = ["tether.end_masses"]
     m = mission_from_dict(data)
-    assert m.assumed == () and any("tether.end_masses" in n and "does not give" in n for n in m.notes)
+    assert m.provenance.assumed == () and any("tether.end_masses" in n and "does not give" in n for n in m.provenance.notes)
 
 
 @pytest.mark.parametrize("value, words", [(["tether.lenght"], "unknown field"), ("tether.length", "list of field"),
@@ -39,7 +39,7 @@ def test_bad_assumed_lists_name_the_field(value, words):
 def test_flight_record():
     data = set_like(name="a")
     data["mission"]["flight"] = {"outcome": "coiled", "reported": "a flight report"}
-    assert mission_from_dict(data).flight == {"outcome": "coiled", "reported": "a flight report"}
+    assert mission_from_dict(data).provenance.flight == {"outcome": "coiled", "reported": "a flight report"}
     for bad in ({"outcome": "tangled"}, {"reported": "x"}, "coiled", {"outcome": "coiled", "when": "1993"}):
         data["mission"]["flight"] = bad
         with pytest.raises(MissionError, match="mission.flight"):
@@ -50,7 +50,7 @@ def test_cross_field_is_a_field_range():
     data = set_like(name="a")
     data["operation"]["cross_field"] = ["10 uT", "30 uT"]
     m = mission_from_dict(data)
-    assert m.worst_cross_field.to_value("uT") == pytest.approx(30.0)
+    assert m.operation.worst_cross_field.to_value("uT") == pytest.approx(30.0)
     assert m.echo()["operation"]["cross_field"] == ["10 µT", "30 µT"]
     data["operation"]["cross_field"] = "30 m"
     with pytest.raises(MissionError, match="operation.cross_field"):
@@ -60,7 +60,7 @@ def test_cross_field_is_a_field_range():
 def test_orbit_altitude_as_perigee_and_apogee():
     data = set_like(name="a", end_masses=["950 kg", "20 kg"])
     data["operation"]["orbit_altitude"] = ["192 km", "850 km"]
-    gg = mission_from_dict(data).gravity_gradient
+    gg = mission_from_dict(data).operation.gravity_gradient
     assert gg.orbit_rate == apogee_rate(192e3, 850e3)
     assert "192 km x 850 km" in gg.rate_source and "apogee" in gg.rate_source
     data["operation"]["orbit_altitude"] = ["850 km", "192 km"]

@@ -23,15 +23,15 @@ def with_uncertainty(table: dict, base: str = "set.toml") -> dict:
 
 def test_shipped_mission_parses():
     m = load_mission(MISSIONS / "set-tolerances.toml")
-    bs, field = m.uncertainty.get("bending_stiffness"), m.uncertainty.get("axial_field")
+    bs, field = m.studies.uncertainty.get("bending_stiffness"), m.studies.uncertainty.get("axial_field")
     assert (bs.shape, bs.factor, bs.a, bs.b, bs.lower) == ("normal", True, 1.0, 0.15, 0.0)
     assert field.shape == "lognormal" and field.b == 0.3 and math.isclose(math.exp(field.a), 70e-6)
-    assert any("truncated at 0" in n for n in m.notes)
+    assert any("truncated at 0" in n for n in m.provenance.notes)
 
 
 def test_tolerance_is_uniform_band_in_si():
     m = mission_from_dict(with_uncertainty({"length": "±0.5 m", "current": "±10 %"}))
-    L, current = m.uncertainty.get("length"), m.uncertainty.get("current")
+    L, current = m.studies.uncertainty.get("length"), m.studies.uncertainty.get("current")
     assert (L.shape, L.a, L.b, L.unit) == ("uniform", 99.5, 100.5, "m")
     assert (current.a, current.b) == pytest.approx((0.9, 1.1))
     assert L.interval() == (99.5, 100.5)
@@ -40,23 +40,23 @@ def test_tolerance_is_uniform_band_in_si():
 def test_current_range_tolerance_is_around_the_worst_case():
     data = with_uncertainty({"current": {"distribution": "normal", "sigma": "10 %"}})
     data["operation"]["current"] = ["0.2 A", "1.5 A"]
-    d = mission_from_dict(data).uncertainty.get("current")
+    d = mission_from_dict(data).studies.uncertainty.get("current")
     assert (d.a, d.b) == pytest.approx((1.5, 0.15))
 
 
 def test_truncated_normal_and_tails():
     d = mission_from_dict(with_uncertainty(
-        {"end_tension": {"distribution": "normal", "sigma": "0.2 N", "bounds": ["-0.1 N", "0.5 N"]}})).uncertainty.get("end_tension")
+        {"end_tension": {"distribution": "normal", "sigma": "0.2 N", "bounds": ["-0.1 N", "0.5 N"]}})).studies.uncertainty.get("end_tension")
     z = stats.norm.cdf(2.5) - stats.norm.cdf(-0.5)
     assert d.cdf(0.0) == pytest.approx((0.5 - stats.norm.cdf(-0.5)) / z, rel=1e-12)
     assert d.ppf(0.0) == -0.1 and d.ppf(1.0) == 0.5
-    f = mission_from_dict(with_uncertainty({"axial_field": {"distribution": "lognormal", "sigma": 0.3}})).uncertainty.get("axial_field")
+    f = mission_from_dict(with_uncertainty({"axial_field": {"distribution": "lognormal", "sigma": 0.3}})).studies.uncertainty.get("axial_field")
     assert f.sf(70e-6 * math.exp(0.3 * 6)) == pytest.approx(stats.norm.sf(6), rel=1e-9)  # far tail, no cancellation
 
 
 def test_default_damping_accepts_relative_only():
     d = mission_from_dict(with_uncertainty({"damping_time": {"distribution": "log-uniform", "factor": 10}}))
-    u = d.uncertainty.get("damping_time")
+    u = d.studies.uncertainty.get("damping_time")
     assert u.factor and (u.a, u.b) == pytest.approx((0.1, 10.0))
 
 
@@ -92,7 +92,7 @@ def test_entries_are_echoed_as_written():
                                             "end_tension": {"distribution": "normal", "sigma": "0.2 N",
                                                             "bounds": ["-0.1 N", "0.5 N"]},
                                             "damping_time": {"distribution": "log-uniform", "factor": 10}}))
-    assert [d["written"] for d in m.uncertainty.as_dict()["inputs"]] == [
+    assert [d["written"] for d in m.studies.uncertainty.as_dict()["inputs"]] == [
         '{ distribution = "normal", sigma = "15 %" }', "±0.5 m",
         '{ distribution = "normal", sigma = "0.2 N", bounds = ["-0.1 N", "0.5 N"] }',
         '{ distribution = "log-uniform", factor = 10 }']
@@ -111,7 +111,7 @@ def test_standard_normal_coordinate_is_exact_into_the_far_tails(table, key):
     import mpmath as mp
 
     mp.mp.dps = 40
-    d = mission_from_dict(with_uncertainty(table)).uncertainty.get(key)
+    d = mission_from_dict(with_uncertainty(table)).studies.uncertainty.get(key)
 
     def F(x):  # the truncated distribution function, from its definition, at 40 digits
         x = mp.mpf(x)

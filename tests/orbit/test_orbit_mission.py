@@ -60,11 +60,11 @@ def results(mission):
 def test_loading_an_orbit_mission_only_reads_it(mission):
     """The mission holds the orbit's specification; nothing is propagated or evaluated at load."""
     assert mission.orbit == parse_orbit(ORBIT)
-    assert mission.axial_field is None
+    assert mission.operation.axial_field is None
     echo = mission.echo()
     assert echo["operation"]["axial_field"] is None
     assert echo["orbit"]["inclination_deg"] == pytest.approx(51.6) and echo["orbit"]["period_s"] == pytest.approx(5677, rel=1e-3)
-    assert "statement" not in echo["orbit"] and not any("worst case over the orbit" in n for n in mission.notes)
+    assert "statement" not in echo["orbit"] and not any("worst case over the orbit" in n for n in mission.provenance.notes)
     with pytest.raises(ValueError, match="orbit stage"):  # its field is the orbit stage's, not the file's
         scene(mission)
 
@@ -74,7 +74,7 @@ def test_orbit_mission_takes_the_envelopes_worst_case(mission, envelope, results
     resolved = operating.mission
     assert operating.envelope.worst == envelope.worst and operating.envelope.seconds > 0
     assert 20e-6 < envelope.worst < 60e-6  # LEO at 51.6 deg
-    lo, hi = resolved.axial_field
+    lo, hi = resolved.operation.axial_field
     assert lo.to_value("T") == hi.to_value("T") == envelope.worst
     assert operating.scene.field.axial == envelope.worst
     assert operating.scene.load == pytest.approx(1.0 * envelope.worst, rel=1e-15)
@@ -84,7 +84,7 @@ def test_orbit_mission_takes_the_envelopes_worst_case(mission, envelope, results
     assert f"{envelope.worst * 1e6:.4g} µT" in stated and envelope.worst_utc[:19] in stated
     lat = f"{abs(envelope.worst_latitude):.2f}° {'N' if envelope.worst_latitude >= 0 else 'S'}"
     assert lat in stated
-    assert any(n.startswith(stated) for n in resolved.notes)
+    assert any(n.startswith(stated) for n in resolved.provenance.notes)
     assert any(n.startswith(stated) for n in results["mission"]["notes"])
     assert results["orbit"]["envelope_s"] > 0
     assert results["mission"]["operation"]["axial_field"] == [f"{envelope.worst * 1e6:.6g} µT"]
@@ -292,7 +292,7 @@ def test_sweep_table_accepts_orbit_axes():
     data = orbit_mission()
     data["sweep"] = {"inclination": {"from": "0 deg", "to": "98 deg", "points": 3}}
     m = mission_from_dict(copy.deepcopy(data))
-    assert m.sweep[0].name == "inclination" and m.sweep[0].values[-1] == pytest.approx(math.radians(98))
+    assert m.studies.sweep[0].name == "inclination" and m.studies.sweep[0].values[-1] == pytest.approx(math.radians(98))
 
 
 def test_a_window_past_the_leap_second_table_prints_nothing_on_stderr_and_says_so(tmp_path):
@@ -314,6 +314,6 @@ def test_a_window_past_the_leap_second_table_prints_nothing_on_stderr_and_says_s
 
 
 def test_a_window_within_the_leap_second_table_has_no_such_note(mission):
-    notes = resolve(mission).mission.notes
+    notes = resolve(mission).mission.provenance.notes
     assert any("worst case over the orbit" in n for n in notes)
     assert not any("leap-second" in n for n in notes)

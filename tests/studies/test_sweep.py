@@ -68,7 +68,7 @@ def test_sweep_table_in_mission():
     data = set_like()
     data["sweep"] = {"length": {"from": "50 m", "to": "1 km", "points": 4, "spacing": "log"}}
     m = mission_from_dict(data)
-    assert m.sweep[0].name == "length" and m.sweep[0].points == 4
+    assert m.studies.sweep[0].name == "length" and m.studies.sweep[0].points == 4
     data["sweep"] = {"length": {"from": "50 s", "to": "1 km", "points": 4}}
     with pytest.raises(MissionError, match=r"sweep\.length"):
         mission_from_dict(data)
@@ -181,13 +181,11 @@ def test_critical_length_with_spin_is_the_boundary():
 def test_undamped_critical_length_at_the_onset_of_a_real_pair():
     """Undamped SET at 2 rpm: the unloaded tether gains a real pair of eigenvalues at about 93 m, where the load
     margin drops from ~200 to 0 in a jump; located by bisection of that onset, checked on both sides."""
-    from dataclasses import replace
-
     import astropy.units as u
 
     from etcheck.studies.sweep import critical_length
 
-    m = replace(load_mission(ROOT / "missions" / "set.toml"), damping_time=0 * u.s)
+    m = load_mission(ROOT / "missions" / "set.toml").with_tether(damping_time=0 * u.s)
     sc, spin = scene(m), 2 * 2 * math.pi / 60
     row = critical_length(sc, {"spin_rate": spin}, 50.0, 160.0, 1e-8)
     assert row["status"] == "ok" and "real pair" in row["reason"]
@@ -429,7 +427,7 @@ def test_mission_sweep_table_drives_the_command(tmp_path):
         '\n[sweep]\nlength = { from = "50 m", to = "500 m", points = 3, spacing = "log" }\n')
     path = tmp_path / "m.toml"
     path.write_text(text)
-    assert load_mission(path).sweep[0].points == 3
+    assert load_mission(path).studies.sweep[0].points == 3
     code = main(["sweep", str(path), "--out", str(tmp_path), "--format", "json", "--workers", "1"])
     assert code == 0
     data = json.loads((tmp_path / "set" / "sweep" / "sweep.json").read_text())

@@ -260,7 +260,7 @@ def margin_model(mission, scene, scaled, chosen, margins, options: WhirlOptions 
     """The margin model of a checked mission: its scene (SI), scaled parameters, plan, the check's margins
     (:class:`~etcheck.checks.margins.margin.Margin`) and rung-1 options, at the worst-case operating point."""
     p = scaled.params
-    unc = mission.uncertainty
+    unc = mission.studies.uncertainty
     moving = unc is not None and any(unc.get(k) is not None for k in ("spin_rate", "end_tension"))
     closed = chosen.rung == 0 and chosen.complete and not moving
     if closed:
@@ -275,7 +275,7 @@ def margin_model(mission, scene, scaled, chosen, margins, options: WhirlOptions 
                "mass_per_length": scene.mass_per_length, "length": scene.length,
                "current": scene.current, "axial_field": scene.field.axial, "spin_rate": scene.spin_rate,
                "end_tension": scene.tension, "damping_time": scene.damping_time}
-    gj_ratio = scene.GJ / (scene.EI1 + scene.EI2) if mission.poisson_ratio is not None else None
+    gj_ratio = scene.GJ / (scene.EI1 + scene.EI2) if mission.tether.poisson_ratio is not None else None
     at_nominal = {m.name: (math.inf if m.value is None else m.value) for m in margins}
     return MarginModel(nominal, scene.P, scene.length, scene.f, gj_ratio, kinds, route, mission.check.required_margin,
                        options, at_nominal, p.gamma > 0, p.gamma, p.ends)

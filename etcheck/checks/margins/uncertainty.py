@@ -92,7 +92,7 @@ def uncertainty_study(mission: Mission, scene: Scene, scaled: Scaled, chosen: Pl
     swings and (``probabilities``) the probability of each margin falling below the required margin, on the
     route and at the tolerances the check used (``chosen``, ``options``; ``margins`` are the check's)."""
     started = time.perf_counter()
-    unc = mission.uncertainty
+    unc = mission.studies.uncertainty
     answered = [m for m in margins if m.verdict != INCOMPLETE]
     model = margin_model(mission, scene, scaled, chosen, answered, options)
     sens = sensitivities(model)  # at the check's tolerance: the differences divide the margins' errors by 1e-3

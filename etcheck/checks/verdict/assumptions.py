@@ -54,7 +54,7 @@ def assumptions(mission: Mission, base: Scene, margin_name: str | None, margin_v
 
 
 def _flag(mission: Mission, *fields: str) -> str:
-    return ASSUMED if mission.is_assumed(*fields) else DATA
+    return ASSUMED if mission.provenance.is_assumed(*fields) else DATA
 
 
 def _record(key: str, assumption: str, value: str, source: str, flag: str, note: str = "",
@@ -67,8 +67,8 @@ def _record(key: str, assumption: str, value: str, source: str, flag: str, note:
 
 def _ends(mission: Mission, others: tuple[AlternativeMargin, ...]) -> AssumptionRecord:
     """How the ends are held, and the governing margin under each other attachment (computed by the check)."""
-    ends = mission.end_conditions
-    if "tether.end_conditions" in mission.given:
+    ends = mission.tether.end_conditions
+    if "tether.end_conditions" in mission.provenance.given:
         source, flag = "tether.end_conditions", _flag(mission, "tether.end_conditions")
     else:
         source, flag = "not given: welded, as in the paper", DEFAULT
@@ -88,7 +88,7 @@ def _value(x: float | None) -> str:
 
 def _current(inp: Inputs) -> AssumptionRecord:
     m = inp.mission
-    lo, hi = m.current_range_A
+    lo, hi = m.operation.current_range_A
     value = f"{inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
     value += "; uniform along the tether"
     el, how = _load_elasticity(inp)
@@ -106,7 +106,7 @@ def _tension(inp: Inputs, uniform_routes: bool = True) -> AssumptionRecord:
     if T != 0:
         source, flag = "operation.end_tension", _flag(m, "operation.end_tension")
         value = f"{T:.4g} N" + (" (compression)" if T < 0 else "")
-    elif "operation.end_tension" in m.given:
+    elif "operation.end_tension" in m.provenance.given:
         source, value, flag = "operation.end_tension: no tension", "0 N", _flag(m, "operation.end_tension")
     else:
         source, value, flag = "not given: no tension (conservative)", "0 N", DEFAULT
@@ -135,7 +135,7 @@ def _field(inp: Inputs, elasticity: tuple[float | None, str] | None = None) -> A
         source = f"the worst over the [orbit] ({m.orbit.model}, with libration)"
         flag = _flag(m, "orbit")
     else:
-        lo, hi = m.axial_field_range_uT
+        lo, hi = m.operation.axial_field_range_uT
         source = "operation.axial_field" + (f" (worst of {lo:.4g} … {hi:.4g} µT)" if lo != hi else "")
         flag = _flag(m, "operation.axial_field")
     el, how = _load_elasticity(inp) if elasticity is None else elasticity
@@ -146,7 +146,7 @@ def _field(inp: Inputs, elasticity: tuple[float | None, str] | None = None) -> A
 def _damping(inp: Inputs) -> AssumptionRecord:
     m = inp.mission
     p = scale(inp.base).params
-    if m.damping_time is None:
+    if m.tether.damping_time is None:
         value, source, flag = (f"γ = {p.gamma:.4g} ({inp.base.damping_time:.3g} s)",
                                "not given: the paper's estimate (Sec. VII B)", DEFAULT)
     else:
@@ -224,7 +224,7 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
         exact = (-1.0, "exact: the load margin is critical load / (|I| B0), the shape of the profile fixed")
     else:
         exact = (None, _RUNG_1V_COST)
-    cp = m.current_profile
+    cp = m.operation.current_profile
     # the uniform check's margin (one current, the smallest tension), where an alternative below shows it
     uniform = _margin_or_none(inp, "current", inp.current) \
         if cp is not None or profiles["uniform_tension_bound"] is None else None
@@ -235,7 +235,7 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
             return None
         return point["value"] / p.B
 
-    lo, hi = m.current_range_A
+    lo, hi = m.operation.current_range_A
     current = f"largest {inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
     if cp is None:
         current_row = _record("current", "current along the tether", current + "; uniform along the tether",
@@ -257,8 +257,8 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
     undamped = ratio(profiles["undamped"]) if d["gamma"] > 0 else None
     damping_row = _record(
         "damping", "material damping (Kelvin-Voigt)", f"γ = {d['gamma']:.4g} ({d['damping_time_s']:.3g} s)",
-        "tether.damping_time" if m.damping_time is not None else "not given: the least favourable up to the "
-        "paper's estimate (Sec. VII B)", _flag(m, "tether.damping_time") if m.damping_time is not None else DEFAULT,
+        "tether.damping_time" if m.tether.damping_time is not None else "not given: the least favourable up to the "
+        "paper's estimate (Sec. VII B)", _flag(m, "tether.damping_time") if m.tether.damping_time is not None else DEFAULT,
         d["why"], *_damping_elasticity(profiles["circulatory"], d["gamma"]),
         "no damping" if undamped is not None else None, undamped)
     return [current_row, tension_row, field_row, damping_row]
@@ -279,7 +279,7 @@ def _profile_tension(inp: Inputs, bound: float | None, uniform: float | None) ->
     and the smallest tension held constant is the alternative (``bound``, computed by the check); with one tension
     along the tether the uniform check's margin is the one under its tension."""
     m = inp.mission
-    gg = m.gravity_gradient
+    gg = m.operation.gravity_gradient
     if gg is None:
         return _tension(inp, uniform_routes=False)
     source = (f"gravity gradient: end masses {gg.upper_mass:.4g} kg, {gg.lower_mass:.4g} kg (tether.end_masses), "

@@ -182,7 +182,7 @@ def design_limits(mission: Mission, base: Scene, options: WhirlOptions, rung_1v:
     inp = inputs_of(mission, base, options)
     exact = {"current": _current_from_margin(inp, *along)} if rung_1v and along is not None and \
         base.spin_rate == 0 else {}
-    skip = RUNG_1V if rung_1v and mission.current_profile is not None else not_sought(base)  # circulatory: no bound
+    skip = RUNG_1V if rung_1v and mission.operation.current_profile is not None else not_sought(base)  # circulatory: no bound
     sought = [name for name in _LIMITS if name not in exact and not skip]
     found = dict(zip(sought, split_map(lambda name: _limit(inp, name), sought)))
     limits = [exact.get(name) or found.get(name) or _not_sought(inp, name, skip) for name in _LIMITS]

@@ -18,9 +18,9 @@ COILED, STRAIGHT = "coiled", "straight"
 
 def flight(mission: Mission, verdict: str, margins: list[Margin], validity: ModelValidity) -> FlightSection | None:
     """The flight section (None for a mission without a flight record)."""
-    if not mission.flight:
+    if not mission.provenance.flight:
         return None
-    outcome, reported = mission.flight["outcome"], mission.flight.get("reported", "")
+    outcome, reported = mission.provenance.flight["outcome"], mission.provenance.flight.get("reported", "")
     straight = [g for g in margins if g.value is not None and not g.name.startswith("buckled")]
     smallest = min(straight, key=lambda g: g.value) if straight else None
     within = ("the straight tether's smallest margin is "
@@ -36,7 +36,7 @@ def _ends(mission: Mission, smallest: Margin | None) -> str:
     others = "; ".join(f"with both ends {a.ends[0]} {a.value:.3g}" for a in (smallest.alternatives if smallest
                                                                                        else ())
                        if a.value is not None and a.ends[0] == a.ends[1])
-    return (f"the end attachment: the check holds the tether {describe(mission.end_conditions)}, on its axis"
+    return (f"the end attachment: the check holds the tether {describe(mission.tether.end_conditions)}, on its axis"
             + (f" (the smallest margin {others})" if others else "") + "; a real end turns, slides or slackens")
 
 
@@ -66,7 +66,7 @@ def _comparison(outcome: str, verdict: str, within: str, validity: ModelValidity
 
 def _not_modelled(mission: Mission, validity: ModelValidity, smallest: Margin | None) -> list[str]:
     lat = validity["lateral"]
-    gg = mission.gravity_gradient
+    gg = mission.operation.gravity_gradient
     items = [
         f"the bow under the lateral Lorentz load: computed here, {100 * lat['bow_over_length']:.3g} % of the length with "
         f"{lat['cross_field_T'] * 1e6:.3g} µT across the tether ({lat['cross_field_source']}); the stability "
@@ -74,7 +74,7 @@ def _not_modelled(mission: Mission, validity: ModelValidity, smallest: Margin | 
         "the current along the tether: " + (
             "one current along the whole tether, as for an insulated tether (a bare tether's current varies "
             "along it and the load is then circulatory: give operation.current_profile)"
-            if mission.current_profile is None else
+            if mission.operation.current_profile is None else
             "the profile given (operation.current_profile) is the model's; the real one varies with the plasma "
             "along the orbit"),
         _ends(mission, smallest),
@@ -85,7 +85,7 @@ def _not_modelled(mission: Mission, validity: ModelValidity, smallest: Margin | 
         "at one temperature",
     ]
     if gg is not None:
-        assumed = " (marked as assumed)" if mission.is_assumed("tether.end_masses") else ""
+        assumed = " (marked as assumed)" if mission.provenance.is_assumed("tether.end_masses") else ""
         items.append(f"the tension along the tether: the gravity-gradient profile ({gg.minimum:.3g} N at its "
                      f"{gg.minimum_at} to {gg.maximum:.3g} N at the centre) from end masses {gg.upper_mass:.4g} kg "
                      f"and {gg.lower_mass:.4g} kg{assumed}, on a tether at rest on the local vertical")

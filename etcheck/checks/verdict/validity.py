@@ -98,10 +98,10 @@ def cross_field_source(mission: Mission) -> tuple[str, bool]:
     the field across a tether on the local vertical), else etcheck's default: the worst field along the
     tether (a field of that size may as well lie across it).
     """
-    if mission.cross_field is not None:
-        return "operation.cross_field", mission.is_assumed("operation.cross_field")
+    if mission.operation.cross_field is not None:
+        return "operation.cross_field", mission.provenance.is_assumed("operation.cross_field")
     if mission.orbit is not None:
-        return "the largest over the orbit (IGRF, tether on the local vertical)", mission.is_assumed("orbit")
+        return "the largest over the orbit (IGRF, tether on the local vertical)", mission.provenance.is_assumed("orbit")
     return ("not given: taken equal to the worst axial field (a field of that size may lie across the "
             "tether); give [operation] cross_field or an [orbit] table", True)
 
@@ -263,7 +263,7 @@ def validity(mission: Mission, scaled: Scaled, chosen: Plan, post: PostbucklingS
         items += _exact_items(p)
     elif chosen.rung == 1:
         items += _spectral_items(p)
-    gg = mission.gravity_gradient
+    gg = mission.operation.gravity_gradient
     if gg is not None:
         items.append(
             f"Tension from the gravity gradient (tether.end_masses, {gg.rate_source}): the tension varies along "
