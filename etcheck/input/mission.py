@@ -22,13 +22,14 @@ import astropy.units as u
 
 from etcheck.errors import MissionError
 from etcheck.input.current_profile import CurrentProfile, parse_current_profile
-from etcheck.input.echo import MissionEcho
+from etcheck.input.echo import CheckEcho, FlightEcho, MissionEcho, OperationEcho, TetherEcho
 from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
 from etcheck.input.orbit_field import check_one_field_source, orbit_echo
 from etcheck.input.sweep_axes import AXES, Axis, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
+from etcheck.jsonable import OMITTED
 from etcheck.rod.core.ends import ALL_WELDED, Ends, describe, is_welded
 from etcheck.rod.core.ends import KINDS as END_KINDS
 from etcheck.rod.core.parameters import F_CLAMPED
@@ -232,59 +233,57 @@ class Mission:
         return any(f == a or a.startswith(f + ".") for f in fields for a in self.assumed)
 
     def echo(self) -> MissionEcho:
-        """The inputs as JSON-able {field: "value unit"} for reports."""
+        """The inputs as read, for the results: quantities as "value unit" texts."""
 
         def q(x):
             return None if x is None else f"{x.value:.6g} {_UNIT_TEXT.get(x.unit.to_string(), x.unit.to_string())}"
 
         def pair(p):
-            return [q(p[0])] if p[0] == p[1] else [q(p[0]), q(p[1])]
+            return (q(p[0]),) if p[0] == p[1] else (q(p[0]), q(p[1]))
 
         def microtesla(p):
-            return [f"{x.to_value(u.uT):.6g} µT" for x in ([p[0]] if p[0] == p[1] else p)]
+            return tuple(f"{x.to_value(u.uT):.6g} µT" for x in ([p[0]] if p[0] == p[1] else p))
 
-        out: MissionEcho = {
-            "name": self.name,
-            "description": self.description,
-            "source": self.source,
-            "file": self.file,
-            "sha256": self.sha256,
-            "tether": {
-                "length": q(self.length),
-                "bending_stiffness": pair(self.bending_stiffness),
-                "torsional_stiffness": q(self.torsional_stiffness),
-                "poisson_ratio": self.poisson_ratio,
-                "mass_per_length": q(self.mass_per_length),
-                "rotary_inertia_ratio": self.rotary_inertia_ratio,
-                "youngs_modulus": q(self.youngs_modulus),
-                "cross_section_area": q(self.cross_section_area),
-                "damping_time": q(self.damping_time),
-                "end_conditions": list(self.end_conditions),
-            },
-            "operation": {
-                "current": pair(self.current),
-                "current_profile": None if self.current_profile is None else self.current_profile.as_dict(),
-                "axial_field": None if self.axial_field is None else microtesla(self.axial_field),
-                "cross_field": None if self.cross_field is None else microtesla(self.cross_field),
-                "spin_rate": q(self.spin_rate),
-                "spin_rate_rpm": float(self.spin_rate.to(u.cycle / u.min).value),
-                "end_tension": q(self.end_tension),
-                "gravity_gradient": None if self.gravity_gradient is None else self.gravity_gradient.as_dict(),
-            },
-            "check": {
-                "required_margin": self.check.required_margin,
-                "fidelity": self.check.fidelity,
-                "scaling_constant": self.check.scaling_constant,
-                "resolution": self.check.resolution,
-                "tolerance": self.check.tolerance,
-            },
-            "notes": list(self.notes),
-            "assumed": list(self.assumed),
-            "flight": self.flight,
-        }
-        if self.orbit is not None:
-            out["orbit"] = orbit_echo(self.orbit)
-        return out
+        return MissionEcho(
+            name=self.name,
+            description=self.description,
+            source=self.source,
+            file=self.file,
+            sha256=self.sha256,
+            tether=TetherEcho(
+                length=q(self.length),
+                bending_stiffness=pair(self.bending_stiffness),
+                torsional_stiffness=q(self.torsional_stiffness),
+                poisson_ratio=self.poisson_ratio,
+                mass_per_length=q(self.mass_per_length),
+                rotary_inertia_ratio=self.rotary_inertia_ratio,
+                youngs_modulus=q(self.youngs_modulus),
+                cross_section_area=q(self.cross_section_area),
+                damping_time=q(self.damping_time),
+                end_conditions=tuple(self.end_conditions),
+            ),
+            operation=OperationEcho(
+                current=pair(self.current),
+                current_profile=None if self.current_profile is None else self.current_profile.echo(),
+                axial_field=None if self.axial_field is None else microtesla(self.axial_field),
+                cross_field=None if self.cross_field is None else microtesla(self.cross_field),
+                spin_rate=q(self.spin_rate),
+                spin_rate_rpm=float(self.spin_rate.to(u.cycle / u.min).value),
+                end_tension=q(self.end_tension),
+                gravity_gradient=None if self.gravity_gradient is None else self.gravity_gradient.echo(),
+            ),
+            check=CheckEcho(
+                required_margin=self.check.required_margin,
+                fidelity=self.check.fidelity,
+                scaling_constant=self.check.scaling_constant,
+                resolution=self.check.resolution,
+                tolerance=self.check.tolerance,
+            ),
+            notes=tuple(self.notes),
+            assumed=tuple(self.assumed),
+            flight=None if self.flight is None else FlightEcho(**self.flight),
+            orbit=OMITTED if self.orbit is None else orbit_echo(self.orbit),
+        )
 
 
 _UNIT_TEXT = {"m2 N": "N m²", "kg / m": "kg/m", "rad / s": "rad/s", "m2": "m²"}
