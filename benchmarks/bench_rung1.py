@@ -96,8 +96,8 @@ def model(name: str, p, scaled) -> None:
     for r in table:
         print(f"{'':41s}{r.N:4d} {r.solve_time * 1e3:10.1f}  {r.eig_error:9.1e}  {r.load_error:9.1e}")
     t, lin = best(lambda: linear_stability(scaled), 1)
-    print(f"rung 1 signed off (linear_stability): {t:.3f} s; critical load {lin['critical_load']['value']:.12g}"
-          f" (error {lin['critical_load']['error']:.1e}), Campbell error {lin['campbell']['error']:.1e}")
+    print(f"rung 1 signed off (linear_stability): {t:.3f} s; critical load {lin.critical_load.value:.12g}"
+          f" (error {lin.critical_load.error:.1e}), Campbell error {lin.campbell.error:.1e}")
 
 
 def main() -> None:

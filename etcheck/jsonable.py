@@ -96,6 +96,12 @@ def to_json(x):
     return x
 
 
+def fields_of(record) -> dict:
+    """A record's fields by name, their values as they are (not converted, unlike :func:`dataclasses.asdict`):
+    to build a record that extends it (``CriticalLoad(**fields_of(point), IB0_N_per_m=...)``)."""
+    return {f.name: getattr(record, f.name) for f in fields(record) if f.init}
+
+
 def from_json(cls: type[T], data: dict) -> T:
     """The record ``cls`` from its JSON form (nested records, tuples, maps built by their fields' types): a key
     ``cls`` does not have, or a required key missing, raises (a builder and its record cannot drift apart)."""

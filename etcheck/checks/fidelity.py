@@ -41,8 +41,9 @@ class Fidelity:
     def draft(self) -> bool:
         return self.name == "draft"
 
-    def as_dict(self) -> FidelitySection:
-        return {"name": self.name, "tolerance": self.tolerance, "left_out": list(self.left_out)}
+    def section(self) -> FidelitySection:
+        """The ``fidelity`` section of the results."""
+        return FidelitySection(name=self.name, tolerance=self.tolerance, left_out=self.left_out)
 
 
 def fidelity_of(draft: bool, tolerance: float) -> Fidelity:

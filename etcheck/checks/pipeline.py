@@ -10,9 +10,8 @@ import math
 import time
 from collections.abc import Callable
 from contextlib import nullcontext
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TypeVar
 
 from etcheck.checks.fidelity import fidelity_of
 from etcheck.checks.margins.attachment import Alternative, alternatives, attachment_section, with_alternatives
@@ -45,11 +44,8 @@ from etcheck.checks.plan import (
 from etcheck.checks.results.header import header_fields, results_header
 from etcheck.checks.results.sections import (
     AccuracyRow,
-    AttachmentSection,
     CheckResults,
-    FidelitySection,
     LinearSection,
-    OrbitSection,
     PlanSection,
     ProfilesSection,
     ResourcesSection,
@@ -58,25 +54,21 @@ from etcheck.checks.results.sections import (
     SceneSection,
     SkippedPart,
     StraightRodSection,
-    UncertaintySection,
 )
 from etcheck.checks.results.sections_buckled import PostbucklingSection
 from etcheck.checks.results.sections_verdict import (
     AssumptionsSection,
     DesignLimitsSection,
-    FlightSection,
-    ModelValidity,
 )
-from etcheck.checks.rungs.static_buckling import static_buckling, static_limits
+from etcheck.checks.rungs.static_buckling import straight_rod
 from etcheck.checks.rungs.straight import DEFAULT_OPTIONS, Extras, WhirlOptions, accuracy, linear_answers
 from etcheck.checks.verdict.assumptions import assumptions
 from etcheck.checks.verdict.design_limits import design_limits
 from etcheck.checks.verdict.flight import flight
 from etcheck.checks.verdict.orbit_load import orbit_results
 from etcheck.checks.verdict.validity import model_validity, validity
-from etcheck.input.echo import TensionProfile
 from etcheck.input.mission import Mission, load_mission, mission_from_dict
-from etcheck.jsonable import OMITTED, from_json, to_json
+from etcheck.jsonable import OMITTED, fields_of, from_json, to_json
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY, describe, is_welded
 from etcheck.rod.straight.collocation.spectral import CriticalKind
 from etcheck.runtime import memory
@@ -85,7 +77,6 @@ from etcheck.runtime.parallel import ahead
 from etcheck.scaling import Scaled, Scene, scale
 
 EXIT_CODES = {PASS: 0, FAIL: 1, INCOMPLETE: 1, OUTSIDE: 1}
-T = TypeVar("T")
 N_LOADS = 5
 
 
@@ -128,8 +119,7 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     if along != varies_along(sc):
         chosen = replace(chosen, reason=f"{chosen.reason}; {DRAFT_BOUND}")
     fid = fidelity_of(mission.check.draft, mission.check.tolerance)
-    rung0 = static_buckling(scaled)
-    static = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
+    static = straight_rod(scaled, sc)
     options = replace(options, N=mission.check.resolution, eig_tol=fid.tolerance)  # the mission's [check] rules
     if fid.draft:
         options = replace(options, tol=max(options.tol, fid.tolerance), draft=True, accuracy_N=(), time_budget=None)
@@ -143,60 +133,55 @@ def check(mission: Mission | str | Path | dict, options: WhirlOptions = DEFAULT_
     answers = _straight_answers(mission, scaled, chosen, options, deadline, None if fid.draft else other_ends)
     linear, profiles, skipped, alts = answers.linear, answers.profiles, answers.skipped, answers.alternatives
     margins = straight_margins(mission, sc, scaled, chosen, static, linear,
-                               profiles["damping"]["why"] if profiles else "")
+                               profiles.damping.why if profiles else "")
     alts = other_ends() if alts is None else alts
     margins = with_alternatives(margins, alts)
     post = None if fid.draft else _postbuckling(mission, scaled, static, linear, profiles)
-    if post and post.get("computed"):
+    if post and post.computed:
         margins += buckled_margins(post, sc, scaled, mission.check.required_margin)
     margins_s = time.perf_counter() - started
     study = None
     if mission.studies.uncertainty is not None and profiles is not None:
-        skipped.append({"part": "uncertainty study", "why": "not computed with the current or tension along the "
-                        "tether: its margins take rung 1v (seconds each) and the study needs hundreds"})
+        skipped.append(SkippedPart(part="uncertainty study", why="not computed with the current or tension along the "
+                               "tether: its margins take rung 1v (seconds each) and the study needs hundreds"))
     elif mission.studies.uncertainty is not None:  # [uncertainty]: the margins again at other inputs, by the same route
         from etcheck.checks.margins.uncertainty import uncertainty_study
 
-        study = uncertainty_study(mission, sc, scaled, chosen, margins, options).as_dict()
+        study = uncertainty_study(mission, sc, scaled, chosen, margins, options).section()
     scope = model_validity(mission, sc)
-    verdict = overall_verdict(margins, scope["within"])
+    verdict = overall_verdict(margins, scope.within)
     extras = Extras(skipped, deadline, options.time_budget)
     decides, limits = _what_decides(mission, sc, margins, chosen.complete and not fid.draft, options, extras,
                                     profiles)
     sections = CheckResults(
         **header_fields(results_header(mission)),
         scene=scene_section(sc),
-        scaled=from_json(ScaledSection, asdict(scaled.params)),
+        scaled=ScaledSection(**fields_of(scaled.params)),
         scales=ScalesSection(length_m=scaled.scales.length, reference_frequency_rad_s=scaled.scales.frequency,
                              force_N=scaled.scales.force, load_N_per_m=scaled.scales.load),
         plan=PlanSection(rung=chosen.rung, model=chosen.model, reason=chosen.reason, complete=chosen.complete,
                          route=chosen.route),
-        fidelity=from_json(FidelitySection, fid.as_dict()),
-        straight_rod=from_json(StraightRodSection, static),
-        linear=_record(LinearSection, answers.linear),
-        profiles=_record(ProfilesSection, answers.profiles),
-        postbuckling=_record(PostbucklingSection, post),
-        accuracy=None if answers.accuracy is None else tuple(from_json(AccuracyRow, r) for r in answers.accuracy),
+        fidelity=fid.section(),
+        straight_rod=static,
+        linear=answers.linear,
+        profiles=answers.profiles,
+        postbuckling=post,
+        accuracy=answers.accuracy,
         margins=tuple(margins),
         verdict=verdict,
-        attachment=from_json(AttachmentSection, attachment_section(scaled, alts)),
-        model_validity=from_json(ModelValidity, scope),
-        assumptions=_record(AssumptionsSection, decides),
-        design_limits=_record(DesignLimitsSection, limits),
-        flight=_record(FlightSection, flight(mission, verdict, margins, scope)),
+        attachment=attachment_section(scaled, alts),
+        model_validity=scope,
+        assumptions=decides,
+        design_limits=limits,
+        flight=flight(mission, verdict, margins, scope),
         validity=tuple(validity(mission, scaled, chosen, post)),
-        orbit=_record(OrbitSection, orbit_results(resolved, margins)),  # None without an [orbit] table
+        orbit=orbit_results(resolved, margins),  # None without an [orbit] table
         elapsed_s=time.perf_counter() - started,
         resources=ResourcesSection(memory_budget_bytes=memory.budget(), time_budget_s=options.time_budget,
-                                   skipped=tuple(from_json(SkippedPart, p) for p in skipped), margins_s=margins_s),
-        uncertainty=OMITTED if study is None else from_json(UncertaintySection, study),
+                                   skipped=tuple(skipped), margins_s=margins_s),
+        uncertainty=OMITTED if study is None else study,
     )
     return CheckResult(results=to_json(sections))
-
-
-def _record(record: type[T], data: dict | None) -> T | None:
-    """The section ``record`` from a builder's JSON-able dict (None: not answered)."""
-    return None if data is None else from_json(record, data)
 
 
 @dataclass(frozen=True)
@@ -206,10 +191,10 @@ class StraightAnswers:
     them), rung 1's ``accuracy`` table, the extras ``skipped`` for the time budget (the check adds to them), and
     with profiles the margins under the other ``alternatives`` of the ends (None: not computed here)."""
 
-    linear: dict | None = None
-    profiles: dict | None = None
-    accuracy: list | None = None
-    skipped: list[dict] = field(default_factory=list)
+    linear: LinearSection | None = None
+    profiles: ProfilesSection | None = None
+    accuracy: tuple[AccuracyRow, ...] | None = None
+    skipped: list[SkippedPart] = field(default_factory=list)
     alternatives: tuple[Alternative, ...] | None = None
 
 
@@ -218,7 +203,7 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
     """The straight tether's answers past rung 0: rung 1v with profiles along the tether, else rung 1 and its
     accuracy table (:class:`StraightAnswers`); with profiles, ``other_ends(gamma)`` at the damping the verdict
     uses (computed beside rung 1v's parts; none without ``other_ends``)."""
-    skipped: list[dict] = []
+    skipped: list[SkippedPart] = []
     if not chosen.complete or (chosen.route != PROFILES and chosen.rung != 1):
         return StraightAnswers(skipped=skipped)
     if chosen.route == PROFILES:
@@ -229,13 +214,13 @@ def _straight_answers(mission: Mission, scaled: Scaled, chosen: Plan, options: W
         linear, profiles, alts = profile_stability(scaled, mission.tether.damping_time is not None, tol=tol,
                                                    draft=options.draft, beside=other_ends)
         if not options.draft:  # the report's extra, within the sign-off's time budget
-            linear["stability_map"] = Extras(skipped, deadline, options.time_budget)(
-                "stability map", lambda: stability_map(scaled, linear, profiles["damping"]["gamma"], tol))
+            linear = replace(linear, stability_map=Extras(skipped, deadline, options.time_budget)(
+                "stability map", lambda: stability_map(scaled, linear, profiles.damping.gamma, tol)))
         return StraightAnswers(linear, profiles, None, skipped, () if alts is None else alts)  # none in a draft
 
     # the spectral accuracy table says nothing about the exact determinant (no resolution to trade); it needs
     # nothing from the rest: where a core is free a helper computes it meanwhile
-    def table() -> list | None:
+    def table() -> tuple[AccuracyRow, ...] | None:
         return accuracy(scaled, options.accuracy_N)
 
     if not options.accuracy_N or chosen.route == EXACT:
@@ -272,48 +257,50 @@ def _what_decides(mission: Mission, sc: Scene, margins: list[Margin], wanted: bo
             extras("design limits", lambda: design_limits(mission, sc, options)))
 
 
-def _postbuckling(mission: Mission, scaled: Scaled, static: dict, linear: dict | None,
-                  profiles: dict | None = None) -> dict | None:
+def _postbuckling(mission: Mission, scaled: Scaled, static: StraightRodSection, linear: LinearSection | None,
+                  profiles: ProfilesSection | None = None) -> PostbucklingSection | None:
     """Rungs 2-3 when the operating point is past, or within the required margin of, the first critical load
-    (the JSON form of :class:`etcheck.checks.results.sections_buckled.PostbucklingSection`; the sections read here are
-    their builders' JSON forms)."""
+    (or why not)."""
     p = scaled.params
     if profiles is not None:
-        crit = linear["critical_load"] if linear else None
-        B_c = crit["value"] if crit else None
+        crit = linear.critical_load if linear else None
+        B_c = crit.value if crit else None
         if B_c is None or not needs_postbuckling(p.B, B_c, mission.check.required_margin):
             return None
-        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c if B_c else None,
-                "reason": profiles["post_buckling"]}
+        return PostbucklingSection(computed=False, B_c=B_c, load_ratio=p.B / B_c if B_c else None,
+                                   reason=profiles.post_buckling)
     if linear is not None:
-        crit = linear["critical_load"]
-        kind = CriticalKind(crit["kind"])
-        B_c = crit["value"] if kind.located else (0.0 if kind == CriticalKind.UNSTABLE_AT_START else None)
+        crit = linear.critical_load
+        kind = CriticalKind(crit.kind)
+        B_c = crit.value if kind.located else (0.0 if kind == CriticalKind.UNSTABLE_AT_START else None)
     else:
-        B_c = static["critical_loads"][0]["B"] if p.omega == 0 and p.T == 0 else None
+        B_c = static.critical_loads[0].B if p.omega == 0 and p.T == 0 else None
     if B_c is None or not needs_postbuckling(p.B, B_c, mission.check.required_margin):
         return None
     if B_c == 0.0:
-        return {"computed": False, "B_c": 0.0, "load_ratio": None,
-                "reason": "the straight tether is unstable without any magnetic load at this spin and tension "
-                "(it whirls): no buckled branch grows from a stable straight state here"}
+        return PostbucklingSection(
+            computed=False, B_c=0.0, load_ratio=None,
+            reason="the straight tether is unstable without any magnetic load at this spin and tension "
+            "(it whirls): no buckled branch grows from a stable straight state here")
     if not is_welded(p.ends):
-        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c,
-                "reason": f"the buckled tether (rungs 2-3) is {BUCKLED_WELDED_ONLY} (this tether is "
-                f"{describe(p.ends)}); the margins of the straight tether above decide the verdict"}
-    if linear is not None and linear.get("route") == EXACT:
+        return PostbucklingSection(
+            computed=False, B_c=B_c, load_ratio=p.B / B_c,
+            reason=f"the buckled tether (rungs 2-3) is {BUCKLED_WELDED_ONLY} (this tether is "
+            f"{describe(p.ends)}); the margins of the straight tether above decide the verdict")
+    if linear is not None and linear.route == EXACT:
         layer = boundary_layer(p)
-        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c,
-                "reason": f"beyond rungs 2-3: the buckled tether's end boundary layers ({layer:.2g} of its length, "
-                f"or a string-like weak axis, R = {p.R:.2g}) are thinner than their Chebyshev collocation resolves "
-                f"(they need layers wider than {LAYER_MIN:g} of the length and R >= {R_MIN_SPECTRAL:g})"}
+        return PostbucklingSection(
+            computed=False, B_c=B_c, load_ratio=p.B / B_c,
+            reason=f"beyond rungs 2-3: the buckled tether's end boundary layers ({layer:.2g} of its length, "
+            f"or a string-like weak axis, R = {p.R:.2g}) are thinner than their Chebyshev collocation resolves "
+            f"(they need layers wider than {LAYER_MIN:g} of the length and R >= {R_MIN_SPECTRAL:g})")
     # imported here on purpose: rungs 2-3 (continuation, branch stability) load only for a scene that needs them
     from etcheck.checks.rungs.buckled import postbuckling_check
 
-    try:
-        return postbuckling_check(p, scaled.scales, B_c, mission.check.required_margin)
+    try:  # rungs 2-3 still write their section as JSON data: read into its record here
+        return from_json(PostbucklingSection, postbuckling_check(p, scaled.scales, B_c, mission.check.required_margin))
     except OverBudget as exc:  # rungs 2-3 need more memory than the budget: not answered, with the reason
-        return {"computed": False, "B_c": B_c, "load_ratio": p.B / B_c, "reason": str(exc)}
+        return PostbucklingSection(computed=False, B_c=B_c, load_ratio=p.B / B_c, reason=str(exc))
 
 
 def scene_section(sc: Scene) -> SceneSection:
@@ -333,7 +320,7 @@ def scene_section(sc: Scene) -> SceneSection:
         spin_rate_rad_s=sc.spin_rate,
         tension_N=sc.tension,
         # tether.end_masses: the gravity-gradient profile (N), which rung 1v uses; tension_N is its minimum (a bound)
-        tension_profile=None if profile is None else from_json(TensionProfile, profile.as_dict()),
+        tension_profile=None if profile is None else profile.echo(),
         damping_time_s=sc.damping_time,
         f=sc.f,
     )

@@ -66,11 +66,11 @@ def run(args: argparse.Namespace, parser: argparse.ArgumentParser) -> int:
 def _print_rung1(name, p, pairs, rows, auto) -> None:
     print(f"etcheck accuracy: {name}: P={p.P:.4g} R={p.R:.6g} Gamma={p.Gamma:.6g} "
           f"B={p.B:.6g} omega={p.omega:.6g} T={p.T:.6g} gamma={p.gamma:.6g} f={p.f:.7g}")
-    print(f"lowest {pairs} eigenvalue pairs and first static load B_c vs N (reference N = {rows[0]['reference_N']}, "
+    print(f"lowest {pairs} eigenvalue pairs and first static load B_c vs N (reference N = {rows[0].reference_N}, "
           "one BLAS thread, one timed solve per N)")
     print(f"{'N':>4} {'time/solve [ms]':>16} {'eigenvalue error':>17} {'B_c error':>11}")
     for r in rows:
-        print(f"{r['N']:>4} {r['solve_time_s'] * 1e3:>16.2f} {r['eigenvalue_error']:>17.2e} {r['load_error']:>11.2e}")
+        print(f"{r.N:>4} {r.solve_time_s * 1e3:>16.2f} {r.eigenvalue_error:>17.2e} {r.load_error:>11.2e}")
     state = "converged" if auto.converged else "NOT converged"
     print(f"automatic stability solve (two resolutions, N = {auto.N_check} and {auto.N}): "
           f"{auto.time_s * 1e3:.1f} ms, {state}, max error estimate {auto.max_error:.1e}")

@@ -143,20 +143,18 @@ class CurrentProfile:
     def uniform(self) -> bool:
         return self.profile.uniform_value is not None
 
-    def as_dict(self) -> CurrentProfileEcho:
-        out: CurrentProfileEcho = {"model": self.model, "at": list(self.at), "fraction": list(self.fraction),
-                                   "collection": None, "notes": list(self.notes)}
+    def echo(self) -> CurrentProfileEcho:
+        """The profile as read, for the results."""
         c = self.collection
-        if c is not None:
-            coll: CollectionEcho = {
-                "plasma_density_per_m3": c.plasma_density, "motional_field_V_per_m": c.motional_field,
-                "conductivity_S_per_m": c.conductivity, "perimeter_m": c.perimeter,
-                "conductive_area_m2": c.conductive_area, "anode_end": c.anode_end,
-                "characteristic_length_m": c.characteristic_length, "length_ratio": c.length / c.characteristic_length,
-                "short_circuit_current_A": c.short_circuit_current, "largest_current_A": self.oml_current or 0.0,
-            }
-            out["collection"] = coll
-        return out
+        coll = None if c is None else CollectionEcho(
+            plasma_density_per_m3=c.plasma_density, motional_field_V_per_m=c.motional_field,
+            conductivity_S_per_m=c.conductivity, perimeter_m=c.perimeter,
+            conductive_area_m2=c.conductive_area, anode_end=c.anode_end,
+            characteristic_length_m=c.characteristic_length, length_ratio=c.length / c.characteristic_length,
+            short_circuit_current_A=c.short_circuit_current, largest_current_A=self.oml_current or 0.0,
+        )
+        return CurrentProfileEcho(model=self.model, at=self.at, fraction=self.fraction, collection=coll,
+                                  notes=self.notes)
 
 
 def parse_current_profile(operation: dict, tether: dict, length: float, cross_section_area: float | None,

@@ -207,10 +207,10 @@ class MissionEcho:
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class DistributionRecord:
-    """One uncertain input as read (:meth:`etcheck.input.uncertainty.Distribution.as_dict`)."""
+    """One uncertain input as read (:meth:`etcheck.input.uncertainty.Distribution.echo`)."""
 
     JSON_SCHEMA: ClassVar[dict] = {
-        "description": "One uncertain input as read (:meth:`etcheck.input.uncertainty.Distribution.as_dict`)."
+        "description": "One uncertain input as read (:meth:`etcheck.input.uncertainty.Distribution.echo`)."
     }
 
     input: str

@@ -134,26 +134,26 @@ class GravityGradient:
         return Profile.from_function(lambda s: np.array([self.at(float(x) * L) for x in np.atleast_1d(s)]) / top,
                                      degree=2)
 
-    def as_dict(self) -> TensionProfile:
-        """JSON-able profile (SI, keys carry their unit)."""
-        return {
-            "model": "gravity gradient, tether on the local vertical at rest in the orbiting frame of a circular orbit "
-                     "(no libration)",
-            "used": "profile",
-            "used_N": self.minimum,
-            "minimum_N": self.minimum,
-            "minimum_at": self.minimum_at,
-            "maximum_N": self.maximum,
-            "at_centre_of_mass_N": self.at_centre_of_mass,
-            "upper_end_N": self.upper_end,
-            "lower_end_N": self.lower_end,
-            "centre_of_mass_above_lower_end_m": self.centre_of_mass,
-            "upper_mass_kg": self.upper_mass,
-            "lower_mass_kg": self.lower_mass,
-            "tether_mass_kg": self.mass_per_length * self.length,
-            "orbit_rate_rad_s": self.orbit_rate,
-            "orbit_rate_source": self.rate_source,
-        }
+    def echo(self) -> TensionProfile:
+        """The profile for the results (SI, the names carry their unit)."""
+        return TensionProfile(
+            model="gravity gradient, tether on the local vertical at rest in the orbiting frame of a circular orbit "
+                  "(no libration)",
+            used="profile",
+            used_N=self.minimum,
+            minimum_N=self.minimum,
+            minimum_at=self.minimum_at,
+            maximum_N=self.maximum,
+            at_centre_of_mass_N=self.at_centre_of_mass,
+            upper_end_N=self.upper_end,
+            lower_end_N=self.lower_end,
+            centre_of_mass_above_lower_end_m=self.centre_of_mass,
+            upper_mass_kg=self.upper_mass,
+            lower_mass_kg=self.lower_mass,
+            tether_mass_kg=self.mass_per_length * self.length,
+            orbit_rate_rad_s=self.orbit_rate,
+            orbit_rate_source=self.rate_source,
+        )
 
     def statement(self) -> str:
         """One line for the mission's notes and the report."""

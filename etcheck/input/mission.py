@@ -22,7 +22,7 @@ import astropy.units as u
 
 from etcheck.errors import MissionError
 from etcheck.input.current_profile import parse_current_profile
-from etcheck.input.echo import MissionEcho
+from etcheck.input.echo import CheckEcho, FlightEcho, MissionEcho, OperationEcho, TetherEcho
 from etcheck.input.gravity_gradient import GravityGradient, parse_gravity_gradient
 from etcheck.input.mission_parts import Operation, Provenance, Studies, TetherProperties
 from etcheck.input.orbit_field import check_one_field_source, orbit_echo
@@ -30,6 +30,7 @@ from etcheck.input.sweep_axes import AXES, parse_table
 from etcheck.input.uncertainty import INPUTS as UNCERTAIN_INPUTS
 from etcheck.input.uncertainty import Uncertainty, parse_uncertainty
 from etcheck.input.units import QuantityProblem, to_quantity
+from etcheck.jsonable import OMITTED
 from etcheck.rod.core.ends import ALL_WELDED, Ends, describe, is_welded
 from etcheck.rod.core.ends import KINDS as END_KINDS
 from etcheck.rod.core.parameters import F_CLAMPED
@@ -201,60 +202,58 @@ class Mission:
                                                   tolerance=c.tolerance, scaling_constant=c.scaling_constant))
 
     def echo(self) -> MissionEcho:
-        """The inputs as JSON-able {field: "value unit"} for reports."""
+        """The inputs as read, for the results: quantities as "value unit" texts."""
 
         def q(x):
             return None if x is None else f"{x.value:.6g} {_UNIT_TEXT.get(x.unit.to_string(), x.unit.to_string())}"
 
         def pair(p):
-            return [q(p[0])] if p[0] == p[1] else [q(p[0]), q(p[1])]
+            return (q(p[0]),) if p[0] == p[1] else (q(p[0]), q(p[1]))
 
         def microtesla(p):
-            return [f"{x.to_value(u.uT):.6g} µT" for x in ([p[0]] if p[0] == p[1] else p)]
+            return tuple(f"{x.to_value(u.uT):.6g} µT" for x in ([p[0]] if p[0] == p[1] else p))
 
         t, op, pv = self.tether, self.operation, self.provenance
-        out: MissionEcho = {
-            "name": pv.name,
-            "description": pv.description,
-            "source": pv.source,
-            "file": pv.file,
-            "sha256": pv.sha256,
-            "tether": {
-                "length": q(t.length),
-                "bending_stiffness": pair(t.bending_stiffness),
-                "torsional_stiffness": q(t.torsional_stiffness),
-                "poisson_ratio": t.poisson_ratio,
-                "mass_per_length": q(t.mass_per_length),
-                "rotary_inertia_ratio": t.rotary_inertia_ratio,
-                "youngs_modulus": q(t.youngs_modulus),
-                "cross_section_area": q(t.cross_section_area),
-                "damping_time": q(t.damping_time),
-                "end_conditions": list(t.end_conditions),
-            },
-            "operation": {
-                "current": pair(op.current),
-                "current_profile": None if op.current_profile is None else op.current_profile.as_dict(),
-                "axial_field": None if op.axial_field is None else microtesla(op.axial_field),
-                "cross_field": None if op.cross_field is None else microtesla(op.cross_field),
-                "spin_rate": q(op.spin_rate),
-                "spin_rate_rpm": float(op.spin_rate.to(u.cycle / u.min).value),
-                "end_tension": q(op.end_tension),
-                "gravity_gradient": None if op.gravity_gradient is None else op.gravity_gradient.as_dict(),
-            },
-            "check": {
-                "required_margin": self.check.required_margin,
-                "fidelity": self.check.fidelity,
-                "scaling_constant": self.check.scaling_constant,
-                "resolution": self.check.resolution,
-                "tolerance": self.check.tolerance,
-            },
-            "notes": list(pv.notes),
-            "assumed": list(pv.assumed),
-            "flight": pv.flight,
-        }
-        if self.orbit is not None:
-            out["orbit"] = orbit_echo(self.orbit)
-        return out
+        return MissionEcho(
+            name=pv.name,
+            description=pv.description,
+            source=pv.source,
+            file=pv.file,
+            sha256=pv.sha256,
+            tether=TetherEcho(
+                length=q(t.length),
+                bending_stiffness=pair(t.bending_stiffness),
+                torsional_stiffness=q(t.torsional_stiffness),
+                poisson_ratio=t.poisson_ratio,
+                mass_per_length=q(t.mass_per_length),
+                rotary_inertia_ratio=t.rotary_inertia_ratio,
+                youngs_modulus=q(t.youngs_modulus),
+                cross_section_area=q(t.cross_section_area),
+                damping_time=q(t.damping_time),
+                end_conditions=tuple(t.end_conditions),
+            ),
+            operation=OperationEcho(
+                current=pair(op.current),
+                current_profile=None if op.current_profile is None else op.current_profile.echo(),
+                axial_field=None if op.axial_field is None else microtesla(op.axial_field),
+                cross_field=None if op.cross_field is None else microtesla(op.cross_field),
+                spin_rate=q(op.spin_rate),
+                spin_rate_rpm=float(op.spin_rate.to(u.cycle / u.min).value),
+                end_tension=q(op.end_tension),
+                gravity_gradient=None if op.gravity_gradient is None else op.gravity_gradient.echo(),
+            ),
+            check=CheckEcho(
+                required_margin=self.check.required_margin,
+                fidelity=self.check.fidelity,
+                scaling_constant=self.check.scaling_constant,
+                resolution=self.check.resolution,
+                tolerance=self.check.tolerance,
+            ),
+            notes=tuple(pv.notes),
+            assumed=tuple(pv.assumed),
+            flight=None if pv.flight is None else FlightEcho(**pv.flight),
+            orbit=OMITTED if self.orbit is None else orbit_echo(self.orbit),
+        )
 
 
 _UNIT_TEXT = {"m2 N": "N m²", "kg / m": "kg/m", "rad / s": "rad/s", "m2": "m²"}

@@ -9,7 +9,7 @@ when a mission has an ``[orbit]`` table.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, cast
+from typing import TYPE_CHECKING
 
 from etcheck.errors import MissionError
 from etcheck.input.echo import OrbitEcho
@@ -32,7 +32,7 @@ def check_one_field_source(operation: dict, data: dict, source: str) -> None:
 
 
 def orbit_echo(spec: OrbitSpec) -> OrbitEcho:
-    """The orbit as read, JSON-able (degrees, km for the reader)."""
+    """The orbit as read, for the results (degrees, km for the reader)."""
     from etcheck.orbit.elements import KeplerianElements
     from etcheck.orbit.envelope import orbital_period
 
@@ -43,18 +43,18 @@ def orbit_echo(spec: OrbitSpec) -> OrbitEcho:
                  "argument_of_perigee_deg": math.degrees(o.argument_of_perigee),
                  "mean_anomaly_deg": math.degrees(o.mean_anomaly), "frame": o.frame}
     else:
-        orbit = {"kind": "tle", "lines": [o.line1, o.line2], "epoch": o.epoch,
+        orbit = {"kind": "tle", "lines": (o.line1, o.line2), "epoch": o.epoch,
                  "perigee_altitude_km": o.perigee_altitude / 1e3}
-    return cast(OrbitEcho, {
+    return OrbitEcho(
         **orbit,
-        "period_s": orbital_period(spec),
-        "start": spec.start,
-        "duration_s": spec.duration,
-        "step_s": spec.step,
-        "libration_in_plane_deg": math.degrees(spec.libration_in_plane),
-        "libration_out_of_plane_deg": math.degrees(spec.libration_out_of_plane),
-        "model": spec.model,
-    })
+        period_s=orbital_period(spec),
+        start=spec.start,
+        duration_s=spec.duration,
+        step_s=spec.step,
+        libration_in_plane_deg=math.degrees(spec.libration_in_plane),
+        libration_out_of_plane_deg=math.degrees(spec.libration_out_of_plane),
+        model=spec.model,
+    )
 
 
 __all__ = ["check_one_field_source", "orbit_echo"]

@@ -242,11 +242,12 @@ class Distribution:
                 s += f", truncated to [{g(self.lower)}, {g(self.upper)}]{unit}"
         return s + (" (factor on the mission's value)" if self.factor else "")
 
-    def as_dict(self) -> DistributionRecord:
+    def echo(self) -> DistributionRecord:
+        """The input as read, for the uncertainty section of the results."""
         lo, hi = self.interval()
-        return {"input": self.input, "written": self.text, "distribution": self.shape, "nominal": self.nominal,
-                "factor": self.factor, "unit": "" if self.factor else self.unit, "describe": self.describe(),
-                "range": [lo, hi]}
+        return DistributionRecord(input=self.input, written=self.text, distribution=self.shape, nominal=self.nominal,
+                                  factor=self.factor, unit="" if self.factor else self.unit, describe=self.describe(),
+                                  range=(lo, hi))
 
 
 @dataclass(frozen=True)
@@ -263,8 +264,9 @@ class Uncertainty:
     def names(self) -> tuple[str, ...]:
         return tuple(d.input for d in self.inputs)
 
-    def as_dict(self) -> UncertaintyInputs:
-        return {"inputs": [d.as_dict() for d in self.inputs], "notes": list(self.notes)}
+    def echo(self) -> UncertaintyInputs:
+        """The table as read, for the uncertainty section of the results."""
+        return UncertaintyInputs(inputs=tuple(d.echo() for d in self.inputs), notes=self.notes)
 
 
 def parse_uncertainty(table: Any, source: str, nominal: dict[str, Any], fixed: dict[str, str] | None = None) -> Uncertainty:

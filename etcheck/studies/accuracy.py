@@ -14,6 +14,7 @@ import math
 import time
 from dataclasses import dataclass
 
+from etcheck.checks.results.sections import AccuracyRow
 from etcheck.checks.rungs.straight import accuracy
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import pitchforks
@@ -34,7 +35,7 @@ class AutomaticSolve:
     max_error: float
 
 
-def rung1_accuracy(scaled: Scaled, Ns: tuple[int, ...], pairs: int) -> tuple[list[dict[str, float]], AutomaticSolve]:
+def rung1_accuracy(scaled: Scaled, Ns: tuple[int, ...], pairs: int) -> tuple[tuple[AccuracyRow, ...], AutomaticSolve]:
     """Rows of (N, time per solve, eigenvalue error, B_c error) and the automatic solve."""
     rows = accuracy(scaled, Ns, k=pairs)
     best = math.inf

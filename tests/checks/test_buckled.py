@@ -13,6 +13,7 @@ from helpers import set_like, tension_free
 
 from etcheck.checks.margins.margin import needs_postbuckling
 from etcheck.checks.pipeline import check
+from etcheck.checks.results.sections_buckled import BuckledOperatingPoint, PostbucklingSection
 from etcheck.checks.rungs.buckled import DiagramOptions, bifurcation_diagram
 from etcheck.cli.main import main
 from etcheck.input.mission import load_mission, mission_from_dict
@@ -264,13 +265,14 @@ def test_design_answer_for_a_coiled_tether(coiled):
     assert "Stable region of the coiled tether" in html and "How the damping moves the answer" in html
 
 
-def _post(**kw) -> dict:
+def _post(**kw) -> PostbucklingSection:
     """A postbuckling section with the operating state stable on b1 and no secondary pitchfork found."""
-    return {"computed": True, "B_c": 1.0, "load_ratio": 1.5, "secondary_pitchfork_B": None,
-            "secondary_pitchfork_error": None, "secondary_pitchfork_IB0_N_per_m": None,
-            "secondary_pitchfork_reason": "no secondary pitchfork on b1 in the computed range",
-            "b1_stable_to_B": None, "b1_stable_to_IB0_N_per_m": None,
-            "operating": {"available": True, "stable": True}} | kw
+    fields = dict(B_c=1.0, load_ratio=1.5, computed=True, secondary_pitchfork_B=None,
+                  secondary_pitchfork_error=None, secondary_pitchfork_IB0_N_per_m=None,
+                  secondary_pitchfork_reason="no secondary pitchfork on b1 in the computed range",
+                  b1_stable_to_B=None, b1_stable_to_IB0_N_per_m=None,
+                  operating=BuckledOperatingPoint(available=True, stable=True))
+    return PostbucklingSection(**fields | kw)
 
 
 @pytest.mark.parametrize("bound, verdict", [(None, "incomplete"), (3.0, "pass"), (1.5, "incomplete")])
@@ -289,7 +291,7 @@ def test_buckled_margin_from_a_stable_b1_without_pitchfork(bound, verdict):
         assert m.value == 3.0 and "lower bound" in m.why
     if bound == 1.5:
         assert m.value is None and "at least 1.5" in m.why
-    (m,) = buckled_margins(_post(operating={"available": True, "stable": False}), sc, None, 2.0)
+    (m,) = buckled_margins(_post(operating=BuckledOperatingPoint(available=True, stable=False)), sc, None, 2.0)
     assert m.verdict == "fail" and m.value == 0.0
 
 

@@ -98,9 +98,9 @@ def test_limits_use_the_checks_options_and_a_failing_mission_looks_shorter():
     """A mission already short of the margin: its limits lie below the mission's values."""
     mission = load_mission(MISSIONS / "set-static.toml")
     failing = mission.with_check(required_margin=200.0)
-    limits = {lim["input"]: lim for lim in design_limits(failing, scene(failing), DEFAULT_OPTIONS)["limits"]}
-    assert limits["length"]["limit"] < 100.0 and limits["current"]["limit"] < 1.0
-    assert limits["length"]["margin_at_limit"] == pytest.approx(200.0, rel=1e-6)
+    limits = {lim.input: lim for lim in design_limits(failing, scene(failing), DEFAULT_OPTIONS).limits}
+    assert limits["length"].limit < 100.0 and limits["current"].limit < 1.0
+    assert limits["length"].margin_at_limit == pytest.approx(200.0, rel=1e-6)
 
 
 def test_units_of_the_spin_limit_are_rpm(spun_set):

@@ -93,13 +93,13 @@ def test_exact_map_rows_shared_with_a_helper_are_the_rows_one_by_one(monkeypatch
     monkeypatch.setattr(straight, "split_map", counted)
     scaled = scale(scene(mission_from_dict(set_like(name="tape", **TAPE))))
     options = replace(DEFAULT_OPTIONS, row_points=9)
-    shared = linear_stability(scaled, options, EXACT)["stability_map"]["stable_rows"]
+    shared = linear_stability(scaled, options, EXACT).stability_map.stable_rows
     with serial():
-        alone = linear_stability(scaled, options, EXACT)["stability_map"]["stable_rows"]
+        alone = linear_stability(scaled, options, EXACT).stability_map.stable_rows
     assert shared == alone and shared_out == [9, 9]  # every row goes through the shared map
     rest = exact_critical(scaled.params).spin_at_rest.value  # the unloaded tether's critical spin: empty past it
-    assert [len(r["IB0_N_per_m"]) for r in shared] == [int(r["omega"] < rest) for r in shared]
-    loads = [r["IB0_N_per_m"][0][1] for r in shared if r["IB0_N_per_m"]]
+    assert [len(r.IB0_N_per_m) for r in shared] == [int(r.omega < rest) for r in shared]
+    loads = [r.IB0_N_per_m[0][1] for r in shared if r.IB0_N_per_m]
     assert len(loads) >= 4 and all(0 < b for b in loads)
     assert loads == sorted(loads, reverse=True)  # spin lowers the critical load
 

@@ -380,8 +380,8 @@ def test_torsion_provably_does_not_move_the_critical_values():
         p = scale(resolve(mission(name)).scene).params
         for q in (p, p.with_(gamma=0.0)):
             a, b = (critical_values(x, DEFAULT_OPTIONS, route) for x in (q, q.with_(Gamma=3.7 * q.Gamma)))
-            assert b[0]["value"] == pytest.approx(a[0]["value"], rel=1e-13)
-            assert b[1]["value"] == pytest.approx(a[1]["value"], rel=1e-13)
+            assert b[0].value == pytest.approx(a[0].value, rel=1e-13)
+            assert b[1].value == pytest.approx(a[1].value, rel=1e-13)
 
 
 # --------------------------------------------------------------------------- part of the check

@@ -35,8 +35,8 @@ def test_points_are_read_as_given():
     cp = m.operation.current_profile
     assert cp.model == "given" and cp.at == (0.0, 0.3, 1.0) and cp.fraction == (0.0, 0.8, 1.0)
     assert cp.profile(np.array([0.15, 0.65])) == pytest.approx([0.4, 0.9])
-    echo = m.echo()["operation"]["current_profile"]
-    assert echo["at"] == [0.0, 0.3, 1.0] and echo["collection"] is None
+    echo = m.echo().operation.current_profile
+    assert echo.at == (0.0, 0.3, 1.0) and echo.collection is None
     assert any("piecewise linear" in n for n in m.provenance.notes)
     assert mission_from_dict(_base()).operation.current_profile is None  # no profile: one current, as before
 
@@ -103,8 +103,8 @@ def test_oml_profile_in_a_mission():
     i, _ = oml_current(xi_L)
     s = np.linspace(0.0, 1.0, 9)
     assert np.allclose(cp.profile(s), i(xi_L * (1 - s)) / i(xi_L), atol=1e-9)
-    echo = m.echo()["operation"]["current_profile"]["collection"]
-    assert echo["length_ratio"] == pytest.approx(xi_L) and echo["anode_end"] == "upper"
+    echo = m.echo().operation.current_profile.collection
+    assert echo.length_ratio == pytest.approx(xi_L) and echo.anode_end == "upper"
     assert any("OML predicts a largest current" in n for n in m.provenance.notes)
     lower = mission_from_dict(_base(current_profile="OML", collection=COLLECTION | {"anode_end": "lower"}))
     assert np.allclose(lower.operation.current_profile.profile(s), cp.profile(1 - s), atol=1e-9)

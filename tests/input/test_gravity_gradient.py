@@ -95,8 +95,8 @@ def test_mission_tension_is_the_profile_with_the_minimum_as_a_bound():
     g = GravityGradient(10.0, 2.0, 1000.0, 0.01, 1.1e-3, "operation.orbit_rate")
     assert m.operation.gravity_gradient == g
     assert m.operation.end_tension.to_value("N") == g.minimum > 0
-    assert m.echo()["operation"]["gravity_gradient"]["minimum_N"] == g.minimum
-    assert m.echo()["operation"]["gravity_gradient"]["used"] == "profile"
+    assert m.echo().operation.gravity_gradient.minimum_N == g.minimum
+    assert m.echo().operation.gravity_gradient.used == "profile"
     assert any("uses this profile" in n and "as a bound" in n for n in m.provenance.notes)
     s = np.linspace(0.0, 1.0, 11)
     assert np.allclose(g.shape()(s) * g.maximum, [g.at(x * g.length) for x in s], rtol=1e-13)

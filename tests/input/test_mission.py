@@ -505,6 +505,6 @@ def test_end_conditions_lower_end_first(tmp_path, literal, ends):
 
     m = load_mission(write_mission(tmp_path, {("tether", "end_conditions"): literal}))
     assert m.tether.end_conditions == ends
-    assert m.echo()["tether"]["end_conditions"] == list(ends)
+    assert m.echo().tether.end_conditions == tuple(ends)
     assert scale(scene(m)).params.ends == ends
     assert any("end_conditions" in n for n in m.provenance.notes) == (ends != ("welded", "welded"))

@@ -16,7 +16,7 @@ def test_assumed_fields_are_read_and_flagged():
     m = mission_from_dict(data)
     assert m.provenance.assumed == ("operation.end_tension", "tether.length")
     assert m.provenance.is_assumed("operation.end_tension") and not m.provenance.is_assumed("operation.current")
-    assert m.echo()["assumed"] == ["operation.end_tension", "tether.length"]
+    assert m.echo().assumed == ("operation.end_tension", "tether.length")
 
 
 def test_an_assumed_field_not_given_is_a_note_not_an_error():
@@ -51,7 +51,7 @@ def test_cross_field_is_a_field_range():
     data["operation"]["cross_field"] = ["10 uT", "30 uT"]
     m = mission_from_dict(data)
     assert m.operation.worst_cross_field.to_value("uT") == pytest.approx(30.0)
-    assert m.echo()["operation"]["cross_field"] == ["10 µT", "30 µT"]
+    assert m.echo().operation.cross_field == ("10 µT", "30 µT")
     data["operation"]["cross_field"] = "30 m"
     with pytest.raises(MissionError, match="operation.cross_field"):
         mission_from_dict(data)

@@ -92,7 +92,7 @@ def test_entries_are_echoed_as_written():
                                             "end_tension": {"distribution": "normal", "sigma": "0.2 N",
                                                             "bounds": ["-0.1 N", "0.5 N"]},
                                             "damping_time": {"distribution": "log-uniform", "factor": 10}}))
-    assert [d["written"] for d in m.studies.uncertainty.as_dict()["inputs"]] == [
+    assert [d.written for d in m.studies.uncertainty.echo().inputs] == [
         '{ distribution = "normal", sigma = "15 %" }', "±0.5 m",
         '{ distribution = "normal", sigma = "0.2 N", bounds = ["-0.1 N", "0.5 N"] }',
         '{ distribution = "log-uniform", factor = 10 }']

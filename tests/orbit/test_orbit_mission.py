@@ -21,6 +21,7 @@ from etcheck.errors import MissionError
 from etcheck.input.mission import load_mission, mission_from_dict
 from etcheck.input.orbit_table import parse_orbit
 from etcheck.input.sweep_axes import parse_option
+from etcheck.jsonable import OMITTED
 from etcheck.orbit import axial_field_envelope
 from etcheck.scaling import scene
 from etcheck.studies.orbit_sweep import SWEEP_STEP
@@ -62,9 +63,9 @@ def test_loading_an_orbit_mission_only_reads_it(mission):
     assert mission.orbit == parse_orbit(ORBIT)
     assert mission.operation.axial_field is None
     echo = mission.echo()
-    assert echo["operation"]["axial_field"] is None
-    assert echo["orbit"]["inclination_deg"] == pytest.approx(51.6) and echo["orbit"]["period_s"] == pytest.approx(5677, rel=1e-3)
-    assert "statement" not in echo["orbit"] and not any("worst case over the orbit" in n for n in mission.provenance.notes)
+    assert echo.operation.axial_field is None
+    assert echo.orbit.inclination_deg == pytest.approx(51.6) and echo.orbit.period_s == pytest.approx(5677, rel=1e-3)
+    assert not hasattr(echo.orbit, "statement") and not any("worst case over the orbit" in n for n in mission.provenance.notes)
     with pytest.raises(ValueError, match="orbit stage"):  # its field is the orbit stage's, not the file's
         scene(mission)
 
@@ -78,7 +79,7 @@ def test_orbit_mission_takes_the_envelopes_worst_case(mission, envelope, results
     assert lo.to_value("T") == hi.to_value("T") == envelope.worst
     assert operating.scene.field.axial == envelope.worst
     assert operating.scene.load == pytest.approx(1.0 * envelope.worst, rel=1e-15)
-    assert resolved.echo()["operation"]["axial_field"] == [f"{envelope.worst * 1e6:.6g} µT"]
+    assert resolved.echo().operation.axial_field == (f"{envelope.worst * 1e6:.6g} µT",)
     stated = results["orbit"]["statement"]
     assert stated.startswith("axial field: worst case over the orbit, ")
     assert f"{envelope.worst * 1e6:.4g} µT" in stated and envelope.worst_utc[:19] in stated
@@ -100,7 +101,7 @@ def test_mission_stays_immutable_and_comparable(mission):
 
 def test_missions_without_orbit_are_unchanged():
     m = mission_from_dict(set_like())
-    assert m.orbit is None and "orbit" not in m.echo()
+    assert m.orbit is None and m.echo().orbit is OMITTED
     assert scene(m).field.axial == pytest.approx(70e-6)
 
 

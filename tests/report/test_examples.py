@@ -53,9 +53,9 @@ def test_committed_check_agrees_with_a_fresh_run(mission):
         f"{mission.name} changed since its example report was made; {REGENERATE}"
     if old["elapsed_s"] > SLOW_S:  # the buckled tether: its rung-0 margin (rungs 2-3, seconds, are tested in tests/checks/test_buckled.py)
         sc = resolve(load_mission(mission)).scene  # an [orbit] table's field is the check's orbit stage
-        fresh = static_buckling(scale(sc))["critical_loads"][0]
+        fresh = static_buckling(scale(sc)).critical_loads[0]
         committed = old["straight_rod"]["critical_loads"][0]
-        _agree(committed["IB0_N_per_m"], fresh["IB0_N_per_m"], committed["relative_error"], fresh["relative_error"],
+        _agree(committed["IB0_N_per_m"], fresh.IB0_N_per_m, committed["relative_error"], fresh.relative_error,
                f"{mission.name}: first critical load")
         return
     from etcheck import check

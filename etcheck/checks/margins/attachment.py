@@ -18,8 +18,8 @@ from dataclasses import dataclass, replace
 
 from etcheck.checks.margins.margin import Margin, overall_verdict, straight_margins
 from etcheck.checks.plan import PROFILES, Plan, modelled_along, plan
-from etcheck.checks.results.sections import AlternativeMargin, AttachmentSection
-from etcheck.checks.rungs.static_buckling import static_buckling, static_limits
+from etcheck.checks.results.sections import AlternativeMargin, AttachmentAlternative, AttachmentSection
+from etcheck.checks.rungs.static_buckling import straight_rod
 from etcheck.checks.rungs.straight import WhirlOptions, linear_stability
 from etcheck.input.mission import Mission
 from etcheck.rod.core.ends import ALL_PINNED, ALL_WELDED, BUCKLED_WELDED_ONLY, Ends, describe, is_welded
@@ -58,8 +58,7 @@ def alternatives(mission: Mission, sc: Scene, scaled: Scaled, options: WhirlOpti
         tether = None if scaled.tether is None else scaled.tether.with_(ends=ends)
         alt = Scaled(params=scaled.params.with_(ends=ends), scales=scaled.scales, tether=tether)
         chosen = plan(alt.params, mission.check.model, modelled_along(sc, mission.check.draft))
-        rung0 = static_buckling(alt)
-        static = {**rung0, "limits": static_limits(rung0, sc, alt.scales)}
+        static = straight_rod(alt, sc)
         if chosen.route == PROFILES and chosen.complete:
             from etcheck.checks.rungs.profiles import alternative_linear  # rung 1v (scipy.sparse) for profiles only
 
@@ -97,12 +96,12 @@ def attachment_section(scaled: Scaled, alts: tuple[Alternative, ...]) -> Attachm
         which = "upper" if ends.lower.holds_twist else "lower"
         torsion = (f"the {which} end turns freely about the tether's axis (a swivel passes no torque); the other "
                    "holds the twist")
-    return {
-        "ends": list(ends),
-        "described": describe(ends),
-        "torsion": torsion,
-        "buckled": ("computed (rungs 2-3) where the operating load nears the straight tether's first critical load"
-                    if is_welded(ends) else f"not computed: rungs 2-3 are {BUCKLED_WELDED_ONLY}"),
-        "alternatives": [{"ends": list(a.ends), "described": describe(a.ends), "model": a.plan.model,
-                          "verdict": str(a.verdict)} for a in alts],
-    }
+    return AttachmentSection(
+        ends=tuple(ends),
+        described=describe(ends),
+        torsion=torsion,
+        buckled=("computed (rungs 2-3) where the operating load nears the straight tether's first critical load"
+                 if is_welded(ends) else f"not computed: rungs 2-3 are {BUCKLED_WELDED_ONLY}"),
+        alternatives=tuple(AttachmentAlternative(ends=tuple(a.ends), described=describe(a.ends), model=a.plan.model,
+                                                 verdict=str(a.verdict)) for a in alts),
+    )

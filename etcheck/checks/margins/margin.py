@@ -9,6 +9,7 @@ from etcheck.checks.plan import PROFILES, Plan
 from etcheck.checks.results.sections import LinearSection, Margin, StraightRodSection
 from etcheck.checks.results.sections_buckled import PostbucklingSection
 from etcheck.input.mission import Mission
+from etcheck.jsonable import OMITTED
 from etcheck.rod.core.ends import describe, is_welded
 from etcheck.rod.straight.collocation.spectral import CriticalKind
 from etcheck.scaling import Scaled, Scene
@@ -71,7 +72,7 @@ def overall_verdict(margins: list[Margin], within_validity: bool = True) -> str:
 def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, static: StraightRodSection,
                      linear: LinearSection | None, damping: str = "") -> list[Margin]:
     required = mission.check.required_margin
-    first = static["critical_loads"][0]
+    first = static.critical_loads[0]
     if linear is not None:
         return linear_margins(sc, scaled, required, linear, damping)
     if chosen.rung == 0 and chosen.complete:
@@ -79,11 +80,11 @@ def straight_margins(mission: Mission, sc: Scene, scaled: Scaled, chosen: Plan, 
             ratio_margin(
                 LOAD_AT_REST,
                 "N/m",
-                first["IB0_N_per_m"],
+                first.IB0_N_per_m,
                 sc.load,
                 required,
                 chosen.rung,
-                first["relative_error"],
+                first.relative_error,
                 _static_why(scaled.params.ends),
             )
         ]
@@ -106,23 +107,23 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
     """Load margin at the operating spin; spin margin at the operating load (rung 1); ``damping``: which damping
     the critical values of rung 1v hold for, and why (docs/model.md section 10)."""
     p = scaled.params
-    load, spin = linear["critical_load"], linear["critical_spin"]
+    load, spin = linear.critical_load, linear.critical_spin
     window = ""
-    if linear["operating_stable"]:
+    if linear.operating_stable:
         window = (
             "; the operating point itself is stable, inside a stability window that does not reach back to zero "
             "(gyroscopic stabilisation, which damping removes): a window is not counted as margin"
         )
     along = ""
-    if linear.get("route") == PROFILES:
-        along = (" with its current and tension along it, by " + KIND_WORDS.get(load["kind"], load["kind"])
+    if linear.route == PROFILES:
+        along = (" with its current and tension along it, by " + KIND_WORDS.get(load.kind, load.kind)
                  + (f"; damping: {damping}" if damping else ""))
     margins = [
         margin_from_critical(
             LOAD_AT_SPIN,
             "N/m",
             load,
-            load["IB0_N_per_m"],
+            load.IB0_N_per_m,
             sc.load,
             scaled.scales.load,
             required,
@@ -137,7 +138,7 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
                 SPIN,
                 "rpm",
                 spin,
-                spin["rpm"],
+                spin.rpm,
                 sc.spin_rpm,
                 scaled.scales.spin_rpm,
                 required,
@@ -146,7 +147,7 @@ def linear_margins(sc: Scene, scaled: Scaled, required: float, linear: LinearSec
                 + window,
             )
         )
-    return [replace(m, route=linear.get("route", "")) for m in margins]
+    return [replace(m, route=linear.route) for m in margins]
 
 
 def margin_from_critical(name, unit, point, critical, operating, scale_to_si, required, why, why_unstable) -> Margin:
@@ -154,39 +155,40 @@ def margin_from_critical(name, unit, point, critical, operating, scale_to_si, re
     ``operating`` in ``unit``, ``scale_to_si`` from dimensionless to it): 0 where the tether is unstable at the
     start, unlimited (value None) where no value destabilises it, a lower bound where none was found in the
     scanned range, incomplete where the value was not located."""
-    kind = point["kind"]
-    if point["value"] is None and kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND,
+    kind = point.kind
+    if point.value is None and kind not in (CriticalKind.UNSTABLE_AT_START, CriticalKind.NONE_FOUND,
                                                CriticalKind.NEVER):
-        return incomplete_margin(name, unit, operating, required, 1, point["message"])
+        return incomplete_margin(name, unit, operating, required, 1, point.message)
     if kind == CriticalKind.UNSTABLE_AT_START:
         return ratio_margin(name, unit, 0.0, operating, required, 1, 0.0, why_unstable)
     if kind == CriticalKind.NEVER:  # proved stable at every value: an unlimited margin
-        return Margin(name, unit, None, operating, None, required, PASS, 1, 0.0, point["message"])
+        return Margin(name, unit, None, operating, None, required, PASS, 1, 0.0, point.message)
     if kind == CriticalKind.NONE_FOUND:
-        hi = point["bracket"][1] * scale_to_si
+        hi = point.bracket[1] * scale_to_si
         return ratio_margin(
             name, unit, hi, operating, required, 1, 0.0,
             f"stable over the whole scanned range (up to {hi:.4g} {unit}); the margin shown is a lower bound",
         )
-    error = (point["error"] or 0.0) / point["value"] if point["value"] else 0.0
-    if not point["within_tolerance"]:
+    error = (point.error or 0.0) / point.value if point.value else 0.0
+    if not point.within_tolerance:
         why = f"{why}; the critical value missed its tolerance (an ill-conditioned root): its error estimate is carried here"
     return ratio_margin(name, unit, critical, operating, required, 1, error, f"{why} ({kind})")
 
 
 def buckled_margins(post: PostbucklingSection, sc: Scene, scaled: Scaled, required: float) -> list[Margin]:
     """Load margin of the buckled tether on b1 up to its secondary pitchfork (rungs 2-3)."""
-    B_star = post.get("secondary_pitchfork_B")
-    op = post.get("operating")
-    if op is None or not op.get("available"):
+    B_star = post.secondary_pitchfork_B
+    op = post.operating
+    if op is None or op is OMITTED or not op.available:
         return []
     name = BUCKLED
-    if not op["stable"]:
+    if not op.stable:
         return [ratio_margin(name, "N/m", 0.0, sc.load, required, 3, 0.0,
                              "the buckled state at the operating load is unstable (rung 3)")]
     if B_star is None:
-        bound = post.get("b1_stable_to_IB0_N_per_m")
-        why = post.get("secondary_pitchfork_reason") or "no secondary pitchfork found on b1 in the computed range"
+        bound = post.b1_stable_to_IB0_N_per_m
+        reason = post.secondary_pitchfork_reason
+        why = reason if reason is not OMITTED and reason else "no secondary pitchfork found on b1 in the computed range"
         if bound is None:
             return [incomplete_margin(name, "N/m", sc.load, required, 3, why)]
         stable_to = (f"b1 stays stable from the operating load to the end of its computed range ({bound:.4g} N/m) "
@@ -198,8 +200,8 @@ def buckled_margins(post: PostbucklingSection, sc: Scene, scaled: Scaled, requir
                                   f"{stable_to}: the margin is at least {bound / sc.load:.3g}, short of the required "
                                   f"{required:g}, and b1 was not followed further (rung 2's range)")]
     return [ratio_margin(BUCKLED, "N/m",
-                         post["secondary_pitchfork_IB0_N_per_m"], sc.load, required, 3,
-                         post["secondary_pitchfork_error"],
+                         post.secondary_pitchfork_IB0_N_per_m, sc.load, required, 3,
+                         post.secondary_pitchfork_error,
                          "the buckled (coiled) tether on b1 stays stable up to its symmetry-breaking secondary "
                          "pitchfork at the operating spin and tension (rungs 2-3)")]
 

@@ -242,7 +242,7 @@ class MarginModel:
 
 def _ratio(point, operating: float, required: float) -> MarginValue:
     """critical / operating of a rung-1 critical point by the check's rule (dimensionless)."""
-    m = margin_from_critical("", "", point, point["value"], operating, 1.0, required, "", "")
+    m = margin_from_critical("", "", point, point.value, operating, 1.0, required, "", "")
     if m.verdict == INCOMPLETE:
         return MarginValue(math.nan, math.nan, m.why or "the critical value was not located")
     return MarginValue(math.inf if m.value is None else m.value, m.error or 0.0)

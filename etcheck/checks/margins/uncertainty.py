@@ -12,19 +12,22 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass, field, replace
-from typing import cast
+from dataclasses import dataclass, fields, is_dataclass, replace
 
 from etcheck.checks.margins.margin import INCOMPLETE, Margin
 from etcheck.checks.margins.margin_model import LABELS, MarginModel, margin_model
 from etcheck.checks.margins.probability import BUDGET, NOT_ANSWERED, Probability, failure_probability
 from etcheck.checks.margins.sensitivity import STEP, MarginSensitivity, sensitivities, swings
 from etcheck.checks.plan import Plan
-from etcheck.checks.results.sections import MarginSensitivityRecord, UncertaintySection
+from etcheck.checks.results.sections import (
+    ElasticityRecord,
+    MarginSensitivityRecord,
+    SwingRecord,
+    UncertaintySection,
+)
 from etcheck.checks.rungs.straight import DEFAULT_OPTIONS, WhirlOptions
 from etcheck.input.echo import UncertaintyInputs
 from etcheck.input.mission import Mission
-from etcheck.jsonable import jsonable, to_json
 from etcheck.runtime.blas import single_blas_thread
 from etcheck.scaling import Scaled, Scene
 
@@ -43,45 +46,49 @@ class UncertaintyStudy:
     model: MarginModel
     sensitivities: tuple[MarginSensitivity, ...]
     probabilities: tuple[Probability, ...] = ()
-    inputs: UncertaintyInputs = field(default_factory=lambda: cast(UncertaintyInputs, {"inputs": [], "notes": []}))
+    inputs: UncertaintyInputs = UncertaintyInputs(inputs=(), notes=())
     elapsed_s: float = 0.0
     sensitivity_time_s: float = 0.0
 
-    def as_dict(self) -> UncertaintySection:
-        """JSON-able (None where not finite)."""
+    def section(self) -> UncertaintySection:
+        """The ``uncertainty`` section of the results (None where a number is not finite)."""
         margins: list[MarginSensitivityRecord] = []
         for s in self.sensitivities:
             ranked = sorted((e for e in s.elasticities if e.value is not None), key=lambda e: -abs(e.value))
-            margins.append({
-                "margin": s.margin, "nominal": _num(s.nominal),
-                "elasticities": [{"input": e.input, "label": LABELS[e.input], "value": _num(e.value),
-                                  "method": e.method} for e in s.elasticities],
-                "hinges_on": [e.input for e in ranked if abs(e.value) >= 0.1],
-                "does_not_matter": [e.input for e in ranked if abs(e.value) < 1e-3],
-                "swings": [{"input": w.input, "label": LABELS.get(w.input, w.input), "low": _num(w.low),
-                            "high": _num(w.high), "margin_low": _num(w.margin_low),
-                            "margin_high": _num(w.margin_high)} for w in s.swings],
-            })
-        return {
-            "route": self.model.name,
-            "required_margin": self.model.required,
-            "step": STEP,
-            "nominal_inputs_SI": dict(self.model.nominal),
-            "inputs": self.inputs,
-            "margins": margins,
-            "probabilities": [_probability_record(p) for p in self.probabilities],
-            "sensitivity_time_s": self.sensitivity_time_s,
-            "elapsed_s": self.elapsed_s,
-        }
+            margins.append(MarginSensitivityRecord(
+                margin=s.margin, nominal=_num(s.nominal),
+                elasticities=tuple(ElasticityRecord(input=e.input, label=LABELS[e.input], value=_num(e.value),
+                                                    method=e.method) for e in s.elasticities),
+                hinges_on=tuple(e.input for e in ranked if abs(e.value) >= 0.1),
+                does_not_matter=tuple(e.input for e in ranked if abs(e.value) < 1e-3),
+                swings=tuple(SwingRecord(input=w.input, label=LABELS.get(w.input, w.input), low=_num(w.low),
+                                         high=_num(w.high), margin_low=_num(w.margin_low),
+                                         margin_high=_num(w.margin_high)) for w in s.swings),
+            ))
+        return UncertaintySection(
+            route=self.model.name,
+            required_margin=self.model.required,
+            step=STEP,
+            nominal_inputs_SI=dict(self.model.nominal),
+            inputs=self.inputs,
+            margins=tuple(margins),
+            probabilities=tuple(_finite(p) for p in self.probabilities),
+            sensitivity_time_s=self.sensitivity_time_s,
+            elapsed_s=self.elapsed_s,
+        )
 
 
 def _num(x) -> float | None:
     return None if x is None or not math.isfinite(x) else float(x)
 
 
-def _probability_record(p: Probability) -> dict:
-    """The probability as written to results.json (a number not finite as null)."""
-    return jsonable(to_json(p))
+def _finite(x):
+    """A probability's record with every number that is not finite as None (null in results.json)."""
+    if is_dataclass(x):
+        return replace(x, **{f.name: _finite(getattr(x, f.name)) for f in fields(x) if f.init})
+    if isinstance(x, tuple):
+        return tuple(_finite(v) for v in x)
+    return None if isinstance(x, float) and not math.isfinite(x) else x
 
 
 @single_blas_thread
@@ -108,7 +115,7 @@ def uncertainty_study(mission: Mission, scene: Scene, scaled: Scaled, chosen: Pl
                 probs.append(_unanswered_margin(m, model))
             else:
                 probs.append(failure_probability(model, m.name, unc, by_name.get(m.name), seed=seed, budget=budget))
-    return UncertaintyStudy(model, sens, tuple(probs), unc.as_dict(), time.perf_counter() - started, t_sens)
+    return UncertaintyStudy(model, sens, tuple(probs), unc.echo(), time.perf_counter() - started, t_sens)
 
 
 def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> MarginModel:
@@ -118,7 +125,7 @@ def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> Ma
     from etcheck.checks.margins.margin import straight_margins
     from etcheck.checks.orbit_field import resolve
     from etcheck.checks.plan import plan, varies_along
-    from etcheck.checks.rungs.static_buckling import static_buckling, static_limits
+    from etcheck.checks.rungs.static_buckling import straight_rod
     from etcheck.checks.rungs.straight import linear_stability
     from etcheck.scaling import scale
 
@@ -129,8 +136,7 @@ def study_model(mission: Mission, options: WhirlOptions = DEFAULT_OPTIONS) -> Ma
         raise ValueError(f"no margin model with {varies_along(sc)} along the tether: its margins take rung 1v "
                          "(seconds each), and the check computes no uncertainty study for it")
     chosen = plan(scaled.params, mission.check.model)
-    rung0 = static_buckling(scaled)
-    static = {**rung0, "limits": static_limits(rung0, sc, scaled.scales)}
+    static = straight_rod(scaled, sc)
     linear = linear_stability(scaled, replace(options, draft=True), chosen.route) \
         if chosen.rung == 1 and chosen.complete else None
     margins = [m for m in straight_margins(mission, sc, scaled, chosen, static, linear) if m.verdict != INCOMPLETE]

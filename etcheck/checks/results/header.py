@@ -11,9 +11,7 @@ from dataclasses import fields
 
 from etcheck import __version__
 from etcheck.checks.results.sections import ResultsHeader
-from etcheck.input.echo import MissionEcho
 from etcheck.input.mission import Mission
-from etcheck.jsonable import from_json
 
 #: version of the results.json layout (bump when a field changes meaning or moves)
 SCHEMA_VERSION = 4  # 2: fidelity, plan.route, margin route; 3: the uncertainty probabilities; 4: verdict "outside",
@@ -24,7 +22,7 @@ def results_header(mission: Mission, schema_version: int = SCHEMA_VERSION) -> Re
     """Schema version, etcheck version, UTC time stamp and the mission as read."""
     return ResultsHeader(schema_version=schema_version, etcheck_version=__version__,
                          generated=dt.datetime.now(dt.UTC).isoformat(timespec="seconds"),
-                         mission=from_json(MissionEcho, mission.echo()))
+                         mission=mission.echo())
 
 
 def header_fields(header: ResultsHeader) -> dict:

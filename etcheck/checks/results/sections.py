@@ -921,7 +921,7 @@ class Probability:
 
 @dataclass(frozen=True, slots=True, kw_only=True)
 class UncertaintySection:
-    """``uncertainty`` (missions with an [uncertainty] table; :meth:`etcheck.checks.margins.uncertainty.UncertaintyStudy.as_dict`)."""
+    """``uncertainty`` (missions with an [uncertainty] table; :meth:`etcheck.checks.margins.uncertainty.UncertaintyStudy.section`)."""
 
     JSON_SCHEMA: ClassVar[dict] = {
         "description": "sensitivities of every margin and, with an [uncertainty] table, tolerance swings and the probability of each margin falling below the required margin (etcheck.studies.uncertainty). Added by `etcheck check` only when the mission has an [uncertainty] table"

@@ -20,20 +20,29 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from etcheck.checks.results.sections import (
+    CriticalLoad,
     CriticalPoint,
+    CriticalSpin,
     DampingPoint,
+    DampingSection,
     LinearSection,
+    OperatingPoint,
+    ProfileCurrent,
     ProfileMode,
     ProfilesSection,
+    ProfileTension,
     StabilityMap,
     StableRow,
+    StaticPoints,
 )
 from etcheck.checks.rungs.straight import picture_ranges
+from etcheck.jsonable import fields_of
 from etcheck.rod.straight.collocation.spectral import CriticalKind
 from etcheck.rod.straight.varying.circulatory import (
     Crossing,
@@ -63,23 +72,24 @@ def _record(c: Crossing, tol: float) -> CriticalPoint:
     bracket = ([c.lo, c.hi] if c.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) else
                [c.value] * 2 if value is not None else [0.0, 0.0])
     within = not located or c.value == 0 or bool(c.error <= tol * abs(c.value))
-    return {"value": value, "kind": str(c.kind), "bracket": [float(x) for x in bracket],
-            "error": float(c.error) if located and math.isfinite(c.error) else None, "message": c.message,
-            "N": c.N, "within_tolerance": within}
+    return CriticalPoint(value=value, kind=str(c.kind), bracket=tuple(float(x) for x in bracket),
+                         error=float(c.error) if located and math.isfinite(c.error) else None, message=c.message,
+                         N=c.N, within_tolerance=within)
 
 
-def _load_point(c: Crossing, tol: float, scales: Scales) -> dict:
-    out = dict(_record(c, tol))
-    out["IB0_N_per_m"] = None if out["value"] is None else scales.line_load(out["value"])
-    return out
+def _load_point(c: Crossing, tol: float, scales: Scales) -> CriticalLoad:
+    point = _record(c, tol)
+    return CriticalLoad(**fields_of(point),
+                        IB0_N_per_m=None if point.value is None else scales.line_load(point.value))
 
 
 def _mode(c: Crossing, scales: Scales) -> ProfileMode | None:
     if c.mode is None:
         return None
     s, u, v = c.mode
-    return {"s": s.tolist(), "u_re": u.real.tolist(), "u_im": u.imag.tolist(), "v_re": v.real.tolist(),
-            "v_im": v.imag.tolist(), "kind": str(c.kind), "frequency_Hz": scales.hz(abs(c.eigenvalue.imag))}
+    return ProfileMode(s=tuple(s.tolist()), u_re=tuple(u.real.tolist()), u_im=tuple(u.imag.tolist()),
+                       v_re=tuple(v.real.tolist()), v_im=tuple(v.imag.tolist()), kind=str(c.kind),
+                       frequency_Hz=scales.hz(abs(c.eigenvalue.imag)))
 
 
 def _damping_map(gammas: tuple[float, ...], survey: list[Crossing], scales: Scales, undamped: Crossing,
@@ -91,16 +101,16 @@ def _damping_map(gammas: tuple[float, ...], survey: list[Crossing], scales: Scal
     ref = undamped.value if CriticalKind(undamped.kind).located else math.inf
     for g, c in zip(gammas, survey):
         value = c.value if CriticalKind(c.kind).located else None
-        points.append({"gamma": g, "damping_time_s": scales.damping_time(g), "B": value,
-                       "IB0_N_per_m": None if value is None else scales.line_load(value), "kind": str(c.kind),
-                       "destabilised": bool(value is not None and value < ref * (1 - 1e-6))})
+        points.append(DampingPoint(gamma=g, damping_time_s=scales.damping_time(g), B=value,
+                                   IB0_N_per_m=None if value is None else scales.line_load(value), kind=str(c.kind),
+                                   destabilised=bool(value is not None and value < ref * (1 - 1e-6))))
     lowest = _lowest(gammas, survey)
     if lowest is None or (CriticalKind(undamped.kind).located and undamped.value <= lowest[1].value):
         return points, undamped
     worst = least()
-    for q in points:  # the map shows the verdict's value where it was located again
-        if q["gamma"] == lowest[0] and CriticalKind(worst.kind).located:
-            q["B"], q["IB0_N_per_m"] = worst.value, scales.line_load(worst.value)
+    if CriticalKind(worst.kind).located:  # the map shows the verdict's value where it was located again
+        points = [replace(q, B=worst.value, IB0_N_per_m=scales.line_load(worst.value)) if q.gamma == lowest[0] else q
+                  for q in points]
     return points, worst
 
 
@@ -170,15 +180,15 @@ def _bound(scaled: Scaled, gamma: float) -> CriticalPoint | None:
     return _load_point(c, BOUND_TOLERANCE, scaled.scales)
 
 
-def _samples(scaled: Scaled) -> tuple[dict | None, dict | None]:
+def _samples(scaled: Scaled) -> tuple[ProfileCurrent | None, ProfileTension | None]:
     t, sc = scaled.tether, scaled.scales
     s = np.linspace(0.0, 1.0, 101)
-    current = None if t.current.uniform_value is not None else {
-        "s": s.tolist(), "height_m": sc.distance(s).tolist(), "fraction": t.current(s).tolist(),
-        "current_A": (sc.worst_current * t.current(s)).tolist()}
-    tension = None if t.tension.uniform_value is not None else {
-        "s": s.tolist(), "height_m": sc.distance(s).tolist(),
-        "tension_N": (sc.tension(t.params.T) * t.tension(s)).tolist()}
+    current = None if t.current.uniform_value is not None else ProfileCurrent(
+        s=tuple(s.tolist()), height_m=tuple(sc.distance(s).tolist()), fraction=tuple(t.current(s).tolist()),
+        current_A=tuple((sc.worst_current * t.current(s)).tolist()))
+    tension = None if t.tension.uniform_value is not None else ProfileTension(
+        s=tuple(s.tolist()), height_m=tuple(sc.distance(s).tolist()),
+        tension_N=tuple((sc.tension(t.params.T) * t.tension(s)).tolist()))
     return current, tension
 
 
@@ -215,7 +225,7 @@ def _damping_policy(t: Tether, fixed: bool, tol: float, scales: Scales, draft: b
 
 def worst_gamma(points: list[DampingPoint], worst: Crossing) -> float:
     """The damping of the map point whose critical load is the least favourable crossing's."""
-    return min(points, key=lambda q: abs((q["B"] if q["B"] is not None else math.inf) - worst.value))["gamma"]
+    return min(points, key=lambda q: abs((q.B if q.B is not None else math.inf) - worst.value)).gamma
 
 
 def profile_stability(scaled: Scaled, damping_fixed: bool, tol: float = 1e-8,
@@ -242,18 +252,18 @@ def profile_stability(scaled: Scaled, damping_fixed: bool, tol: float = 1e-8,
     verdict = crossing_mode(tg, verdict if verdict is not None else done["verdict"])  # the verdict's mode only
     linear = _linear(scaled, tg, verdict, done.get("spin"), tol)
     current, tension = _samples(scaled)
-    section: ProfilesSection = {
-        "model": MODEL,
-        "circulatory": t.circulatory,
-        "current": current,
-        "tension": tension,
-        "damping": {"fixed": damping_fixed or p.gamma == 0, "gamma": gamma, "damping_time_s": sc.damping_time(gamma),
-                    "why": why, "map": points},
-        "undamped": None if undamped is None else _load_point(undamped, tol, sc),
-        "uniform_tension_bound": done.get("bound"),
-        "mode": _mode(verdict, sc),
-        "post_buckling": _after(verdict),
-    }
+    section = ProfilesSection(
+        model=MODEL,
+        circulatory=t.circulatory,
+        current=current,
+        tension=tension,
+        damping=DampingSection(fixed=damping_fixed or p.gamma == 0, gamma=gamma,
+                               damping_time_s=sc.damping_time(gamma), why=why, map=tuple(points)),
+        undamped=None if undamped is None else _load_point(undamped, tol, sc),
+        uniform_tension_bound=done.get("bound"),
+        mode=_mode(verdict, sc),
+        post_buckling=_after(verdict),
+    )
     return linear, section, done.get("beside")
 
 
@@ -263,19 +273,20 @@ def _linear(scaled: Scaled, t: Tether, verdict: Crossing, spin: Crossing | None,
     p, sc = t.params, scaled.scales
     load_point = _load_point(verdict, tol, sc)
     stable = bool(verdict.kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER) or
-                  (load_point["value"] is not None and p.B < load_point["value"]))
-    spin_point = dict(_record(spin, tol)) if spin else {
-        "value": None, "kind": str(CriticalKind.NOT_LOCATED), "bracket": [0.0, 0.0], "error": None,
-        "message": "no spin: the critical spin is not asked", "N": 0, "within_tolerance": True}
-    spin_point["rad_s"] = None if spin_point["value"] is None else sc.rad_s(spin_point["value"])
-    spin_point["rpm"] = None if spin_point["value"] is None else sc.rpm(spin_point["value"])
-    return {
-        "model": MODEL, "route": "profiles", "threshold": THRESHOLD, "operating_stable": stable,
-        "operating_spectrum": None, "critical_load": load_point, "critical_spin": spin_point, "spin_windows": [],
-        "spin_windows_scanned_to_rpm": None,
-        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": sc.line_load(p.B), "spin_rpm": sc.rpm(p.omega)},
-        "campbell": None, "stability_map": None,
-    }
+                  (load_point.value is not None and p.B < load_point.value))
+    spin_point = _record(spin, tol) if spin else CriticalPoint(
+        value=None, kind=str(CriticalKind.NOT_LOCATED), bracket=(0.0, 0.0), error=None,
+        message="no spin: the critical spin is not asked", N=0, within_tolerance=True)
+    w = spin_point.value
+    return LinearSection(
+        model=MODEL, route="profiles", threshold=THRESHOLD, operating_stable=stable,
+        operating_spectrum=None, critical_load=load_point,
+        critical_spin=CriticalSpin(**fields_of(spin_point), rad_s=None if w is None else sc.rad_s(w),
+                                   rpm=None if w is None else sc.rpm(w)),
+        spin_windows=(), spin_windows_scanned_to_rpm=None,
+        operating=OperatingPoint(B=p.B, omega=p.omega, IB0_N_per_m=sc.line_load(p.B), spin_rpm=sc.rpm(p.omega)),
+        campbell=None, stability_map=None,
+    )
 
 
 def stability_map(scaled: Scaled, linear: LinearSection, gamma: float, tol: float) -> StabilityMap | None:
@@ -287,30 +298,30 @@ def stability_map(scaled: Scaled, linear: LinearSection, gamma: float, tol: floa
     (the map would be wrong there): the report then draws none."""
     t = scaled.tether.with_(gamma=gamma)
     p, sc = t.params, scaled.scales
-    load = linear["critical_load"]
+    load = linear.critical_load
     B_hi, w_hi = picture_ranges(p, linear)
     omegas = np.linspace(0.0, w_hi, MAP_ROWS)
-    at_rest = p.omega == 0 and load["kind"] != str(CriticalKind.NOT_LOCATED)  # row 0 is the verdict's line
+    at_rest = p.omega == 0 and load.kind != str(CriticalKind.NOT_LOCATED)  # row 0 is the verdict's line
     todo = omegas[1:] if at_rest else omegas
     half = (len(todo) + 1) // 2
     chains = [tuple(todo[:half]), tuple(todo[half:])]
     found = [(c.value if CriticalKind(c.kind).located else None, c.kind)
              for chain in split_map(lambda ws: first_crossings(t, "omega", ws, tol, hi=B_hi), chains) for c in chain]
     if at_rest:
-        found.insert(0, (load["value"], load["kind"]))
+        found.insert(0, (load.value, load.kind))
     if any(kind == CriticalKind.NOT_LOCATED for _, kind in found):
         return None
     stable: list[StableRow] = []
     for w, (value, kind) in zip(omegas, found):
         if kind == CriticalKind.UNSTABLE_AT_START or value == 0:
-            intervals = []
+            intervals = ()
         else:
-            intervals = [[0.0, sc.line_load(float(min(value if value is not None else B_hi, B_hi)))]]
-        stable.append({"omega": float(w), "spin_rpm": float(sc.rpm(w)), "IB0_N_per_m": intervals})
+            intervals = ((0.0, sc.line_load(float(min(value if value is not None else B_hi, B_hi)))),)
+        stable.append(StableRow(omega=float(w), spin_rpm=float(sc.rpm(w)), IB0_N_per_m=intervals))
     B = np.linspace(0.0, B_hi, 2)
-    return {"B": B.tolist(), "omega": omegas.tolist(), "IB0_N_per_m": sc.line_load(B).tolist(),
-            "spin_rpm": sc.rpm(omegas).tolist(), "max_growth": None, "stable_rows": stable,
-            "static_points": {"IB0_N_per_m": [], "spin_rpm": []}}
+    return StabilityMap(B=tuple(B.tolist()), omega=tuple(omegas.tolist()), IB0_N_per_m=tuple(sc.line_load(B).tolist()),
+                        spin_rpm=tuple(sc.rpm(omegas).tolist()), max_growth=None, stable_rows=tuple(stable),
+                        static_points=StaticPoints(IB0_N_per_m=(), spin_rpm=()))
 
 
 def alternative_linear(scaled: Scaled, gamma: float, tol: float) -> LinearSection:

@@ -14,12 +14,16 @@ import math
 import numpy as np
 
 from etcheck.checks.results.sections import (
+    ChiCurve,
+    ModeShape,
     NaturalFrequencies,
     NaturalFrequency,
     StaticBuckling,
     StaticCriticalLoad,
     StaticLimits,
+    StraightRodSection,
 )
+from etcheck.jsonable import fields_of
 from etcheck.rod.core.ends import describe
 from etcheck.rod.straight import analytic
 from etcheck.scaling import Scaled, Scales, Scene
@@ -42,16 +46,16 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
     for r, B in zip(roots, analytic.critical_loads(p.R, p.f, N_LOADS, ends)):
         B = float(B)
         loads.append(
-            {
-                "k": r.k,
-                "beta": r.beta,
-                "B": B,
-                "IB0_N_per_m": scales.line_load(B),
-                "multiplicity": r.kernel_dimension,
-                "chi_residual": r.residual,
-                "chi_curvature": r.curvature,
-                "relative_error": 3.0 * r.error,
-            }
+            StaticCriticalLoad(
+                k=r.k,
+                beta=r.beta,
+                B=B,
+                IB0_N_per_m=scales.line_load(B),
+                multiplicity=r.kernel_dimension,
+                chi_residual=r.residual,
+                chi_curvature=r.curvature,
+                relative_error=3.0 * r.error,
+            )
         )
     s = np.linspace(0.0, 1.0, 101)
     x, y = analytic.buckling_mode(1, p.R, s, ends)
@@ -62,17 +66,17 @@ def static_buckling(scaled: Scaled) -> StaticBuckling:
     exceeded = sum(r.beta <= op_beta for r in roots)
     if op_beta > roots[-1].beta:
         exceeded = analytic.asymptotic_count(op_beta, ends)
-    return {
-        "model": "rung 0 (analytic)",
-        "critical_loads": loads,
-        "operating_beta": op_beta,
-        "loads_exceeded": exceeded,
-        "operating_B": p.B,
-        "first_mode": {"s": s.tolist(), "x": x.tolist(), "y": y.tolist()},
-        "chi_curve": {"beta": beta_grid.tolist(),
-                      "chi_scaled": analytic.characteristic_scaled(beta_grid, ends).tolist()},
-        "natural_frequencies": _natural_frequencies(p, scales),
-    }
+    return StaticBuckling(
+        model="rung 0 (analytic)",
+        critical_loads=tuple(loads),
+        operating_beta=op_beta,
+        loads_exceeded=exceeded,
+        operating_B=p.B,
+        first_mode=ModeShape(s=tuple(s.tolist()), x=tuple(x.tolist()), y=tuple(y.tolist())),
+        chi_curve=ChiCurve(beta=tuple(beta_grid.tolist()),
+                           chi_scaled=tuple(analytic.characteristic_scaled(beta_grid, ends).tolist())),
+        natural_frequencies=_natural_frequencies(p, scales),
+    )
 
 
 def _natural_frequencies(p, scales) -> NaturalFrequencies:
@@ -84,16 +88,17 @@ def _natural_frequencies(p, scales) -> NaturalFrequencies:
     if p.T < 0:
         model += "; the end force is compressive: these are the frequencies without it (under it they are lower)"
     ends = p.ends
-    return {"model": model, "tension_N": scales.tension(T),
-            "bending_weak": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak", ends, T), scales),
-            "bending_stiff": _frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff", ends, T), scales),
-            "torsion": _frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5, ends), scales)}
+    return NaturalFrequencies(
+        model=model, tension_N=scales.tension(T),
+        bending_weak=_frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "weak", ends, T), scales),
+        bending_stiff=_frequencies(analytic.bending_frequencies(p.P, p.R, p.f, 5, "stiff", ends, T), scales),
+        torsion=_frequencies(analytic.torsion_frequencies(p.P, p.Gamma, p.f, 5, ends), scales))
 
 
-def _frequencies(mus, scales: Scales) -> list[NaturalFrequency]:
+def _frequencies(mus, scales: Scales) -> tuple[NaturalFrequency, ...]:
     """The finite dimensionless frequencies mu (units of the reference frequency omega_c) in rad/s and Hz."""
-    return [{"mu": float(m), "rad_s": float(scales.rad_s(m)), "Hz": float(scales.hz(m))} for m in mus
-            if math.isfinite(m)]
+    return tuple(NaturalFrequency(mu=float(m), rad_s=float(scales.rad_s(m)), Hz=float(scales.hz(m))) for m in mus
+                 if math.isfinite(m))
 
 
 def static_limits(static: StaticBuckling, sc: Scene, scales: Scales) -> StaticLimits:
@@ -103,10 +108,17 @@ def static_limits(static: StaticBuckling, sc: Scene, scales: Scales) -> StaticLi
     depend on P, so L_c = L (B_1 / B)^(1/3). SI; None where the operating
     value is zero (no limit).
     """
-    first = static["critical_loads"][0]
-    critical = first["IB0_N_per_m"]
-    return {
-        "critical_IB0_N_per_m": critical,
-        "critical_current_A": scales.current(first["B"]) if sc.field.axial else None,
-        "critical_length_m": sc.length * (critical / sc.load) ** (1 / 3) if sc.load else None,
-    }
+    first = static.critical_loads[0]
+    critical = first.IB0_N_per_m
+    return StaticLimits(
+        critical_IB0_N_per_m=critical,
+        critical_current_A=scales.current(first.B) if sc.field.axial else None,
+        critical_length_m=sc.length * (critical / sc.load) ** (1 / 3) if sc.load else None,
+    )
+
+
+def straight_rod(scaled: Scaled, sc: Scene) -> StraightRodSection:
+    """The ``straight_rod`` section: rung 0's answers (:func:`static_buckling`) with the limits they set
+    (:func:`static_limits`)."""
+    rung0 = static_buckling(scaled)
+    return StraightRodSection(**fields_of(rung0), limits=static_limits(rung0, sc, scaled.scales))

@@ -21,8 +21,23 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from etcheck.checks.plan import EXACT, SPECTRAL
-from etcheck.checks.results.sections import AccuracyRow, CriticalPoint, LinearSection, OperatingSpectrum, SkippedPart
-from etcheck.jsonable import finite_or_none
+from etcheck.checks.results.sections import (
+    AccuracyRow,
+    Campbell,
+    CriticalLoad,
+    CriticalPoint,
+    CriticalSpin,
+    LinearSection,
+    Mode,
+    OperatingPoint,
+    OperatingSpectrum,
+    SkippedPart,
+    SpinWindow,
+    StabilityMap,
+    StableRow,
+    StaticPoints,
+)
+from etcheck.jsonable import fields_of, finite_or_none
 from etcheck.rod.core.spectrum import spectrum
 from etcheck.rod.straight.analytic import critical_loads
 from etcheck.rod.straight.collocation.convergence import accuracy_table, reference_resolution
@@ -97,29 +112,29 @@ REPORTABLE = 1e-3
 def _unconverged(point: CriticalPoint, what: str, error: float | None) -> CriticalPoint:
     """A located critical value whose error estimate missed the tolerance: kept with its estimate
     when that is at most REPORTABLE relative, else "not located" (its margin is then incomplete)."""
-    value = point["value"]
+    value = point.value
     if value is not None and error is not None and error <= REPORTABLE * abs(value):
-        return point | {"within_tolerance": False,
-                        "message": f"{point['message']}; the {what} missed its tolerance: it is reported with "
-                                   f"its error estimate {error:.1e} (the margin is judged on its pessimistic side)"}
+        return replace(point, within_tolerance=False,
+                       message=f"{point.message}; the {what} missed its tolerance: it is reported with "
+                               f"its error estimate {error:.1e} (the margin is judged on its pessimistic side)")
     est = f"error estimate {error:.1e}" if error is not None else "no error estimate"
-    return point | {"value": None, "kind": CriticalKind.NOT_LOCATED, "error": None,
-                    "message": f"the {what} was not located: {est} ({point['message']})"}
+    return replace(point, value=None, kind=CriticalKind.NOT_LOCATED, error=None,
+                   message=f"the {what} was not located: {est} ({point.message})")
 
 
 def _critical(point, what: str) -> CriticalPoint:
-    """A CriticalPoint as data (an unconverged one through :func:`_unconverged`)."""
-    out: CriticalPoint = {
-        "value": point.value if math.isfinite(point.value) else None,
-        "kind": point.kind,
-        "bracket": [float(b) for b in point.bracket],
-        "error": float(point.error) if math.isfinite(point.error) else None,
-        "message": point.message,
-        "N": point.N,
-        "within_tolerance": True,
-    }
+    """A solver's critical point as its record (an unconverged one through :func:`_unconverged`)."""
+    out = CriticalPoint(
+        value=point.value if math.isfinite(point.value) else None,
+        kind=point.kind,
+        bracket=tuple(float(b) for b in point.bracket),
+        error=float(point.error) if math.isfinite(point.error) else None,
+        message=point.message,
+        N=point.N,
+        within_tolerance=True,
+    )
     if CriticalKind(point.kind).located and not point.converged:
-        return _unconverged(out, what, out["error"])
+        return _unconverged(out, what, out.error)
     return out
 
 
@@ -130,10 +145,9 @@ def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
         value = root.value if math.isfinite(root.value) and root.value > 0 else None
         error = root.error * value if value is not None and math.isfinite(root.error) else None
         at = f" at N = {root.N}" if root.N else ""
-        point: CriticalPoint = {"value": value, "kind": CriticalKind.DIVERGENCE,
-                                "bracket": [float(value or 0.0)] * 2, "error": error,
-                                "message": f"first root of the static operator ({root.model}){at}", "N": root.N,
-                                "within_tolerance": True}
+        point = CriticalPoint(value=value, kind=CriticalKind.DIVERGENCE, bracket=(float(value or 0.0),) * 2,
+                              error=error, message=f"first root of the static operator ({root.model}){at}", N=root.N,
+                              within_tolerance=True)
         return _unconverged(point, what, error)
     if root.value == 0:
         kind = CriticalKind.UNSTABLE_AT_START
@@ -142,10 +156,11 @@ def _pencil_critical(root, what: str, hi: float) -> CriticalPoint:
     else:
         kind = CriticalKind.DIVERGENCE  # with damping the straight rod loses stability only through lambda = 0
     value = root.value if 0 < root.value < math.inf else None
-    return {"value": value, "kind": kind, "bracket": [0.0, float(hi)] if kind == CriticalKind.NONE_FOUND else
-            [float(root.value), float(root.value)], "error": root.error * (value or 0.0),
-            "message": f"first root of the static operator ({root.model})" + (f", N = {root.N}" if root.N else ""),
-            "N": root.N, "within_tolerance": True}
+    return CriticalPoint(
+        value=value, kind=kind, bracket=(0.0, float(hi)) if kind == CriticalKind.NONE_FOUND else
+        (float(root.value), float(root.value)), error=root.error * (value or 0.0),
+        message=f"first root of the static operator ({root.model})" + (f", N = {root.N}" if root.N else ""),
+        N=root.N, within_tolerance=True)
 
 
 def _damped_critical(p, options: WhirlOptions, route: str,
@@ -218,24 +233,24 @@ def _exact_undamped(p, options: WhirlOptions, windows: bool, spin: bool, extra: 
 
 def _operating_spectrum(op, sc: Scales) -> OperatingSpectrum:
     lam = op.eigenvalues
-    return {
-        "N": op.N,
-        "N_check": op.N_check,
-        "message": op.message,
-        "modes": [
-            {
-                "re": float(z.real),
-                "im": float(z.imag),
-                "error": float(e),
-                "frequency_Hz": float(sc.hz(abs(z.imag))),
-                "growth_rate_per_s": float(sc.rad_s(z.real)),
-                "damping_ratio": float(-z.real / abs(z)) if abs(z) > 0 else None,
-            }
+    return OperatingSpectrum(
+        N=op.N,
+        N_check=op.N_check,
+        message=op.message,
+        modes=tuple(
+            Mode(
+                re=float(z.real),
+                im=float(z.imag),
+                error=float(e),
+                frequency_Hz=float(sc.hz(abs(z.imag))),
+                growth_rate_per_s=float(sc.rad_s(z.real)),
+                damping_ratio=float(-z.real / abs(z)) if abs(z) > 0 else None,
+            )
             for z, e in zip(lam, op.errors)
-        ],
-        "least_damped": int(np.argmax(lam.real)) if lam.size else None,
-        "stable": bool(op.stable),
-    }
+        ),
+        least_damped=int(np.argmax(lam.real)) if lam.size else None,
+        stable=bool(op.stable),
+    )
 
 
 #: Relative error up to which a map row's boundary is drawn (a figure resolves about 1e-3 of its axis; the margins
@@ -267,7 +282,7 @@ def linear_answers(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, rout
                    deadline: float | None = None) -> tuple[LinearSection, list[SkippedPart]]:
     """All rung-1 answers for the scene, dimensionless and in SI, and the parts skipped.
 
-    Returns a JSON-able dict: the operating spectrum (with two-resolution
+    Returns rung 1's record: the operating spectrum (with two-resolution
     errors), the critical load at the operating spin and tension
     (B_c(omega, T, gamma)), the critical spin at the operating load
     (omega_c(B, T, gamma)), the stable spin windows at the operating load,
@@ -307,10 +322,10 @@ def linear_answers(scaled: Scaled, options: WhirlOptions = DEFAULT_OPTIONS, rout
     if options.draft or (exact and p.gamma == 0):  # no frequencies and no map on the exact undamped route
         return out, skipped
     if not exact and op is None:
-        skipped += [{"part": part, "why": "it is drawn at the operating spectrum's resolution, which was skipped"}
+        skipped += [SkippedPart(part=part, why="it is drawn at the operating spectrum's resolution, which was skipped")
                     for part in ("Campbell diagram", "stability map")]
         return out, skipped
-    return out | _pictures(scaled, options, route, op, N, out, extra), skipped
+    return replace(out, **_pictures(scaled, options, route, op, N, out, extra)), skipped
 
 
 def _operating(p, options: WhirlOptions, deadline: float | None):
@@ -338,7 +353,7 @@ class Extras:
                    "--time-budget changes it); the margins do not depend on it")
         except OverBudget as exc:
             why = str(exc)
-        self.skipped.append({"part": part, "why": why})
+        self.skipped.append(SkippedPart(part=part, why=why))
         return None
 
 
@@ -358,44 +373,43 @@ def _critical_values(scaled: Scaled, options: WhirlOptions, route: str, op, N: i
             extra=extra)
         load = _critical(load_point, "critical load at the operating spin")
         spin = _critical(spin_point, "critical spin at the operating load")
-    return {
-        "model": ("rung 1, exact characteristic determinant" if exact else
-                  "rung 1 (linear spectral)" + (", critical values from the static pencils" if damped else "")),
-        "route": route,
-        "threshold": THRESHOLD,
-        "operating_stable": bool(stable),
-        "operating_spectrum": _operating_spectrum(op, sc) if op else None,
-        "critical_load": load
-        | {"IB0_N_per_m": None if load["value"] is None else sc.line_load(load["value"])},
-        "critical_spin": spin
-        | {
-            "rad_s": None if spin["value"] is None else sc.rad_s(spin["value"]),
-            "rpm": None if spin["value"] is None else sc.rpm(spin["value"]),
-        },
-        "spin_windows": [
-            {"omega": [a, b], "rpm": [sc.rpm(a), sc.rpm(b)]} for a, b in windows
-        ],
-        "spin_windows_scanned_to_rpm": None if scanned_to is None else sc.rpm(scanned_to),
-        "operating": {"B": p.B, "omega": p.omega, "IB0_N_per_m": sc.line_load(p.B), "spin_rpm": sc.rpm(p.omega)},
-        "campbell": None,
-        "stability_map": None,
-    }
+    return LinearSection(
+        model=("rung 1, exact characteristic determinant" if exact else
+               "rung 1 (linear spectral)" + (", critical values from the static pencils" if damped else "")),
+        route=route,
+        threshold=THRESHOLD,
+        operating_stable=bool(stable),
+        operating_spectrum=_operating_spectrum(op, sc) if op else None,
+        critical_load=CriticalLoad(**fields_of(load),
+                                   IB0_N_per_m=None if load.value is None else sc.line_load(load.value)),
+        critical_spin=CriticalSpin(
+            **fields_of(spin),
+            rad_s=None if spin.value is None else sc.rad_s(spin.value),
+            rpm=None if spin.value is None else sc.rpm(spin.value),
+        ),
+        spin_windows=tuple(SpinWindow(omega=(a, b), rpm=(sc.rpm(a), sc.rpm(b))) for a, b in windows),
+        spin_windows_scanned_to_rpm=None if scanned_to is None else sc.rpm(scanned_to),
+        operating=OperatingPoint(B=p.B, omega=p.omega, IB0_N_per_m=sc.line_load(p.B), spin_rpm=sc.rpm(p.omega)),
+        campbell=None,
+        stability_map=None,
+    )
 
 
 def picture_ranges(p, linear: LinearSection) -> tuple[float, float]:
     """(B, omega) up to which the stability map and the Campbell diagram are drawn (dimensionless): 1.6 times past
     the operating point and the located critical values of ``linear`` (the spin at least sqrt(R); without a load
     or a located critical load, the first static load at rest)."""
-    load, spin = linear["critical_load"], linear["critical_spin"]
-    B_ref = load["value"] if load["value"] is not None and CriticalKind(load["kind"]).located else None
-    w_ref = spin["value"] if spin["value"] is not None and CriticalKind(spin["kind"]).located else None
+    load, spin = linear.critical_load, linear.critical_spin
+    B_ref = load.value if load.value is not None and CriticalKind(load.kind).located else None
+    w_ref = spin.value if spin.value is not None and CriticalKind(spin.kind).located else None
     B_hi = 1.6 * max(B_ref or 0.0, p.B) or 1.6 * float(critical_loads(p.R, p.f, 1, p.ends)[0])
     return B_hi, 1.6 * max(w_ref or 0.0, p.omega, math.sqrt(p.R))
 
 
 def _pictures(scaled: Scaled, options: WhirlOptions, route: str, op, N: int, out: LinearSection,
               extra: Extras) -> dict:
-    """The Campbell diagram and the stability map (each through ``extra``: skipped past the deadline)."""
+    """The Campbell diagram and the stability map (each through ``extra``: skipped past the deadline), as the
+    fields of ``out`` they fill."""
     p, sc = scaled.params, scaled.scales
     B_hi, w_hi = picture_ranges(p, out)
     w_rows = np.linspace(0.0, w_hi, options.row_points)
@@ -407,40 +421,41 @@ def _pictures(scaled: Scaled, options: WhirlOptions, route: str, op, N: int, out
     if grid is None:
         return {"campbell": campbell_data}
     B_grid, w_grid, growth, cuts, curve_B, curve_w = grid
-    rows = None if cuts is None else [
-        {"omega": float(w), "spin_rpm": float(sc.rpm(w)), "IB0_N_per_m": [[sc.line_load(a), sc.line_load(b)] for a, b in iv]}
+    rows = None if cuts is None else tuple(
+        StableRow(omega=float(w), spin_rpm=float(sc.rpm(w)),
+                  IB0_N_per_m=tuple((sc.line_load(a), sc.line_load(b)) for a, b in iv))
         for w, iv in zip(w_rows, cuts)
-    ]
+    )
     return {
         "campbell": campbell_data,
-        "stability_map": {
-            "B": B_grid.tolist(),
-            "omega": w_grid.tolist(),
-            "IB0_N_per_m": sc.line_load(B_grid).tolist(),
-            "spin_rpm": sc.rpm(w_grid).tolist(),
-            "max_growth": growth,  # undamped only: dimensionless, shape (omega, B)
-            "stable_rows": rows,
-            "static_points": {
-                "IB0_N_per_m": sc.line_load(curve_B).tolist(),
-                "spin_rpm": sc.rpm(curve_w).tolist(),
-            },
-        },
+        "stability_map": StabilityMap(
+            B=tuple(B_grid.tolist()),
+            omega=tuple(w_grid.tolist()),
+            IB0_N_per_m=tuple(sc.line_load(B_grid).tolist()),
+            spin_rpm=tuple(sc.rpm(w_grid).tolist()),
+            max_growth=growth,  # undamped only: dimensionless, shape (omega, B)
+            stable_rows=rows,
+            static_points=StaticPoints(
+                IB0_N_per_m=tuple(sc.line_load(curve_B).tolist()),
+                spin_rpm=tuple(sc.rpm(curve_w).tolist()),
+            ),
+        ),
     }
 
 
-def _campbell(p, omegas: np.ndarray, options: WhirlOptions, N: int, op, sc: Scales) -> dict:
+def _campbell(p, omegas: np.ndarray, options: WhirlOptions, N: int, op, sc: Scales) -> Campbell:
     """The Campbell diagram at one resolution, checked at the operating spectrum's finer one on a few spins."""
     cd = campbell(p, omegas, k=options.k, N=N, N_check=op.N if op.N > N else None)
-    return {
-        "omega": omegas.tolist(),
-        "spin_rpm": sc.rpm(omegas).tolist(),
-        "frequency_Hz": finite_or_none(sc.hz(np.abs(cd.frequencies))),
-        "growth_rate_per_s": finite_or_none(sc.rad_s(cd.growth_rates)),
-        "N": cd.N,
-        "N_check": cd.N_check,
-        "checked_spin_rpm": sc.rpm(omegas[cd.checked]).tolist(),
-        "error": finite_or_none(cd.error),
-    }
+    return Campbell(
+        omega=tuple(omegas.tolist()),
+        spin_rpm=tuple(sc.rpm(omegas).tolist()),
+        frequency_Hz=tuple(map(tuple, finite_or_none(sc.hz(np.abs(cd.frequencies))))),
+        growth_rate_per_s=tuple(map(tuple, finite_or_none(sc.rad_s(cd.growth_rates)))),
+        N=cd.N,
+        N_check=cd.N_check,
+        checked_spin_rpm=tuple(sc.rpm(omegas[cd.checked]).tolist()),
+        error=finite_or_none(cd.error),
+    )
 
 
 def _map(p, options: WhirlOptions, route: str, N: int, B_hi: float, w_hi: float, w_rows: np.ndarray):
@@ -458,11 +473,11 @@ def _map(p, options: WhirlOptions, route: str, N: int, B_hi: float, w_hi: float,
         if p.gamma > 0:  # stability changes only at static points: cut each row there exactly
             cuts = stable_rows(p, curves, B_hi)
         else:  # undamped: flutter can occur anywhere, sample a grid
-            growth = stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()
+            growth = tuple(map(tuple, stability_map(p, B_grid, w_grid, N=16 if N <= 24 else N).tolist()))
     return B_grid, w_grid, growth, cuts, curve_B, curve_w
 
 
-def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: int = 10) -> list[AccuracyRow]:
+def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: int = 10) -> tuple[AccuracyRow, ...]:
     """Time and error of the lowest k eigenvalue pairs and of B_c versus N.
 
     A measurement for this scene (BLAS on one thread, one solve per N), against
@@ -472,9 +487,9 @@ def accuracy(scaled: Scaled, Ns: tuple[int, ...] = WhirlOptions.accuracy_N, k: i
     """
     N_ref = reference_resolution(Ns)
     rows = accuracy_table(scaled.params, Ns=Ns, k=k, N_ref=N_ref)
-    return [
-        {"N": r.N, "solve_time_s": r.solve_time, "eigenvalue_error": finite_or_none(r.eig_error),
-         "load_error": finite_or_none(r.load_error), "reference_N": N_ref}
+    return tuple(
+        AccuracyRow(N=r.N, solve_time_s=r.solve_time, eigenvalue_error=finite_or_none(r.eig_error),
+                    load_error=finite_or_none(r.load_error), reference_N=N_ref)
         for r in rows
-    ]
+    )
 

@@ -49,8 +49,8 @@ def assumptions(mission: Mission, base: Scene, margin_name: str | None, margin_v
         rows = [_ends(mission, other_ends), *_profile_rows(inp, margin_name, margin_value, profiles)]
     else:
         rows = [_ends(mission, other_ends), _current(inp), _tension(inp), _field(inp), _damping(inp)]
-    return {"margin": margin_name, "margin_value": margin_value, "required": mission.check.required_margin,
-            "rows": rows, "time_s": time.perf_counter() - started}
+    return AssumptionsSection(margin=margin_name, margin_value=margin_value, required=mission.check.required_margin,
+                              rows=tuple(rows), time_s=time.perf_counter() - started)
 
 
 def _flag(mission: Mission, *fields: str) -> str:
@@ -60,9 +60,9 @@ def _flag(mission: Mission, *fields: str) -> str:
 def _record(key: str, assumption: str, value: str, source: str, flag: str, note: str = "",
             elasticity: float | None = None, method: str = "", alternative: str | None = None,
             margin: float | None = None) -> AssumptionRecord:
-    return {"key": key, "assumption": assumption, "value": value, "source": source, "flag": flag,
-            "elasticity": elasticity, "elasticity_method": method, "alternative": alternative,
-            "margin_alternative": margin, "note": note}
+    return AssumptionRecord(key=key, assumption=assumption, value=value, source=source, flag=flag,
+                            elasticity=elasticity, elasticity_method=method, alternative=alternative,
+                            margin_alternative=margin, note=note)
 
 
 def _ends(mission: Mission, others: tuple[AlternativeMargin, ...]) -> AssumptionRecord:
@@ -227,13 +227,13 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
     cp = m.operation.current_profile
     # the uniform check's margin (one current, the smallest tension), where an alternative below shows it
     uniform = _margin_or_none(inp, "current", inp.current) \
-        if cp is not None or profiles["uniform_tension_bound"] is None else None
+        if cp is not None or profiles.uniform_tension_bound is None else None
 
     def ratio(point) -> float | None:
         """The load margin at another critical load (dimensionless), where the load margin governs."""
-        if not load_governs or point is None or point.get("value") is None or p.B == 0:
+        if not load_governs or point is None or point.value is None or p.B == 0:
             return None
-        return point["value"] / p.B
+        return point.value / p.B
 
     lo, hi = m.operation.current_range_A
     current = f"largest {inp.current:.4g} A" + (f" (worst of {lo:.4g} … {hi:.4g} A)" if lo != hi else "")
@@ -250,16 +250,16 @@ def _profile_rows(inp: Inputs, name: str | None, value: float | None,
             "a current that varies along the tether makes the magnetic load circulatory: flutter is possible and "
             "damping can lower the threshold", *exact,
             "one current along the whole tether (the uniform check, smallest tension held constant)", uniform)
-    tension_row = _profile_tension(inp, ratio(profiles["uniform_tension_bound"]),
+    tension_row = _profile_tension(inp, ratio(profiles.uniform_tension_bound),
                                    uniform if cp is None else None)
     field_row = _field(inp, exact)
-    d = profiles["damping"]
-    undamped = ratio(profiles["undamped"]) if d["gamma"] > 0 else None
+    d = profiles.damping
+    undamped = ratio(profiles.undamped) if d.gamma > 0 else None
     damping_row = _record(
-        "damping", "material damping (Kelvin-Voigt)", f"γ = {d['gamma']:.4g} ({d['damping_time_s']:.3g} s)",
+        "damping", "material damping (Kelvin-Voigt)", f"γ = {d.gamma:.4g} ({d.damping_time_s:.3g} s)",
         "tether.damping_time" if m.tether.damping_time is not None else "not given: the least favourable up to the "
         "paper's estimate (Sec. VII B)", _flag(m, "tether.damping_time") if m.tether.damping_time is not None else DEFAULT,
-        d["why"], *_damping_elasticity(profiles["circulatory"], d["gamma"]),
+        d.why, *_damping_elasticity(profiles.circulatory, d.gamma),
         "no damping" if undamped is not None else None, undamped)
     return [current_row, tension_row, field_row, damping_row]
 

@@ -102,14 +102,14 @@ def _margin(point: CriticalPoint, operating: float) -> tuple[float, float]:
     """(critical / operating, its relative error) of one critical point by the check's rule
     (:func:`etcheck.checks.margins.margin.margin_from_critical`): 0 unstable at the start, inf where no value
     destabilises it (or the operating value is zero); NoAnswer where it was not located."""
-    kind = point["kind"]
+    kind = point.kind
     if operating == 0 or kind in (CriticalKind.NONE_FOUND, CriticalKind.NEVER):
         return math.inf, 0.0
     if kind == CriticalKind.UNSTABLE_AT_START:
         return 0.0, 0.0
-    if point["value"] is None:
-        raise NoAnswer(point["message"])
-    return point["value"] / operating, (point["error"] or 0.0) / point["value"] if point["value"] else 0.0
+    if point.value is None:
+        raise NoAnswer(point.message)
+    return point.value / operating, (point.error or 0.0) / point.value if point.value else 0.0
 
 
 def _ratio(critical: float, operating: float) -> float:
@@ -187,8 +187,8 @@ def design_limits(mission: Mission, base: Scene, options: WhirlOptions, rung_1v:
     found = dict(zip(sought, split_map(lambda name: _limit(inp, name), sought)))
     limits = [exact.get(name) or found.get(name) or _not_sought(inp, name, skip) for name in _LIMITS]
     basis = BOUND if rung_1v and found else ""
-    return {"required": inp.required, "tolerance": LIMIT_TOLERANCE, "limits": limits,
-            "time_s": time.perf_counter() - started, "basis": basis}
+    return DesignLimitsSection(required=inp.required, tolerance=LIMIT_TOLERANCE, limits=tuple(limits),
+                               time_s=time.perf_counter() - started, basis=basis)
 
 
 #: why a limit is not sought for a tether with a current along it
@@ -204,11 +204,11 @@ def _current_from_margin(inp: Inputs, margin: float, error: float) -> DesignLimi
     critical load that depends on neither (the profile's shape held), so the limit is |I| × margin / required."""
     record = _not_sought(inp, "current", "")
     if not math.isfinite(margin) or margin <= 0:
-        return record | {"status": "not located", "note": "the load margin is zero or without limit"}
-    return record | {"limit": inp.current * margin / inp.required, "status": "located",
-                     "margin_at_limit": inp.required, "governing": "load margin", "relative_error": error,
-                     "note": "exact from rung 1v's load margin: the critical load of a profile of fixed shape does "
-                             "not depend on the current"}
+        return replace(record, status="not located", note="the load margin is zero or without limit")
+    return replace(record, limit=inp.current * margin / inp.required, status="located",
+                   margin_at_limit=inp.required, governing="load margin", relative_error=error,
+                   note="exact from rung 1v's load margin: the critical load of a profile of fixed shape does "
+                        "not depend on the current")
 
 
 def not_sought(base: Scene) -> str:
@@ -225,9 +225,9 @@ def not_sought(base: Scene) -> str:
 
 def _not_sought(inp: Inputs, name: str, why: str) -> DesignLimit:
     label, unit, factor, _ = _LIMITS[name]
-    return {"input": name, "label": label, "unit": unit, "mission_value": _mission_value(inp, name) * factor,
-            "limit": None, "status": "not sought", "margin_at_limit": None, "governing": None,
-            "relative_error": None, "evaluations": 0, "note": why, "end_mass_factor": None}
+    return DesignLimit(input=name, label=label, unit=unit, mission_value=_mission_value(inp, name) * factor,
+                       limit=None, status="not sought", margin_at_limit=None, governing=None,
+                       relative_error=None, evaluations=0, note=why, end_mass_factor=None)
 
 
 def _mission_value(inp: Inputs, name: str) -> float:
@@ -236,24 +236,21 @@ def _mission_value(inp: Inputs, name: str) -> float:
 
 
 def _limit(inp: Inputs, name: str) -> DesignLimit:
-    label, unit, factor, slope = _LIMITS[name]
+    _, _, factor, slope = _LIMITS[name]
     x0 = _mission_value(inp, name)
-    record: DesignLimit = {"input": name, "label": label, "unit": unit, "mission_value": x0 * factor, "limit": None,
-                           "status": "not located", "margin_at_limit": None, "governing": None,
-                           "relative_error": None, "evaluations": 0, "note": "", "end_mass_factor": None}
+    record = replace(_not_sought(inp, name, ""), status="not located")
     counter = _Counted(inp, name)
     try:
         found = _solve(counter, name, x0, slope)
     except NoAnswer as exc:
-        return record | {"note": f"a margin was not located on the way: {exc}", "evaluations": counter.n}
-    record |= {"evaluations": counter.n} | found
-    for key in ("limit", "margin_at_limit", "relative_error"):  # a margin without limit (no root) is None in JSON
-        if record[key] is not None and not math.isfinite(record[key]):
-            record[key] = None
-    if record["limit"] is not None:
-        record["limit"] *= factor
+        return replace(record, note=f"a margin was not located on the way: {exc}", evaluations=counter.n)
+    # a margin without limit (no root) is None in JSON
+    found = {k: None if isinstance(v, float) and not math.isfinite(v) else v for k, v in found.items()}
+    record = replace(record, evaluations=counter.n, **found)
+    if record.limit is not None:
+        record = replace(record, limit=record.limit * factor)
     if name == "end_tension" and inp.base.gravity_gradient is not None and found.get("status") == "located":
-        record |= _end_masses(inp, found["limit"])
+        record = replace(record, **_end_masses(inp, found["limit"]))
     return record
 
 
@@ -327,7 +324,7 @@ def _start(g: _Counted, name: str) -> float:
         _, spin = critical_values(p, inp.options, straight_route(p), spin=True)
     except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
         raise NoAnswer(f"{type(exc).__name__}: {exc}") from None
-    w = spin["value"] if spin["value"] is not None else math.nan
+    w = spin.value if spin.value is not None else math.nan
     if not (math.isfinite(w) and w > 0):
         raise NoAnswer("the critical spin at the operating load was not located")
     return math.log(scale(inp.base).scales.rad_s(w) / inp.required)

@@ -25,10 +25,10 @@ def flight(mission: Mission, verdict: str, margins: list[Margin], validity: Mode
     smallest = min(straight, key=lambda g: g.value) if straight else None
     within = ("the straight tether's smallest margin is "
               f"{smallest.value:.3g} ({smallest.name})" if smallest else "no margin of the straight tether")
-    return {"outcome": outcome, "reported": reported, "prediction": verdict,
-            "agreement": _agreement(outcome, verdict),
-            "comparison": _comparison(outcome, verdict, within, validity),
-            "not_modelled": _not_modelled(mission, validity, smallest)}
+    return FlightSection(outcome=outcome, reported=reported, prediction=verdict,
+                         agreement=_agreement(outcome, verdict),
+                         comparison=_comparison(outcome, verdict, within, validity),
+                         not_modelled=_not_modelled(mission, validity, smallest))
 
 
 def _ends(mission: Mission, smallest: Margin | None) -> str:
@@ -53,7 +53,7 @@ def _comparison(outcome: str, verdict: str, within: str, validity: ModelValidity
     flown = "coiled in flight" if outcome == COILED else "stayed straight in flight"
     if verdict == "outside":
         return (f"The tether {flown}. The check finds the scene outside the straight-tether model's validity ("
-                f"{'; '.join(validity['reasons'])}): the model does not describe the tether as flown, so it can "
+                f"{'; '.join(validity.reasons)}): the model does not describe the tether as flown, so it can "
                 f"neither confirm nor contradict the flight. Within the model, {within}.")
     if verdict == "pass":
         said = "predicts a straight tether that keeps the required margin"
@@ -64,12 +64,12 @@ def _comparison(outcome: str, verdict: str, within: str, validity: ModelValidity
     return f"The tether {flown}; the check {said} ({within}): {_agreement(outcome, verdict)}."
 
 
-def _not_modelled(mission: Mission, validity: ModelValidity, smallest: Margin | None) -> list[str]:
-    lat = validity["lateral"]
+def _not_modelled(mission: Mission, validity: ModelValidity, smallest: Margin | None) -> tuple[str, ...]:
+    lat = validity.lateral
     gg = mission.operation.gravity_gradient
     items = [
-        f"the bow under the lateral Lorentz load: computed here, {100 * lat['bow_over_length']:.3g} % of the length with "
-        f"{lat['cross_field_T'] * 1e6:.3g} µT across the tether ({lat['cross_field_source']}); the stability "
+        f"the bow under the lateral Lorentz load: computed here, {100 * lat.bow_over_length:.3g} % of the length with "
+        f"{lat.cross_field_T * 1e6:.3g} µT across the tether ({lat.cross_field_source}); the stability "
         "analysis itself assumes a straight tether",
         "the current along the tether: " + (
             "one current along the whole tether, as for an insulated tether (a bare tether's current varies "
@@ -89,4 +89,4 @@ def _not_modelled(mission: Mission, validity: ModelValidity, smallest: Margin | 
         items.append(f"the tension along the tether: the gravity-gradient profile ({gg.minimum:.3g} N at its "
                      f"{gg.minimum_at} to {gg.maximum:.3g} N at the centre) from end masses {gg.upper_mass:.4g} kg "
                      f"and {gg.lower_mass:.4g} kg{assumed}, on a tether at rest on the local vertical")
-    return items
+    return tuple(items)

@@ -9,7 +9,7 @@ with B_axial,worst(t) the worst axial field over the libration set at that
 sample (T). Its minimum over the window is the check's load margin (the check
 uses the envelope's worst field), attained where the field is largest.
 
-``orbit_results`` returns JSON-able data for results.json under ``"orbit"``:
+``orbit_results`` returns the ``orbit`` section of the results:
 the envelope summary, the convergence of the sampling, the series over the
 first orbit at full resolution and over the whole window downsampled to at
 most :data:`MAX_SERIES` points (every k-th sample plus the worst one; the
@@ -25,7 +25,15 @@ import numpy as np
 
 from etcheck.checks.margins.margin import Margin
 from etcheck.checks.orbit_field import Resolved, statement
-from etcheck.checks.results.sections import OrbitSection, OrbitSeries
+from etcheck.checks.results.sections import (
+    OrbitHistogram,
+    OrbitMargin,
+    OrbitPercentiles,
+    OrbitSampling,
+    OrbitSection,
+    OrbitSeries,
+    OrbitWorst,
+)
 from etcheck.jsonable import finite_or_none
 
 #: Most samples of the whole-window series written to results.json.
@@ -37,23 +45,28 @@ def load_margin(margins: list[Margin]) -> Margin | None:
     return next((m for m in margins if m.unit == "N/m" and m.name.startswith("magnetic load") and m.critical is not None), None)
 
 
+def _finite(a) -> tuple[float | None, ...]:
+    """The samples ``a`` with None where not finite."""
+    return tuple(finite_or_none(a))
+
+
 def _series(s, idx: np.ndarray, current: float, critical: float | None) -> OrbitSeries:
     load = current * s.axial_worst[idx]  # N/m
     with np.errstate(divide="ignore"):
         margin = critical / load if critical is not None else None
-    return {
-        "time_s": finite_or_none(s.time[idx]),
-        "latitude_deg": finite_or_none(s.latitude[idx]),
-        "longitude_deg": finite_or_none(s.longitude[idx]),
-        "altitude_m": finite_or_none(s.altitude[idx]),
-        "b_up_T": finite_or_none(s.b_up[idx]),
-        "b_along_T": finite_or_none(s.b_along[idx]),
-        "b_cross_T": finite_or_none(s.b_cross[idx]),
-        "axial_nominal_T": finite_or_none(s.axial_nominal[idx]),
-        "axial_worst_T": finite_or_none(s.axial_worst[idx]),
-        "load_N_per_m": finite_or_none(load),
-        "load_margin": None if margin is None else finite_or_none(margin),
-    }
+    return OrbitSeries(
+        time_s=_finite(s.time[idx]),
+        latitude_deg=_finite(s.latitude[idx]),
+        longitude_deg=_finite(s.longitude[idx]),
+        altitude_m=_finite(s.altitude[idx]),
+        b_up_T=_finite(s.b_up[idx]),
+        b_along_T=_finite(s.b_along[idx]),
+        b_cross_T=_finite(s.b_cross[idx]),
+        axial_nominal_T=_finite(s.axial_nominal[idx]),
+        axial_worst_T=_finite(s.axial_worst[idx]),
+        load_N_per_m=_finite(load),
+        load_margin=None if margin is None else _finite(margin),
+    )
 
 
 def orbit_results(resolved: Resolved, margins: list[Margin]) -> OrbitSection | None:
@@ -75,37 +88,39 @@ def orbit_results(resolved: Resolved, margins: list[Margin]) -> OrbitSection | N
     k = int(np.argmax(s.axial_worst))
     whole = np.union1d(np.arange(0, n, stride), [k, n - 1])
     worst_load = current * env.worst
-    return {
-        "model": env.model,
-        "start": env.start,
-        "duration_s": env.duration,
-        "period_s": period,
-        "libration_in_plane_deg": math.degrees(env.libration_in_plane),
-        "libration_out_of_plane_deg": math.degrees(env.libration_out_of_plane),
-        "sampling": {"step_s": env.step, "step_change": env.step_change, "converged": env.converged,
-                     "tolerance": env.tolerance, "steps_s": list(env.steps),
-                     "worst_by_step_T": list(env.worst_by_step), "samples": n},
-        "worst": {"axial_field_T": env.worst, "time_s": env.worst_time, "utc": env.worst_utc,
-                  "latitude_deg": env.worst_latitude, "longitude_deg": env.worst_longitude,
-                  "altitude_m": env.worst_altitude, "pitch_deg": math.degrees(env.worst_pitch),
-                  "roll_deg": math.degrees(env.worst_roll)},
-        "worst_nominal_T": env.worst_nominal,
-        "percentiles": {"levels": env.percentile_levels.tolist(), "axial_worst_T": env.percentiles.tolist(),
-                        "axial_nominal_T": env.percentiles_nominal.tolist()},
-        "histogram": {"counts": env.histogram_counts.tolist(), "edges_T": env.histogram_edges.tolist()},
-        "worst_current_A": current,
-        "worst_load_N_per_m": worst_load,
-        "margin": None if m is None else {"name": m.name, "critical_N_per_m": critical,
-                                          "smallest": critical / worst_load if worst_load > 0 else None,
-                                          "required": m.required},
-        "statement": statement(env),
-        "envelope_s": env.seconds,
-        "first_orbit": _series(s, first, current, critical),
-        "series": _series(s, whole, current, critical),
-        "series_note": (f"all {n} samples" if stride == 1 else
-                        f"every {stride}th of the {n} samples ({stride * env.step:g} s apart) plus the worst one: "
-                        f"{whole.size} points (the first orbit is at full resolution)"),
-    }
+    return OrbitSection(
+        model=env.model,
+        start=env.start,
+        duration_s=env.duration,
+        period_s=period,
+        libration_in_plane_deg=math.degrees(env.libration_in_plane),
+        libration_out_of_plane_deg=math.degrees(env.libration_out_of_plane),
+        sampling=OrbitSampling(step_s=env.step, step_change=env.step_change, converged=env.converged,
+                               tolerance=env.tolerance, steps_s=tuple(env.steps),
+                               worst_by_step_T=tuple(env.worst_by_step), samples=n),
+        worst=OrbitWorst(axial_field_T=env.worst, time_s=env.worst_time, utc=env.worst_utc,
+                         latitude_deg=env.worst_latitude, longitude_deg=env.worst_longitude,
+                         altitude_m=env.worst_altitude, pitch_deg=math.degrees(env.worst_pitch),
+                         roll_deg=math.degrees(env.worst_roll)),
+        worst_nominal_T=env.worst_nominal,
+        percentiles=OrbitPercentiles(levels=tuple(env.percentile_levels.tolist()),
+                                     axial_worst_T=tuple(env.percentiles.tolist()),
+                                     axial_nominal_T=tuple(env.percentiles_nominal.tolist())),
+        histogram=OrbitHistogram(counts=tuple(env.histogram_counts.tolist()),
+                                 edges_T=tuple(env.histogram_edges.tolist())),
+        worst_current_A=current,
+        worst_load_N_per_m=worst_load,
+        margin=None if m is None else OrbitMargin(name=m.name, critical_N_per_m=critical,
+                                                  smallest=critical / worst_load if worst_load > 0 else None,
+                                                  required=m.required),
+        statement=statement(env),
+        envelope_s=env.seconds,
+        first_orbit=_series(s, first, current, critical),
+        series=_series(s, whole, current, critical),
+        series_note=(f"all {n} samples" if stride == 1 else
+                     f"every {stride}th of the {n} samples ({stride * env.step:g} s apart) plus the worst one: "
+                     f"{whole.size} points (the first orbit is at full resolution)"),
+    )
 
 
 __all__ = ["MAX_SERIES", "load_margin", "orbit_results"]

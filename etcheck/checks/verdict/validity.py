@@ -115,24 +115,24 @@ def lateral_load(mission: Mission, sc: Scene) -> LateralLoad:
     clamped = all(end.holds_slope for end in Ends.of(sc.ends).conditions)  # a pinned end lets it bow more: both taken pinned then
     bow = mid_span_bow(q, sc.length, sc.tension, sc.EI2, clamped)
     outside = bow > BOW_LIMIT * sc.length
-    return {
-        "cross_field_T": b_perp,
-        "cross_field_source": source,
-        "cross_field_assumed": assumed,
-        "current_A": current,
-        "load_N_per_m": q,
-        "total_N": q * sc.length,
-        "tension_N": sc.tension,
-        "load_over_tension": q * sc.length / sc.tension if sc.tension > 0 else None,
-        "stiffness_N_m2": sc.EI2,
-        "bow_m": bow,
-        "bow_over_length": bow / sc.length,
-        "limit": BOW_LIMIT,
+    return LateralLoad(
+        cross_field_T=b_perp,
+        cross_field_source=source,
+        cross_field_assumed=assumed,
+        current_A=current,
+        load_N_per_m=q,
+        total_N=q * sc.length,
+        tension_N=sc.tension,
+        load_over_tension=q * sc.length / sc.tension if sc.tension > 0 else None,
+        stiffness_N_m2=sc.EI2,
+        bow_m=bow,
+        bow_over_length=bow / sc.length,
+        limit=BOW_LIMIT,
         # what would bring a bowed tether within the limit (None within it: nothing to bring)
-        "tension_for_limit_N": tension_for_bow(q, sc.length, sc.EI2, BOW_LIMIT * sc.length, clamped) if outside else None,
-        "ends": "welded (clamped)" if clamped else "pinned (a pinned end, taken at both)",
-        "cross_field_for_limit_T": b_perp * BOW_LIMIT * sc.length / bow if outside else None,
-    }
+        tension_for_limit_N=tension_for_bow(q, sc.length, sc.EI2, BOW_LIMIT * sc.length, clamped) if outside else None,
+        ends="welded (clamped)" if clamped else "pinned (a pinned end, taken at both)",
+        cross_field_for_limit_T=b_perp * BOW_LIMIT * sc.length / bow if outside else None,
+    )
 
 
 def model_validity(mission: Mission, sc: Scene) -> ModelValidity:
@@ -140,26 +140,26 @@ def model_validity(mission: Mission, sc: Scene) -> ModelValidity:
     ``within`` False with the reasons where any is exceeded."""
     lat = lateral_load(mission, sc)
     checks = [_straightness(lat), _slenderness(sc.P), _extensibility(sc)]
-    reasons = [c["summary"] for c in checks if c["within"] is False]
-    return {"within": not reasons, "reasons": reasons, "checks": checks, "lateral": lat}
+    reasons = tuple(c.summary for c in checks if c.within is False)
+    return ModelValidity(within=not reasons, reasons=reasons, checks=tuple(checks), lateral=lat)
 
 
 def _straightness(lat: LateralLoad) -> ValidityCheck:
-    w = lat["bow_over_length"]
+    w = lat.bow_over_length
     within = w <= BOW_LIMIT
     fix = ""
     if not within:
         fix = (f"; straight within {100 * BOW_LIMIT:g} % it would need a tension of at least "
-               f"{lat['tension_for_limit_N']:.3g} N or a field across it of at most "
-               f"{lat['cross_field_for_limit_T'] * 1e6:.3g} µT")
-    ratio = "" if lat["load_over_tension"] is None else f", {lat['load_over_tension']:.3g} times the tension"
-    detail = (f"the lateral Lorentz load |I|·B⊥ = {lat['current_A']:.3g} A × {lat['cross_field_T'] * 1e6:.3g} µT = "
-              f"{lat['load_N_per_m']:.3g} N/m ({lat['total_N']:.3g} N in all{ratio}) bows the tether by "
-              f"{lat['bow_m']:.3g} m at mid-span, {_share(w)} (limit {100 * BOW_LIMIT:g} %){fix}")
+               f"{lat.tension_for_limit_N:.3g} N or a field across it of at most "
+               f"{lat.cross_field_for_limit_T * 1e6:.3g} µT")
+    ratio = "" if lat.load_over_tension is None else f", {lat.load_over_tension:.3g} times the tension"
+    detail = (f"the lateral Lorentz load |I|·B⊥ = {lat.current_A:.3g} A × {lat.cross_field_T * 1e6:.3g} µT = "
+              f"{lat.load_N_per_m:.3g} N/m ({lat.total_N:.3g} N in all{ratio}) bows the tether by "
+              f"{lat.bow_m:.3g} m at mid-span, {_share(w)} (limit {100 * BOW_LIMIT:g} %){fix}")
     bows = _share(w) if w <= 1.0 else f"{w:.3g} times its length"
     summary = f"the tether bows by {bows} under the lateral Lorentz load (the model's limit {100 * BOW_LIMIT:g} %)"
-    return {"name": "straight under the lateral Lorentz load", "quantity": "bow at mid-span / L", "value": w,
-            "limit": BOW_LIMIT, "within": within, "detail": detail, "summary": summary}
+    return ValidityCheck(name="straight under the lateral Lorentz load", quantity="bow at mid-span / L", value=w,
+                         limit=BOW_LIMIT, within=within, detail=detail, summary=summary)
 
 
 def _share(w: float) -> str:
@@ -178,9 +178,10 @@ def _slenderness(P: float) -> ValidityCheck:
         detail = f"P = {P:.3g}: slender enough for rod theory (limit {P_LIMIT:g}), with noticeable rotary inertia"
     else:
         detail = f"P = {P:.3g}: a slender rod (limit {P_LIMIT:g})"
-    return {"name": "slender (rod theory, rotary inertia)", "quantity": "P = I1 / (A L²)", "value": P,
-            "limit": P_LIMIT, "within": within, "detail": detail,
-            "summary": f"the tether is too short (or thick) for rod theory (P = {P:.3g}, the model's limit {P_LIMIT:g})"}
+    return ValidityCheck(
+        name="slender (rod theory, rotary inertia)", quantity="P = I1 / (A L²)", value=P, limit=P_LIMIT,
+        within=within, detail=detail,
+        summary=f"the tether is too short (or thick) for rod theory (P = {P:.3g}, the model's limit {P_LIMIT:g})")
 
 
 def _extensibility(sc: Scene) -> ValidityCheck:
@@ -188,21 +189,22 @@ def _extensibility(sc: Scene) -> ValidityCheck:
             "summary": f"the tether stretches past the inextensible model's limit (strain above {100 * STRAIN_LIMIT:g} %)"}
     ea = sc.axial_stiffness
     if ea is None:
-        return {**base, "value": None, "within": None,
-                "detail": "not checked: the mission gives no youngs_modulus and cross_section_area"}
+        return ValidityCheck(**base, value=None, within=None,
+                             detail="not checked: the mission gives no youngs_modulus and cross_section_area")
     tension = sc.largest_tension
     strain = tension / ea
     where = "the largest tension, at the centre of mass" if sc.gravity_gradient is not None else "the end tension"
     within = strain <= STRAIN_LIMIT
-    return {**base, "value": strain, "within": within,
-            "detail": f"strain {strain:.2g} under {where} ({tension:.3g} N, E A = {ea:.3g} N; limit {100 * STRAIN_LIMIT:g} %)"}
+    return ValidityCheck(**base, value=strain, within=within,
+                         detail=f"strain {strain:.2g} under {where} ({tension:.3g} N, E A = {ea:.3g} N; "
+                                f"limit {100 * STRAIN_LIMIT:g} %)")
 
 
 def _after_buckling(post: PostbucklingSection | None, ends) -> str:
     if not is_welded(ends):
         return ("Linear stability of the straight tether: margins say where it first buckles or whirls. The buckled "
                 "tether (rungs 2-3) is computed for welded ends only and is not analysed for these ends.")
-    if post and post.get("computed"):
+    if post and post.computed:
         return ("Past (or near) the first critical load the first post-buckling branch b1 is followed as nonlinear "
                 "whirling equilibria (rung 2, Chebyshev collocation, Newton with the exact Jacobian, pseudo-arclength "
                 "continuation) and each state's stability from its linearisation (rung 3); other branches (b2, b12, "
