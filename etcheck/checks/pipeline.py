@@ -43,19 +43,16 @@ from etcheck.checks.plan import (
 )
 from etcheck.checks.results.header import header_fields, results_header
 from etcheck.checks.results.sections import (
-    AccuracyRow,
     CheckResults,
-    LinearSection,
     PlanSection,
-    ProfilesSection,
     ResourcesSection,
     ScaledSection,
     ScalesSection,
     SceneSection,
     SkippedPart,
-    StraightRodSection,
 )
 from etcheck.checks.results.sections_buckled import PostbucklingSection
+from etcheck.checks.results.sections_straight import AccuracyRow, LinearSection, ProfilesSection, StraightRodSection
 from etcheck.checks.results.sections_verdict import (
     AssumptionsSection,
     DesignLimitsSection,

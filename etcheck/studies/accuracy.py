@@ -14,7 +14,7 @@ import math
 import time
 from dataclasses import dataclass
 
-from etcheck.checks.results.sections import AccuracyRow
+from etcheck.checks.results.sections_straight import AccuracyRow
 from etcheck.checks.rungs.straight import accuracy
 from etcheck.rod.buckled import branches as br
 from etcheck.rod.buckled import pitchforks

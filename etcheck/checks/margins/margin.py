@@ -6,8 +6,9 @@ from dataclasses import replace
 from enum import StrEnum
 
 from etcheck.checks.plan import PROFILES, Plan
-from etcheck.checks.results.sections import LinearSection, Margin, StraightRodSection
+from etcheck.checks.results.sections import Margin
 from etcheck.checks.results.sections_buckled import PostbucklingSection
+from etcheck.checks.results.sections_straight import LinearSection, StraightRodSection
 from etcheck.input.mission import Mission
 from etcheck.jsonable import OMITTED
 from etcheck.rod.core.ends import describe, is_welded

@@ -25,7 +25,7 @@ from typing import Any
 
 import numpy as np
 
-from etcheck.checks.results.sections import (
+from etcheck.checks.results.sections_straight import (
     CriticalLoad,
     CriticalPoint,
     CriticalSpin,

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from etcheck.checks.results.sections import (
+from etcheck.checks.results.sections_straight import (
     ChiCurve,
     ModeShape,
     NaturalFrequencies,

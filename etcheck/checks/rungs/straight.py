@@ -21,7 +21,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from etcheck.checks.plan import EXACT, SPECTRAL
-from etcheck.checks.results.sections import (
+from etcheck.checks.results.sections import SkippedPart
+from etcheck.checks.results.sections_straight import (
     AccuracyRow,
     Campbell,
     CriticalLoad,
@@ -31,7 +32,6 @@ from etcheck.checks.results.sections import (
     Mode,
     OperatingPoint,
     OperatingSpectrum,
-    SkippedPart,
     SpinWindow,
     StabilityMap,
     StableRow,

@@ -21,7 +21,8 @@ import time
 from dataclasses import replace
 
 from etcheck.checks.margins.margin import LOAD_AT_REST, LOAD_AT_SPIN
-from etcheck.checks.results.sections import AlternativeMargin, ProfilesSection
+from etcheck.checks.results.sections import AlternativeMargin
+from etcheck.checks.results.sections_straight import ProfilesSection
 from etcheck.checks.results.sections_verdict import AssumptionRecord, AssumptionsSection
 from etcheck.checks.rungs.straight import WhirlOptions
 from etcheck.checks.verdict.design_limits import Inputs, NoAnswer, inputs_of, not_sought, point_margins

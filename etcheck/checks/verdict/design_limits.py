@@ -27,7 +27,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from etcheck.checks.plan import EXACT, straight_route
-from etcheck.checks.results.sections import CriticalPoint
+from etcheck.checks.results.sections_straight import CriticalPoint
 from etcheck.checks.results.sections_verdict import DesignLimit, DesignLimitsSection
 from etcheck.checks.rungs.straight import WhirlOptions, critical_values
 from etcheck.input.mission import Mission
