@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from etcheck.rod.core.linear import skew
 from etcheck.rod.core.profile import Profile
 
 __all__ = ["CrossField", "lorentz_block"]
@@ -76,15 +77,6 @@ class CrossField:
         return np.ones_like(s) if self.current is None else self.current(s)
 
 
-def _skew(v: np.ndarray) -> np.ndarray:
-    """[v]x for v of shape (..., 3)."""
-    out = np.zeros(v.shape[:-1] + (3, 3))
-    out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
-    out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
-    out[..., 2, 0], out[..., 2, 1] = -v[..., 1], v[..., 0]
-    return out
-
-
 def lorentz_block(B: float, field: CrossField, t: np.ndarray, d3: np.ndarray, P: np.ndarray) -> np.ndarray:
     """The derivative of the collocated load B i(t_k) d3(t_k) x b with respect to the rotations a_j of the nodes
     (d3_j -> d3_j + a_j x d3_j), as the block [a, k, b, j] of the force rows (phi) and rotation columns (a).
@@ -96,7 +88,7 @@ def lorentz_block(B: float, field: CrossField, t: np.ndarray, d3: np.ndarray, P:
     """
     n, n1 = P.shape
     i_t = field.current_at(t)
-    C = _skew(field.direction) @ _skew(np.asarray(d3, dtype=float))  # (N or N+1, 3, 3)
+    C = skew(field.direction) @ skew(np.asarray(d3, dtype=float))  # (N or N+1, 3, 3)
     if C.shape[0] == n1:
         out = C.transpose(1, 2, 0)[:, None, :, :] * P[None, :, None, :]
     else:

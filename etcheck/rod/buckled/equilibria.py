@@ -70,7 +70,7 @@ import scipy.linalg as sla
 from etcheck.errors import SolverError
 from etcheck.numerics.chebyshev import clenshaw_curtis_weights, lobatto_weights, resample_matrix
 from etcheck.rod.core.ends import BUCKLED_WELDED_ONLY
-from etcheck.rod.core.linear import NFIELDS, collocation, end_rows, static_operator, stiffness_diag
+from etcheck.rod.core.linear import NFIELDS, collocation, end_rows, skew, static_operator, stiffness_diag
 from etcheck.rod.core.parameters import RodParameters
 
 __all__ = [
@@ -274,16 +274,6 @@ def jacobian(params: RodParameters, state: Equilibrium, exact: bool = True) -> n
     return _exact_jacobian(params, state)
 
 
-_SKEW_BASIS = np.array([[[0, 0, 0], [0, 0, -1], [0, 1, 0]],
-                        [[0, 0, 1], [0, 0, 0], [-1, 0, 0]],
-                        [[0, -1, 0], [1, 0, 0], [0, 0, 0]]], dtype=float)
-
-
-def _skew(v: np.ndarray) -> np.ndarray:
-    """skew(v) for v of shape (..., 3): skew(v) @ u = v x u."""
-    return np.einsum("...i,iab->...ab", v, _SKEW_BASIS)
-
-
 def _levi_civita() -> np.ndarray:
     e = np.zeros((3, 3, 3))
     for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1)):
@@ -352,14 +342,14 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
         return W[:, :, None, None] * C
 
     # d(d_i(t_k)) / d a_j = P_kj (a_j x d_i,j) = -P_kj skew(d_i,j) a_j
-    skew_d3 = _skew(D[:, :, 2])  # (N+1, 3, 3)
+    skew_d3 = skew(D[:, :, 2])  # (N+1, 3, 3)
     # x rows: PD xi - d(d3)
     put_identity(0, 0, PD)
     put_weighted(0, 1, skew_d3, "j")
     # constitutive rows: d(Dt) K kb + Dt K dkb - P m
     v = kb * K[None, :]  # (N, 3) body vector K kb
     Dv = np.einsum("jab,kb->kja", D, v)  # D_j (K kb_k)
-    T = weighted(P, -_skew(Dv))  # d/da_j of (a_j x D_j v_k) weighted by P_kj
+    T = weighted(P, -skew(Dv))  # d/da_j of (a_j x D_j v_k) weighted by P_kj
     # dkb: axial(antisym(-P_kj D_j^T E_i Dp_k + PD_kj Dt_k^T E_i D_j)) for a_j = e_i
     dkb = -P[:, :, None, None] * _curvature_sensitivity(D, Dp).transpose(1, 0, 2, 3)
     dkb += PD[:, :, None, None] * _curvature_sensitivity(Dt, D)
@@ -368,13 +358,13 @@ def _exact_jacobian(params: RodParameters, state: Equilibrium) -> np.ndarray:
     put_identity(1, 3, P, -1.0)
     # force rows: PD phi + B d(d3) x e3 - w x (w x P xi)
     put_identity(2, 2, PD)
-    put_weighted(2, 1, params.B * (_skew(_E3) @ skew_d3), "j")  # -B e3 x d(d3), d(d3) = -P [d3]x
-    ww = _skew(w) @ _skew(w)
+    put_weighted(2, 1, params.B * (skew(_E3) @ skew_d3), "j")  # -B e3 x d(d3), d(d3) = -P [d3]x
+    ww = skew(w) @ skew(w)
     put_weighted(2, 0, -ww, "")
     # moment rows: PD m + d(d3) x Ft + d3t x P phi - rotary terms
     put_identity(3, 3, PD)
     J[9:12, :, 3:6, :] += _moment_rotation_block(params, D, Dt, Ft, P)
-    put_weighted(3, 2, _skew(Dt[:, :, 2]), "k")
+    put_weighted(3, 2, skew(Dt[:, :, 2]), "k")
     out[NFIELDS * N:] = end_rows(D[[0, -1]], N)  # linearised welded BCs at the end nodes (interpolant = nodal value there)
     return out
 

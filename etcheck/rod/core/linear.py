@@ -67,6 +67,7 @@ from etcheck.rod.core.parameters import RodParameters
 from etcheck.runtime.memory import matrix_bytes, require
 
 __all__ = [
+    "skew",
     "VARIABLES",
     "NFIELDS",
     "Collocation",
@@ -127,8 +128,8 @@ def stiffness_diag(params: RodParameters) -> np.ndarray:
     return np.array([1.0, params.R, params.Gamma * (1.0 + params.R) / 2.0]) / params.f
 
 
-def _skew(v: np.ndarray) -> np.ndarray:
-    """Matrices (n, 3, 3) of the cross products v x (.) for the rows of v (n, 3)."""
+def skew(v: np.ndarray) -> np.ndarray:
+    """Matrices (..., 3, 3) of the cross products v x (.) for the rows of v (..., 3)."""
     out = np.zeros(v.shape[:-1] + (3, 3))
     out[..., 0, 1], out[..., 0, 2] = -v[..., 2], v[..., 1]
     out[..., 1, 0], out[..., 1, 2] = v[..., 2], -v[..., 0]
@@ -146,11 +147,11 @@ def _moment_blocks(params: RodParameters, d: np.ndarray, F0: np.ndarray, W: np.n
     d_i x (w x (a x d_i)) = -[d_i]x [w]x [d_i]x a; d_i x (a x d_i) = -[d_i]x [d_i]x a.
     """
     c = np.array([params.P * params.R, params.P, 0.0])
-    Sd = _skew(np.moveaxis(d, 2, 1))  # (n, 3 directors, 3, 3): [d_i]x
+    Sd = skew(np.moveaxis(d, 2, 1))  # (n, 3 directors, 3, 3): [d_i]x
     w = W[[2, 0, 1], [1, 2, 0]]  # the vector omega e3 back from its cross-product matrix
     dw = np.cross(np.moveaxis(d, 2, 1), w)  # (n, i, 3): d_i x w
     wd = np.einsum("nai,a->ni", d, w)  # w . d_i
-    static = (-_skew(F0) @ Sd[:, 2]
+    static = (-skew(F0) @ Sd[:, 2]
               + np.einsum("i,nia,nib->nab", c, dw, dw)
               + np.einsum("i,ni,ab,nibc->nac", c, wd, W, Sd))
     gyro = -2.0 * np.einsum("i,niab,bc,nicd->nad", c, Sd, W, Sd)
@@ -174,8 +175,8 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
     D0 = base.D0(s)
     F0 = base.F0(s)
     M0 = base.M0(s)
-    Sd3 = _skew(D0[:, :, 2])
-    W = _skew(params.omega * _E3)
+    Sd3 = skew(D0[:, :, 2])
+    W = skew(params.omega * _E3)
     E0, E1, G0, G1, G2 = (np.zeros((n, NFIELDS, NFIELDS)) for _ in range(5))
     for grp in (XI, PHI, MOM):
         E0[:, grp, grp] = _EYE
@@ -186,9 +187,9 @@ def coefficient_blocks(params: RodParameters, base: BaseState, s: np.ndarray):
     E0[:, ALPHA, ALPHA] = DKD
     E1[:, ALPHA, ALPHA] = params.gamma * DKD
     G0[:, ALPHA, MOM] = _EYE
-    G0[:, ALPHA, ALPHA] = _skew(M0)
+    G0[:, ALPHA, ALPHA] = skew(M0)
     # phi' = -B (a x d3_0) x e3 + lambda^2 xi + 2 lambda w x xi + w x (w x xi)   (71)
-    G0[:, PHI, ALPHA] = -params.B * _skew(_E3) @ Sd3
+    G0[:, PHI, ALPHA] = -params.B * skew(_E3) @ Sd3
     G2[:, PHI, XI] = _EYE
     G1[:, PHI, XI] = 2.0 * W
     G0[:, PHI, XI] = W @ W
